@@ -1,0 +1,404 @@
+//! The mesh handle: create a quad/hex mesh, constrain and move nodes, relocate, read back.
+
+use std::ffi::{c_int, c_void};
+
+use super::boundary::{check_capacity, non_null, non_null_mut, run, slice, slice_mut, NullArgument};
+use super::igaparam_status;
+use crate::error::{Error, Result};
+use crate::homesh::{CellType, Mesh, Placement, RelocateOptions, Stage};
+use crate::optimize::TargetKind;
+
+/// A quadrilateral or hexahedral finite-element mesh with node constraints (opaque).
+/// Create with `igaparam_mesh_new`, release with `igaparam_mesh_free`.
+pub struct igaparam_mesh {
+    mesh: Mesh,
+}
+
+/// A cell type: one of the `IGAPARAM_CELL_*` values (VTK's cell type codes).
+pub type igaparam_cell_type = c_int;
+/// Bilinear quadrilateral, 4 nodes (VTK_QUAD).
+pub const IGAPARAM_CELL_QUAD4: igaparam_cell_type = 9;
+/// Serendipity quadratic quadrilateral, 8 nodes (VTK_QUADRATIC_QUAD).
+pub const IGAPARAM_CELL_QUAD8: igaparam_cell_type = 23;
+/// Biquadratic quadrilateral, 9 nodes (VTK_BIQUADRATIC_QUAD).
+pub const IGAPARAM_CELL_QUAD9: igaparam_cell_type = 28;
+/// Trilinear hexahedron, 8 nodes (VTK_HEXAHEDRON).
+pub const IGAPARAM_CELL_HEX8: igaparam_cell_type = 12;
+/// Serendipity quadratic hexahedron, 20 nodes (VTK_QUADRATIC_HEXAHEDRON).
+pub const IGAPARAM_CELL_HEX20: igaparam_cell_type = 25;
+/// Triquadratic hexahedron, 27 nodes (VTK_TRIQUADRATIC_HEXAHEDRON).
+pub const IGAPARAM_CELL_HEX27: igaparam_cell_type = 29;
+
+/// The ideal shape of a cell: one of the `IGAPARAM_TARGET_*` values.
+pub type igaparam_target = c_int;
+/// The cell's own shape in the reference positions (those given to `igaparam_mesh_new`, or set by
+/// `igaparam_mesh_reset_reference`): keeps size grading and anisotropy.
+pub const IGAPARAM_TARGET_INITIAL: igaparam_target = 0;
+/// The master square/cube (scaled to the cell's size).
+pub const IGAPARAM_TARGET_MASTER: igaparam_target = 1;
+
+/// Where free nodes start: one of the `IGAPARAM_PLACEMENT_*` values.
+pub type igaparam_placement = c_int;
+/// Harmonic extension of the prescribed displacements (a discrete Laplace equation).
+pub const IGAPARAM_PLACEMENT_LAPLACIAN: igaparam_placement = 0;
+/// The current positions, as they are.
+pub const IGAPARAM_PLACEMENT_CURRENT: igaparam_placement = 1;
+
+/// A stage of long work, passed to the progress callback.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum igaparam_stage {
+    /// First placement of the free nodes.
+    IGAPARAM_STAGE_PLACEMENT = 0,
+    /// Optimization sweeps (`done` sweeps of at most `total`).
+    IGAPARAM_STAGE_OPTIMIZATION = 1,
+}
+
+/// Progress callback: `user` is the options' `progress_user`; `done` of `total` steps of `stage`
+/// are complete. Return 0 to go on, non-zero to cancel (the call then returns
+/// `IGAPARAM_STATUS_CANCELLED` and leaves the mesh unchanged). Called on the calling thread.
+pub type igaparam_progress_fn =
+    Option<unsafe extern "C" fn(user: *mut c_void, stage: igaparam_stage, done: usize, total: usize) -> c_int>;
+
+/// Options of `igaparam_mesh_relocate`; get the defaults from `igaparam_relocate_options_default`.
+#[repr(C)]
+#[derive(Clone, Copy, Debug)]
+pub struct igaparam_relocate_options {
+    /// `IGAPARAM_TARGET_INITIAL` (default) or `IGAPARAM_TARGET_MASTER`.
+    pub target: igaparam_target,
+    /// `IGAPARAM_PLACEMENT_LAPLACIAN` (default) or `IGAPARAM_PLACEMENT_CURRENT`.
+    pub placement: igaparam_placement,
+    /// Non-zero (default) runs the optimizer after the placement; 0 stops after the placement.
+    pub optimize: c_int,
+    /// Largest number of Gauss–Seidel sweeps (default 100).
+    pub max_sweeps: u32,
+    /// Stop when the mesh is valid and no node moved more than this fraction of its local cell
+    /// size in a sweep (default 1e-3).
+    pub move_tolerance: f64,
+    /// A node's Newton iteration stops when the gradient of its objective times its local cell
+    /// size is below this (default 6e-6).
+    pub gradient_tolerance: f64,
+    /// Largest number of Newton iterations per node and sweep (default 150).
+    pub max_newton_iterations: u32,
+    /// Worker threads; 0 (default) uses one per core. The result does not depend on it.
+    pub threads: u32,
+    /// Progress callback, or NULL (default).
+    pub progress: igaparam_progress_fn,
+    /// Passed to `progress` as its first argument.
+    pub progress_user: *mut c_void,
+}
+
+/// What `igaparam_mesh_relocate` did. Quality is the inverse mean distortion of a cell against its
+/// target over its Gauss–Lobatto points: 1 is the target shape, 0 an inverted cell.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default)]
+pub struct igaparam_relocate_report {
+    /// Number of cells.
+    pub cells: usize,
+    /// Number of nodes.
+    pub nodes: usize,
+    /// Nodes with at least one free coordinate.
+    pub free_nodes: usize,
+    /// Cells with det J <= 0 at a Gauss–Lobatto point when the call started.
+    pub invalid_before: usize,
+    /// Invalid cells after the first placement.
+    pub invalid_after_placement: usize,
+    /// Invalid cells at the end.
+    pub invalid_after: usize,
+    /// Smallest cell quality at the end.
+    pub min_quality: f64,
+    /// Mean cell quality at the end.
+    pub mean_quality: f64,
+    /// Optimization sweeps performed.
+    pub sweeps: u32,
+    /// 1 when the sweeps met their stopping rule (valid mesh, small moves), else 0.
+    pub converged: c_int,
+    /// Wall-clock seconds of the call.
+    pub seconds: f64,
+}
+
+/// The default relocation options.
+#[no_mangle]
+pub extern "C" fn igaparam_relocate_options_default() -> igaparam_relocate_options {
+    let d = RelocateOptions::default();
+    igaparam_relocate_options {
+        target: IGAPARAM_TARGET_INITIAL,
+        placement: IGAPARAM_PLACEMENT_LAPLACIAN,
+        optimize: 1,
+        max_sweeps: d.max_sweeps,
+        move_tolerance: d.move_tolerance,
+        gradient_tolerance: d.gradient_tolerance,
+        max_newton_iterations: d.max_newton_iterations,
+        threads: d.threads as u32,
+        progress: None,
+        progress_user: std::ptr::null_mut(),
+    }
+}
+
+fn cell_type(code: igaparam_cell_type) -> Result<CellType> {
+    CellType::from_vtk(code as i64).ok_or_else(|| {
+        Error::invalid(format!(
+            "cell type {code} is not supported; use IGAPARAM_CELL_QUAD4/QUAD8/QUAD9/HEX8/HEX20/HEX27 (VTK codes 9, 23, 28, 12, 25, 29)"
+        ))
+    })
+}
+
+fn target(code: igaparam_target) -> Result<TargetKind> {
+    match code {
+        IGAPARAM_TARGET_INITIAL => Ok(TargetKind::Reference),
+        IGAPARAM_TARGET_MASTER => Ok(TargetKind::Master),
+        _ => Err(Error::invalid(format!(
+            "target {code} is neither IGAPARAM_TARGET_INITIAL (0) nor IGAPARAM_TARGET_MASTER (1)"
+        ))),
+    }
+}
+
+fn relocate_options(o: &igaparam_relocate_options) -> Result<RelocateOptions> {
+    let placement = match o.placement {
+        IGAPARAM_PLACEMENT_LAPLACIAN => Placement::Laplacian,
+        IGAPARAM_PLACEMENT_CURRENT => Placement::Current,
+        p => {
+            return Err(Error::invalid(format!(
+                "placement {p} is neither IGAPARAM_PLACEMENT_LAPLACIAN (0) nor IGAPARAM_PLACEMENT_CURRENT (1)"
+            )))
+        }
+    };
+    Ok(RelocateOptions {
+        target: target(o.target)?,
+        placement,
+        optimize: o.optimize != 0,
+        max_sweeps: o.max_sweeps,
+        move_tolerance: o.move_tolerance,
+        gradient_tolerance: o.gradient_tolerance,
+        max_newton_iterations: o.max_newton_iterations,
+        threads: o.threads as usize,
+    })
+}
+
+/// Creates a mesh of `num_cells` cells of one type.
+///
+/// - `xyz`: `num_nodes × 3` coordinates, flat (x0 y0 z0 x1 ...); always 3 per node, as in VTK; for
+///   quadrilaterals z is carried unchanged. These positions are the reference shape.
+/// - `connectivity`: `num_cells × n` node indices (n = nodes per cell of `cell_type`), in VTK's
+///   node order, each in `0..num_nodes`.
+/// - `out`: receives the new handle, to be released with `igaparam_mesh_free`.
+///
+/// All nodes start free (see `igaparam_mesh_set_fixed`). The arrays are copied.
+#[no_mangle]
+pub extern "C" fn igaparam_mesh_new(
+    cell_type_code: igaparam_cell_type,
+    num_nodes: usize,
+    xyz: *const f64,
+    num_cells: usize,
+    connectivity: *const i64,
+    out: *mut *mut igaparam_mesh,
+) -> igaparam_status {
+    run("igaparam_mesh_new", || {
+        let out = non_null_mut(out, "out")?;
+        let ct = cell_type(cell_type_code)?;
+        let len = |n: usize, per: usize, what: &str| {
+            n.checked_mul(per)
+                .ok_or_else(|| Error::invalid(format!("{what} is too large")))
+        };
+        let xyz = slice(xyz, len(num_nodes, 3, "num_nodes")?, "xyz")?;
+        let conn = slice(connectivity, len(num_cells, ct.node_count(), "num_cells")?, "connectivity")?;
+        let mesh = Mesh::new(ct, xyz, conn)?;
+        *out = Box::into_raw(Box::new(igaparam_mesh { mesh }));
+        Ok(())
+    })
+}
+
+/// Releases a mesh. NULL is a no-op.
+#[no_mangle]
+pub extern "C" fn igaparam_mesh_free(mesh: *mut igaparam_mesh) {
+    if !mesh.is_null() {
+        // SAFETY: `mesh` came from `igaparam_mesh_new` (Box::into_raw) and is released once.
+        drop(unsafe { Box::from_raw(mesh) });
+    }
+}
+
+fn with_mesh<'a>(mesh: *const igaparam_mesh) -> std::result::Result<&'a Mesh, NullArgument> {
+    non_null(mesh, "mesh").map(|m| &m.mesh)
+}
+
+fn with_mesh_mut<'a>(mesh: *mut igaparam_mesh) -> std::result::Result<&'a mut Mesh, NullArgument> {
+    non_null_mut(mesh, "mesh").map(|m| &mut m.mesh)
+}
+
+/// Writes the number of nodes to `*out`.
+#[no_mangle]
+pub extern "C" fn igaparam_mesh_node_count(mesh: *const igaparam_mesh, out: *mut usize) -> igaparam_status {
+    run("igaparam_mesh_node_count", || {
+        *non_null_mut(out, "out")? = with_mesh(mesh)?.node_count();
+        Ok(())
+    })
+}
+
+/// Writes the number of cells to `*out`.
+#[no_mangle]
+pub extern "C" fn igaparam_mesh_cell_count(mesh: *const igaparam_mesh, out: *mut usize) -> igaparam_status {
+    run("igaparam_mesh_cell_count", || {
+        *non_null_mut(out, "out")? = with_mesh(mesh)?.cell_count();
+        Ok(())
+    })
+}
+
+/// Writes the spatial dimension of the cells (2 or 3) to `*out`.
+#[no_mangle]
+pub extern "C" fn igaparam_mesh_dimension(mesh: *const igaparam_mesh, out: *mut c_int) -> igaparam_status {
+    run("igaparam_mesh_dimension", || {
+        *non_null_mut(out, "out")? = with_mesh(mesh)?.dimension() as c_int;
+        Ok(())
+    })
+}
+
+/// Sets the constraint of every node: `mask` has `num_nodes` entries; bit 0 keeps x, bit 1 keeps
+/// y, bit 2 keeps z (0 free, 3 fixed in 2D, 7 fixed in 3D, 4 sliding in its plane z = const).
+/// `num_nodes` must equal the mesh's node count.
+#[no_mangle]
+pub extern "C" fn igaparam_mesh_set_fixed(mesh: *mut igaparam_mesh, num_nodes: usize, mask: *const u8) -> igaparam_status {
+    run("igaparam_mesh_set_fixed", || {
+        let m = with_mesh_mut(mesh)?;
+        m.set_fixed(slice(mask, num_nodes, "mask")?)?;
+        Ok(())
+    })
+}
+
+/// Sets the positions of `count` nodes: node `indices[i]` moves to `xyz[3i..3i+3]`. `indices`
+/// may be NULL, meaning nodes `0..count-1`. Typically used for the boundary nodes before
+/// `igaparam_mesh_relocate`; the reference shape is not changed.
+#[no_mangle]
+pub extern "C" fn igaparam_mesh_move_nodes(
+    mesh: *mut igaparam_mesh,
+    count: usize,
+    indices: *const i64,
+    xyz: *const f64,
+) -> igaparam_status {
+    run("igaparam_mesh_move_nodes", || {
+        let m = with_mesh_mut(mesh)?;
+        let xyz = slice(xyz, count.checked_mul(3).ok_or_else(|| Error::invalid("count is too large"))?, "xyz")?;
+        let idx = if indices.is_null() {
+            None
+        } else {
+            let raw = slice(indices, count, "indices")?;
+            Some(
+                raw.iter()
+                    .enumerate()
+                    .map(|(i, &v)| {
+                        usize::try_from(v).map_err(|_| Error::invalid(format!("indices[{i}] = {v} is negative")))
+                    })
+                    .collect::<Result<Vec<usize>>>()?,
+            )
+        };
+        m.move_nodes(idx.as_deref(), xyz)?;
+        Ok(())
+    })
+}
+
+/// Makes the current positions the reference shape of the targets (e.g. after an accepted step of
+/// a shape-optimization loop).
+#[no_mangle]
+pub extern "C" fn igaparam_mesh_reset_reference(mesh: *mut igaparam_mesh) -> igaparam_status {
+    run("igaparam_mesh_reset_reference", || {
+        with_mesh_mut(mesh)?.reset_reference();
+        Ok(())
+    })
+}
+
+/// Relocates the free coordinates of the nodes so that every cell is valid and close to its
+/// target shape, keeping the connectivity. `options` may be NULL for the defaults; `report` may
+/// be NULL. On any error or cancellation the mesh is unchanged and `*report` is not written.
+#[no_mangle]
+pub extern "C" fn igaparam_mesh_relocate(
+    mesh: *mut igaparam_mesh,
+    options: *const igaparam_relocate_options,
+    report: *mut igaparam_relocate_report,
+) -> igaparam_status {
+    run("igaparam_mesh_relocate", || {
+        let m = with_mesh_mut(mesh)?;
+        let raw = if options.is_null() {
+            igaparam_relocate_options_default()
+        } else {
+            *non_null(options, "options")?
+        };
+        let opts = relocate_options(&raw)?;
+        let mut progress = |stage: Stage, done: usize, total: usize| match raw.progress {
+            None => true,
+            Some(f) => {
+                let stage = match stage {
+                    Stage::Placement => igaparam_stage::IGAPARAM_STAGE_PLACEMENT,
+                    Stage::Optimization => igaparam_stage::IGAPARAM_STAGE_OPTIMIZATION,
+                };
+                // SAFETY: the caller supplied a valid callback and its user pointer.
+                unsafe { f(raw.progress_user, stage, done, total) == 0 }
+            }
+        };
+        let mut candidate = m.clone();
+        let r = candidate.relocate(&opts, &mut progress)?;
+        *m = candidate;
+        if !report.is_null() {
+            *non_null_mut(report, "report")? = igaparam_relocate_report {
+                cells: r.cells,
+                nodes: r.nodes,
+                free_nodes: r.free_nodes,
+                invalid_before: r.invalid_before,
+                invalid_after_placement: r.invalid_after_placement,
+                invalid_after: r.invalid_after,
+                min_quality: r.min_quality,
+                mean_quality: r.mean_quality,
+                sweeps: r.sweeps,
+                converged: r.converged as c_int,
+                seconds: r.seconds,
+            };
+        }
+        Ok(())
+    })
+}
+
+/// Copies the current node positions into `xyz` (`len` doubles, at least `3 × num_nodes`; x0 y0
+/// z0 x1 ...).
+#[no_mangle]
+pub extern "C" fn igaparam_mesh_copy_positions(mesh: *const igaparam_mesh, xyz: *mut f64, len: usize) -> igaparam_status {
+    run("igaparam_mesh_copy_positions", || {
+        let m = with_mesh(mesh)?;
+        let needed = 3 * m.node_count();
+        check_capacity("xyz", len, needed)?;
+        let out = slice_mut(xyz, len, "xyz")?;
+        for (o, p) in out.chunks_mut(3).zip(m.positions()) {
+            o.copy_from_slice(p);
+        }
+        Ok(())
+    })
+}
+
+/// Copies the quality of every cell against `target` (an `IGAPARAM_TARGET_*` value) into
+/// `quality` (`len` doubles, at least `num_cells`): the inverse mean distortion over the cell's
+/// Gauss–Lobatto points, in (0, 1], or 0 for a cell with det J <= 0 somewhere.
+#[no_mangle]
+pub extern "C" fn igaparam_mesh_copy_cell_quality(
+    mesh: *const igaparam_mesh,
+    target_kind: igaparam_target,
+    quality: *mut f64,
+    len: usize,
+) -> igaparam_status {
+    run("igaparam_mesh_copy_cell_quality", || {
+        let m = with_mesh(mesh)?;
+        let t = target(target_kind)?;
+        check_capacity("quality", len, m.cell_count())?;
+        let out = slice_mut(quality, len, "quality")?;
+        let q = m.cell_quality(t)?;
+        out[..q.len()].copy_from_slice(&q);
+        Ok(())
+    })
+}
+
+/// Writes to `*out` the number of cells with det J <= 0 at some Gauss–Lobatto point.
+#[no_mangle]
+pub extern "C" fn igaparam_mesh_invalid_cell_count(mesh: *const igaparam_mesh, out: *mut usize) -> igaparam_status {
+    run("igaparam_mesh_invalid_cell_count", || {
+        let m = with_mesh(mesh)?;
+        let n = m.invalid_cell_count()?;
+        *non_null_mut(out, "out")? = n;
+        Ok(())
+    })
+}

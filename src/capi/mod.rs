@@ -1,0 +1,20 @@
+//! The C ABI: every `extern "C"` function and every `unsafe` block of the crate.
+//!
+//! Conventions: functions return an [`igaparam_status`]; outputs go through out-parameters that
+//! are written only on success; arrays are caller-owned, flat, with explicit sizes; a failed call
+//! leaves its handle as it was; `igaparam_last_error_message` gives the calling thread's last
+//! message. No panic crosses this boundary.
+#![allow(non_camel_case_types)]
+
+mod boundary;
+mod mesh;
+
+pub use boundary::{igaparam_last_error_message, igaparam_status, igaparam_version};
+pub use mesh::*;
+
+/// Major version of the library this header belongs to.
+pub const IGAPARAM_VERSION_MAJOR: u32 = 0;
+/// Minor version of the library this header belongs to.
+pub const IGAPARAM_VERSION_MINOR: u32 = 1;
+/// Patch version of the library this header belongs to.
+pub const IGAPARAM_VERSION_PATCH: u32 = 0;

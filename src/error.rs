@@ -1,0 +1,76 @@
+//! The crate's error type: a kind a caller can branch on and a message a person can read.
+
+use std::fmt;
+
+/// What went wrong, coarsely; the C API maps each kind to a status code.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum ErrorKind {
+    /// An argument is out of range, of the wrong size or inconsistent with others.
+    InvalidArgument,
+    /// A coordinate or parameter is NaN or infinite.
+    NotFinite,
+    /// The mesh itself is unusable: repeated node in a cell, bad cell type, out-of-range index.
+    InvalidMesh,
+    /// A caller-provided output buffer is too small.
+    BufferTooSmall,
+    /// The progress callback asked to stop.
+    Cancelled,
+    /// Reading or writing a file failed, or its content is not understood.
+    Io,
+}
+
+/// An error with its kind and a readable message.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Error {
+    /// The coarse kind of the error.
+    pub kind: ErrorKind,
+    /// A sentence saying what is wrong and, where it helps, where.
+    pub message: String,
+}
+
+impl Error {
+    /// Builds an error of the given kind.
+    pub fn new(kind: ErrorKind, message: impl Into<String>) -> Self {
+        Error {
+            kind,
+            message: message.into(),
+        }
+    }
+
+    /// An [`ErrorKind::InvalidArgument`] error.
+    pub fn invalid(message: impl Into<String>) -> Self {
+        Self::new(ErrorKind::InvalidArgument, message)
+    }
+
+    /// An [`ErrorKind::InvalidMesh`] error.
+    pub fn mesh(message: impl Into<String>) -> Self {
+        Self::new(ErrorKind::InvalidMesh, message)
+    }
+
+    /// An [`ErrorKind::Io`] error.
+    pub fn io(message: impl Into<String>) -> Self {
+        Self::new(ErrorKind::Io, message)
+    }
+}
+
+impl fmt::Display for Error {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(&self.message)
+    }
+}
+
+impl std::error::Error for Error {}
+
+/// The crate's result type.
+pub type Result<T> = std::result::Result<T, Error>;
+
+/// Checks that every value is finite; `what` names the array in the message.
+pub fn check_finite(what: &str, values: &[f64]) -> Result<()> {
+    match values.iter().position(|v| !v.is_finite()) {
+        None => Ok(()),
+        Some(i) => Err(Error::new(
+            ErrorKind::NotFinite,
+            format!("{what}[{i}] is {}, every value must be finite", values[i]),
+        )),
+    }
+}

@@ -1,0 +1,223 @@
+//! Existing finite-element meshes of quadrilaterals or hexahedra (linear, serendipity or Lagrange
+//! quadratic) whose boundary moves: the free nodes are relocated so that every cell stays valid
+//! and well shaped, with the connectivity unchanged.
+
+mod cell_type;
+mod relocate;
+
+pub use cell_type::CellType;
+pub use relocate::{Placement, RelocateOptions, RelocateReport, Stage};
+
+use crate::error::{check_finite, Error, Result};
+use crate::optimize::{CellPattern, CellSpec, Problem, TargetKind};
+
+/// A quad or hex mesh with one cell type, reference and current node positions, and per-node
+/// constraints.
+///
+/// Points always have three coordinates, as in VTK and Gmsh; for quadrilaterals the z coordinate
+/// is carried along unchanged.
+#[derive(Clone, Debug)]
+pub struct Mesh {
+    cell_type: CellType,
+    reference: Vec<[f64; 3]>,
+    positions: Vec<[f64; 3]>,
+    connectivity: Vec<u32>,
+    fixed: Vec<u8>,
+}
+
+impl Mesh {
+    /// Builds a mesh from `xyz` (`#nodes × 3`, flat) and `connectivity` (`#cells × nodes per
+    /// cell`, VTK node order). The positions become the reference shape; all nodes start free.
+    pub fn new(cell_type: CellType, xyz: &[f64], connectivity: &[i64]) -> Result<Mesh> {
+        if xyz.is_empty() || xyz.len() % 3 != 0 {
+            return Err(Error::invalid(format!(
+                "xyz has {} values, expected 3 per node and at least one node",
+                xyz.len()
+            )));
+        }
+        check_finite("xyz", xyz)?;
+        let node_count = xyz.len() / 3;
+        if node_count > u32::MAX as usize {
+            return Err(Error::invalid("more than 2^32 - 1 nodes"));
+        }
+        let per_cell = cell_type.node_count();
+        if connectivity.is_empty() || connectivity.len() % per_cell != 0 {
+            return Err(Error::invalid(format!(
+                "connectivity has {} entries, expected {per_cell} per {} cell and at least one cell",
+                connectivity.len(),
+                cell_type.name()
+            )));
+        }
+        let mut conn = Vec::with_capacity(connectivity.len());
+        for (i, &n) in connectivity.iter().enumerate() {
+            if n < 0 || n as usize >= node_count {
+                return Err(Error::mesh(format!(
+                    "connectivity[{i}] = {n} (cell {}) is not a node index in 0..{node_count}",
+                    i / per_cell
+                )));
+            }
+            conn.push(n as u32);
+        }
+        for (c, cell) in conn.chunks(per_cell).enumerate() {
+            for (i, n) in cell.iter().enumerate() {
+                if cell[..i].contains(n) {
+                    return Err(Error::mesh(format!("cell {c} uses node {n} twice")));
+                }
+            }
+        }
+        let positions: Vec<[f64; 3]> = xyz.chunks(3).map(|p| [p[0], p[1], p[2]]).collect();
+        Ok(Mesh {
+            cell_type,
+            reference: positions.clone(),
+            positions,
+            connectivity: conn,
+            fixed: vec![0; node_count],
+        })
+    }
+
+    /// The cell type.
+    pub fn cell_type(&self) -> CellType {
+        self.cell_type
+    }
+
+    /// Spatial dimension of the cells (2 or 3).
+    pub fn dimension(&self) -> usize {
+        self.cell_type.dimension()
+    }
+
+    /// Number of nodes.
+    pub fn node_count(&self) -> usize {
+        self.positions.len()
+    }
+
+    /// Number of cells.
+    pub fn cell_count(&self) -> usize {
+        self.connectivity.len() / self.cell_type.node_count()
+    }
+
+    /// Current node positions.
+    pub fn positions(&self) -> &[[f64; 3]] {
+        &self.positions
+    }
+
+    /// Reference node positions (the shape the targets are taken from).
+    pub fn reference(&self) -> &[[f64; 3]] {
+        &self.reference
+    }
+
+    /// Per-node constraint masks (bit 0: x fixed, bit 1: y, bit 2: z).
+    pub fn fixed(&self) -> &[u8] {
+        &self.fixed
+    }
+
+    /// Sets the constraint mask of every node: bit 0 keeps x, bit 1 keeps y, bit 2 keeps z
+    /// (0 free, 3 fixed in 2D, 7 fixed in 3D, 4 sliding in a plane z = const).
+    pub fn set_fixed(&mut self, mask: &[u8]) -> Result<()> {
+        if mask.len() != self.node_count() {
+            return Err(Error::invalid(format!(
+                "mask has {} entries, expected one per node ({})",
+                mask.len(),
+                self.node_count()
+            )));
+        }
+        if let Some(i) = mask.iter().position(|&m| m > 7) {
+            return Err(Error::invalid(format!(
+                "mask[{i}] = {} uses bits other than 0, 1, 2",
+                mask[i]
+            )));
+        }
+        self.fixed = mask.to_vec();
+        Ok(())
+    }
+
+    /// Sets the positions of some nodes: `xyz` holds 3 values per node; `indices` names the
+    /// nodes, or `None` for nodes `0..xyz.len()/3`. Nothing changes on error.
+    pub fn move_nodes(&mut self, indices: Option<&[usize]>, xyz: &[f64]) -> Result<()> {
+        if xyz.len() % 3 != 0 {
+            return Err(Error::invalid(format!("xyz has {} values, not a multiple of 3", xyz.len())));
+        }
+        check_finite("xyz", xyz)?;
+        let count = xyz.len() / 3;
+        let n = self.node_count();
+        match indices {
+            Some(idx) => {
+                if idx.len() != count {
+                    return Err(Error::invalid(format!(
+                        "{} indices for {count} positions",
+                        idx.len()
+                    )));
+                }
+                if let Some(i) = idx.iter().position(|&v| v >= n) {
+                    return Err(Error::invalid(format!(
+                        "indices[{i}] = {} is not a node index in 0..{n}",
+                        idx[i]
+                    )));
+                }
+                for (&v, p) in idx.iter().zip(xyz.chunks(3)) {
+                    self.positions[v] = [p[0], p[1], p[2]];
+                }
+            }
+            None => {
+                if count > n {
+                    return Err(Error::invalid(format!("{count} positions for {n} nodes")));
+                }
+                for (v, p) in xyz.chunks(3).enumerate() {
+                    self.positions[v] = [p[0], p[1], p[2]];
+                }
+            }
+        }
+        Ok(())
+    }
+
+    /// Makes the current positions the reference shape (e.g. after an accepted step of a
+    /// shape-optimization loop).
+    pub fn reset_reference(&mut self) {
+        self.reference = self.positions.clone();
+    }
+
+    /// The optimizer's view of the mesh in dimension `D`.
+    fn problem<const D: usize>(&self, target: TargetKind) -> Result<Problem<D>> {
+        let pattern = CellPattern::<D>::new(self.cell_type.lattice())
+            .ok_or_else(|| Error::mesh("unsupported cell pattern"))?;
+        let specs: Vec<CellSpec<'_>> = self
+            .connectivity
+            .chunks(self.cell_type.node_count())
+            .map(|nodes| CellSpec {
+                pattern: 0,
+                nodes,
+                weight: 1.0,
+            })
+            .collect();
+        let free = self.fixed.iter().map(|m| !m & ((1u8 << D) - 1)).collect();
+        Problem::new(vec![pattern], &specs, &project::<D>(&self.reference), target, free)
+    }
+
+    /// Quality of every cell against the given target: 1/mean distortion over the
+    /// Gauss–Lobatto points, 0 for a cell with `det J ≤ 0` somewhere.
+    pub fn cell_quality(&self, target: TargetKind) -> Result<Vec<f64>> {
+        match self.dimension() {
+            2 => self.quality_d::<2>(target),
+            _ => self.quality_d::<3>(target),
+        }
+    }
+
+    fn quality_d<const D: usize>(&self, target: TargetKind) -> Result<Vec<f64>> {
+        let problem = self.problem::<D>(target)?;
+        let x = project::<D>(&self.positions);
+        Ok((0..self.cell_count()).map(|c| problem.cell_quality(c, &x)).collect())
+    }
+
+    /// Number of cells with `det J ≤ 0` at some Gauss–Lobatto point.
+    pub fn invalid_cell_count(&self) -> Result<usize> {
+        Ok(self
+            .cell_quality(TargetKind::Master)?
+            .iter()
+            .filter(|&&q| q <= 0.0)
+            .count())
+    }
+}
+
+/// The first `D` coordinates of each point.
+fn project<const D: usize>(points: &[[f64; 3]]) -> Vec<[f64; D]> {
+    points.iter().map(|p| std::array::from_fn(|k| p[k])).collect()
+}

@@ -1,0 +1,15 @@
+//! igaparam: spline parameterizations of 2D and 3D domains by T-mesh optimization, and relocation
+//! of the nodes of high-order quad/hex meshes whose boundary moved.
+//!
+//! The safe Rust API lives here; the C ABI (`include/igaparam.h`) is in [`capi`].
+#![deny(missing_docs)]
+
+pub mod capi;
+pub mod error;
+pub mod homesh;
+pub mod io;
+pub mod optimize;
+
+pub use error::{Error, ErrorKind, Result};
+pub use homesh::{CellType, Mesh, Placement, RelocateOptions, RelocateReport, Stage};
+pub use optimize::TargetKind;

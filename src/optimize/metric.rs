@@ -1,0 +1,203 @@
+//! The regularised mean-ratio distortion of a Jacobian, its derivatives with respect to one node,
+//! and the per-node choice of the regularisation parameter δ.
+//!
+//! For a Jacobian `S` (already composed with the inverse of the target), the mean ratio is
+//! `q = d·det(S)^{2/d} / ‖S‖²_F ∈ (0, 1]` and the distortion `η = 1/q`. The regularised
+//! distortion replaces `σ = det S` by `h(σ) = ½(σ + √(σ² + 4δ²))`, which stays positive, so the
+//! objective is finite on tangled meshes and untangling and smoothing are one minimisation.
+
+use super::small::{cofactor, det, dot, frobenius2, mul_vec, Matrix, Vector};
+
+/// `ε` of the δ rule: 10⁶ machine epsilons, for Jacobians normalised by their targets.
+pub const DELTA_EPSILON: f64 = 1e6 * f64::EPSILON;
+
+/// Mean ratio `d·det(S)^{2/d}/‖S‖²` of a Jacobian; 0 when `det S ≤ 0`.
+pub fn mean_ratio<const D: usize>(s: &Matrix<D>) -> f64 {
+    let sigma = det(s);
+    let n = frobenius2(s);
+    if sigma <= 0.0 || n == 0.0 || !sigma.is_finite() {
+        return 0.0;
+    }
+    D as f64 * sigma.powf(2.0 / D as f64) / n
+}
+
+/// `h(σ) = ½(σ + √(σ²+4δ²))` and its first two derivatives, evaluated without cancellation.
+fn regularised_det(sigma: f64, delta: f64) -> (f64, f64, f64) {
+    let r = (sigma * sigma + 4.0 * delta * delta).sqrt();
+    let h = if sigma >= 0.0 {
+        0.5 * (sigma + r)
+    } else {
+        2.0 * delta * delta / (r - sigma)
+    };
+    if r == 0.0 {
+        return (0.0, 0.5, 0.0);
+    }
+    (h, h / r, 2.0 * delta * delta / (r * r * r))
+}
+
+/// One term of a node's objective: the Jacobian at one point of one cell, as a function of
+/// the node position `x`: `S(x) = a + x gᵀ`, weighted by `w`.
+#[derive(Clone, Copy, Debug)]
+pub struct Term<const D: usize> {
+    /// The part of `S` that does not depend on the node.
+    pub a: Matrix<D>,
+    /// How `S` changes with the node: `∂S/∂x_i = e_i gᵀ`.
+    pub g: Vector<D>,
+    /// The weight of the term (cell weight over the number of points).
+    pub w: f64,
+}
+
+impl<const D: usize> Term<D> {
+    /// `S(x)`.
+    pub fn jacobian(&self, x: &Vector<D>) -> Matrix<D> {
+        super::small::add_outer(&self.a, x, &self.g)
+    }
+}
+
+/// Value, gradient and Hessian of a node objective.
+#[derive(Clone, Copy, Debug)]
+pub struct Local<const D: usize> {
+    /// Objective value.
+    pub value: f64,
+    /// Gradient with respect to the node position.
+    pub gradient: Vector<D>,
+    /// Hessian with respect to the node position.
+    pub hessian: Matrix<D>,
+}
+
+/// `Σ w η*(S(x))` over the terms, with value only (`derivatives = false`) or also gradient and
+/// Hessian. The value is `+∞` when `δ = 0` and some `det S ≤ 0`.
+pub fn evaluate<const D: usize>(
+    terms: &[Term<D>],
+    x: &Vector<D>,
+    delta: f64,
+    derivatives: bool,
+) -> Local<D> {
+    let m = 2.0 / D as f64;
+    let inv_d = 1.0 / D as f64;
+    let mut out = Local {
+        value: 0.0,
+        gradient: [0.0; D],
+        hessian: [[0.0; D]; D],
+    };
+    for t in terms {
+        let s = t.jacobian(x);
+        let sigma = det(&s);
+        let n = frobenius2(&s);
+        let (h, dh, d2h) = regularised_det(sigma, delta);
+        if h <= 0.0 {
+            out.value = f64::INFINITY;
+            return out;
+        }
+        let p = h.powf(-m);
+        out.value += t.w * inv_d * n * p;
+        if !derivatives {
+            continue;
+        }
+        // ∇N = 2 S g, ∇σ = cof(S) g, ∇²N = 2|g|² I, ∇²σ = 0.
+        let grad_n = mul_vec(&s, &t.g).map(|v| 2.0 * v);
+        let c = mul_vec(&cofactor(&s), &t.g);
+        let dp = -m * p / h * dh;
+        let d2p = m * (m + 1.0) * p / (h * h) * dh * dh - m * p / h * d2h;
+        let gg = dot(&t.g, &t.g);
+        let scale = t.w * inv_d;
+        for i in 0..D {
+            out.gradient[i] += scale * (grad_n[i] * p + n * dp * c[i]);
+            for j in 0..D {
+                let mut hij = dp * (grad_n[i] * c[j] + c[i] * grad_n[j]) + n * d2p * c[i] * c[j];
+                if i == j {
+                    hij += 2.0 * gg * p;
+                }
+                out.hessian[i][j] += scale * hij;
+            }
+        }
+    }
+    out
+}
+
+/// The per-node δ: with `σ_min` and the mean `|σ|` over the node's terms,
+/// `δ₀ = √(ε(ε − σ_min))` if `σ_min < ε` (else 0) and `δ = max(δ₀, 10⁻⁴·mean|σ|)`.
+pub fn choose_delta<const D: usize>(terms: &[Term<D>], x: &Vector<D>) -> f64 {
+    if terms.is_empty() {
+        return 0.0;
+    }
+    let mut sigma_min = f64::INFINITY;
+    let mut mean_abs = 0.0;
+    for t in terms {
+        let sigma = det(&t.jacobian(x));
+        sigma_min = sigma_min.min(sigma);
+        mean_abs += sigma.abs();
+    }
+    mean_abs /= terms.len() as f64;
+    let eps = DELTA_EPSILON;
+    let delta0 = if sigma_min < eps {
+        (eps * (eps - sigma_min)).sqrt()
+    } else {
+        0.0
+    };
+    delta0.max(1e-4 * mean_abs)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn sample_terms() -> Vec<Term<3>> {
+        vec![
+            Term {
+                a: [[1.0, 0.2, -0.1], [0.1, 0.9, 0.3], [-0.2, 0.1, 1.1]],
+                g: [0.5, -1.0, 0.25],
+                w: 0.7,
+            },
+            Term {
+                a: [[0.3, -0.2, 0.1], [0.4, -0.5, 0.3], [0.2, 0.1, -0.4]],
+                g: [-0.3, 0.8, 1.5],
+                w: 1.3,
+            },
+        ]
+    }
+
+    #[test]
+    fn mean_ratio_is_one_for_scaled_rotations() {
+        let (c, s) = (0.3f64.cos(), 0.3f64.sin());
+        let r = [[2.0 * c, -2.0 * s], [2.0 * s, 2.0 * c]];
+        assert!((mean_ratio(&r) - 1.0).abs() < 1e-14);
+        assert!(mean_ratio(&[[1.0, 0.0], [0.0, 2.0]]) < 1.0);
+        assert_eq!(mean_ratio(&[[1.0, 0.0], [0.0, -2.0]]), 0.0);
+    }
+
+    #[test]
+    fn gradient_and_hessian_match_finite_differences() {
+        let terms = sample_terms();
+        let x = [0.1, -0.2, 0.3];
+        for delta in [0.0, 1e-3, 0.5] {
+            let l = evaluate(&terms, &x, delta, true);
+            if !l.value.is_finite() {
+                continue;
+            }
+            let h = 1e-6;
+            for i in 0..3 {
+                let mut xp = x;
+                let mut xm = x;
+                xp[i] += h;
+                xm[i] -= h;
+                let (fp, fm) = (evaluate(&terms, &xp, delta, true), evaluate(&terms, &xm, delta, true));
+                let fd = (fp.value - fm.value) / (2.0 * h);
+                assert!((fd - l.gradient[i]).abs() < 1e-6 * (1.0 + fd.abs()), "grad {i}");
+                for j in 0..3 {
+                    let fdh = (fp.gradient[j] - fm.gradient[j]) / (2.0 * h);
+                    assert!((fdh - l.hessian[i][j]).abs() < 1e-5 * (1.0 + fdh.abs()), "hess {i}{j}");
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn delta_is_positive_only_when_needed() {
+        let ideal = [Term { a: [[1.0, 0.0], [0.0, 1.0]], g: [0.0, 0.0], w: 1.0 }];
+        let d = choose_delta(&ideal, &[0.0, 0.0]);
+        assert!((d - 1e-4).abs() < 1e-18);
+        let tangled = [Term { a: [[1.0, 0.0], [0.0, -1.0]], g: [0.0, 0.0], w: 1.0 }];
+        assert!(choose_delta(&tangled, &[0.0, 0.0]) >= (DELTA_EPSILON * (DELTA_EPSILON + 1.0)).sqrt());
+    }
+}

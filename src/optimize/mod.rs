@@ -1,0 +1,20 @@
+//! The optimizer kernel shared by every path of the library: cells seen as quadratic Lagrange maps
+//! (3^d nodes, some of them virtual), the regularised mean-ratio distortion integrated at the
+//! 3-point Gauss–Lobatto points, one Newton solve per node, and coloured Gauss–Seidel sweeps.
+//!
+//! Written once for d = 2 and 3 through const generics.
+
+pub mod colour;
+pub mod laplace;
+pub mod lattice;
+pub mod metric;
+pub mod node;
+pub mod pattern;
+pub mod problem;
+pub mod small;
+pub mod sweep;
+
+pub use node::NodeSolverOptions;
+pub use pattern::CellPattern;
+pub use problem::{CellSpec, Problem, TargetKind};
+pub use sweep::{invalid_cells, optimize, SweepOptions, SweepStats};

@@ -1,0 +1,85 @@
+//! Minimisation of one node's objective: Newton with the analytic Hessian made positive definite
+//! (modified Cholesky) and a backtracking line search that never accepts an increase.
+
+use super::metric::{choose_delta, evaluate, Term};
+use super::small::{dot, solve_spd_modified, Vector};
+
+/// Stopping rules of the per-node solver.
+#[derive(Clone, Copy, Debug)]
+pub struct NodeSolverOptions {
+    /// Stop when `‖∇K‖·L` (gradient scaled by the local length) falls below this.
+    pub gradient_tolerance: f64,
+    /// Largest number of Newton iterations per node and sweep.
+    pub max_iterations: u32,
+}
+
+/// Minimises `Σ w η*` over the terms starting from `x0`, moving only the components whose bit is
+/// set in `free`. `weight_sum` normalises the objective, `length` scales the gradient and bounds
+/// the step. Returns the new position, or `None` when the node stays where it is.
+pub fn minimise<const D: usize>(
+    terms: &[Term<D>],
+    x0: Vector<D>,
+    free: u8,
+    weight_sum: f64,
+    length: f64,
+    options: &NodeSolverOptions,
+) -> Option<Vector<D>> {
+    if terms.is_empty() || weight_sum <= 0.0 || length <= 0.0 || !length.is_finite() {
+        return None;
+    }
+    let active: [bool; D] = std::array::from_fn(|k| free & (1 << k) != 0);
+    if !active.iter().any(|&a| a) {
+        return None;
+    }
+    let delta = choose_delta(terms, &x0);
+    let scale = 1.0 / weight_sum;
+    let objective = |x: &Vector<D>, derivatives: bool| {
+        let mut l = evaluate(terms, x, delta, derivatives);
+        l.value *= scale;
+        for (k, &a) in active.iter().enumerate() {
+            l.gradient[k] = if a { l.gradient[k] * scale } else { 0.0 };
+            for v in &mut l.hessian[k] {
+                *v *= scale;
+            }
+        }
+        l
+    };
+    let start = objective(&x0, true);
+    if !start.value.is_finite() {
+        return None;
+    }
+    let mut x = x0;
+    let mut current = start;
+    for _ in 0..options.max_iterations {
+        if dot(&current.gradient, &current.gradient).sqrt() * length < options.gradient_tolerance {
+            break;
+        }
+        let mut step = solve_spd_modified(&current.hessian, &current.gradient, &active).map(|v| -v);
+        let step_length = dot(&step, &step).sqrt();
+        if step_length > length {
+            step = step.map(|v| v * length / step_length);
+        }
+        let slope = dot(&current.gradient, &step);
+        if !(slope < 0.0) {
+            break;
+        }
+        let mut alpha = 1.0;
+        let mut accepted = None;
+        for _ in 0..40 {
+            let trial: Vector<D> = std::array::from_fn(|k| x[k] + alpha * step[k]);
+            let value = objective(&trial, false).value;
+            if value.is_finite() && value <= current.value + 1e-4 * alpha * slope {
+                accepted = Some(trial);
+                break;
+            }
+            alpha *= 0.5;
+        }
+        let Some(next) = accepted else { break };
+        if next == x {
+            break;
+        }
+        x = next;
+        current = objective(&x, true);
+    }
+    (x != x0 && current.value < start.value).then_some(x)
+}

@@ -1,0 +1,119 @@
+//! Gauss–Seidel sweeps over the free nodes, colour by colour, each colour in parallel.
+
+use rayon::prelude::*;
+use rayon::ThreadPool;
+
+use super::colour::colour_nodes;
+use super::node::{minimise, NodeSolverOptions};
+use super::problem::Problem;
+use super::small::Vector;
+use crate::error::{Error, ErrorKind, Result};
+
+/// When the sweeps stop.
+#[derive(Clone, Copy, Debug)]
+pub struct SweepOptions {
+    /// Largest number of sweeps.
+    pub max_sweeps: u32,
+    /// Stop once the mesh is valid and no node moved more than this fraction of its local length.
+    pub move_tolerance: f64,
+    /// The per-node solver's stopping rules.
+    pub node: NodeSolverOptions,
+}
+
+/// What the sweeps did.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct SweepStats {
+    /// Sweeps performed.
+    pub sweeps: u32,
+    /// Largest relative move in the last sweep.
+    pub last_max_move: f64,
+    /// Whether the stopping rule (valid, small moves) was met before the sweep limit.
+    pub converged: bool,
+}
+
+/// Indices of the cells that are not valid (`det J ≤ 0` at some Gauss–Lobatto point).
+pub fn invalid_cells<const D: usize>(
+    pool: &ThreadPool,
+    problem: &Problem<D>,
+    positions: &[Vector<D>],
+) -> Vec<usize> {
+    pool.install(|| {
+        (0..problem.cell_count())
+            .into_par_iter()
+            .filter(|&c| !problem.cell_is_valid(c, positions))
+            .collect()
+    })
+}
+
+/// Optimizes the free components of the free nodes in place. `progress(done, total)` is called
+/// after every sweep; returning `false` cancels (positions then hold the last complete sweep).
+pub fn optimize<const D: usize>(
+    pool: &ThreadPool,
+    problem: &Problem<D>,
+    positions: &mut [Vector<D>],
+    options: &SweepOptions,
+    progress: &mut dyn FnMut(usize, usize) -> bool,
+) -> Result<SweepStats> {
+    let n = problem.node_count();
+    let free_nodes: Vec<usize> = (0..n)
+        .filter(|&v| problem.free_mask(v) != 0 && !problem.incident_cells(v).is_empty())
+        .collect();
+    let colours = colour_nodes(problem, &free_nodes);
+    let mut active = vec![true; n];
+    let mut stats = SweepStats::default();
+    let total = options.max_sweeps as usize;
+    for sweep in 1..=options.max_sweeps {
+        let mut next_active = vec![false; n];
+        let mut max_move = 0.0f64;
+        for class in &colours {
+            let todo: Vec<usize> = class.iter().copied().filter(|&v| active[v]).collect();
+            let snapshot: &[Vector<D>] = positions;
+            let solve = |terms: &mut Vec<_>, &v: &usize| {
+                let (weight_sum, length) = problem.node_terms(v, snapshot, terms);
+                let free = problem.free_mask(v);
+                let x = minimise(terms, snapshot[v], free, weight_sum, length, &options.node);
+                (v, x, length)
+            };
+            let results: Vec<(usize, Option<Vector<D>>, f64)> =
+                pool.install(|| todo.par_iter().map_init(Vec::new, solve).collect());
+            for (v, x, length) in results {
+                let Some(x) = x else { continue };
+                let step = (0..D).map(|k| (x[k] - positions[v][k]).powi(2)).sum::<f64>().sqrt();
+                let relative = step / length;
+                max_move = max_move.max(relative);
+                positions[v] = x;
+                if relative > options.move_tolerance {
+                    mark_neighbours(problem, v, &mut next_active);
+                }
+            }
+        }
+        stats.sweeps = sweep;
+        stats.last_max_move = max_move;
+        if !progress(sweep as usize, total) {
+            return Err(Error::new(ErrorKind::Cancelled, "cancelled by the progress callback"));
+        }
+        let invalid = invalid_cells(pool, problem, positions);
+        if invalid.is_empty() && max_move < options.move_tolerance {
+            stats.converged = true;
+            break;
+        }
+        for c in invalid {
+            for &v in problem.cell_nodes(c) {
+                mark_neighbours(problem, v as usize, &mut next_active);
+            }
+        }
+        if !next_active.iter().any(|&a| a) {
+            break;
+        }
+        active = next_active;
+    }
+    Ok(stats)
+}
+
+fn mark_neighbours<const D: usize>(problem: &Problem<D>, v: usize, active: &mut [bool]) {
+    for &(c, _) in problem.incident_cells(v) {
+        for &m in problem.cell_nodes(c as usize) {
+            active[m as usize] = true;
+        }
+    }
+}
