@@ -42,7 +42,8 @@ typedef enum {
    */
   IGAPARAM_STAGE_PLACEMENT = 0,
   /**
-   * Optimization sweeps (`done` sweeps of at most `total`).
+   * Optimization sweeps: `done` sweeps so far over all steps; `total` is 0 (not known in
+   * advance, as large motions may be split into more steps).
    */
   IGAPARAM_STAGE_OPTIMIZATION = 1,
 } igaparam_stage;
@@ -130,7 +131,7 @@ typedef struct {
    */
   int optimize;
   /**
-   * Largest number of Gauss–Seidel sweeps (default 100).
+   * Largest number of Gauss–Seidel sweeps (default 100 per step).
    */
   uint32_t max_sweeps;
   /**
@@ -147,6 +148,11 @@ typedef struct {
    * Largest number of Newton iterations per node and sweep (default 150).
    */
   uint32_t max_newton_iterations;
+  /**
+   * Over-relaxation of each node's move, in [1, 2) (default 1.8; 1 disables it). A relaxed
+   * move is kept only if it lowers the node's objective and inverts nothing.
+   */
+  double relaxation;
   /**
    * Worker threads; 0 (default) uses one per core. The result does not depend on it.
    */
@@ -204,9 +210,14 @@ typedef struct {
    */
   double mean_quality;
   /**
-   * Optimization sweeps performed.
+   * Optimization sweeps performed (over all steps).
    */
   uint32_t sweeps;
+  /**
+   * Steps the prescribed motion was applied in (large motions are split so that no prescribed
+   * node moves more than about one cell size per step).
+   */
+  uint32_t steps;
   /**
    * 1 when the sweeps met their stopping rule (valid mesh, small moves), else 0.
    */

@@ -28,7 +28,9 @@ fn header_is_current() {
 
 #[test]
 fn version_macros_match_the_crate() {
-    let header = std::fs::read_to_string(Path::new(env!("CARGO_MANIFEST_DIR")).join("include/igaparam.h")).unwrap();
+    let header =
+        std::fs::read_to_string(Path::new(env!("CARGO_MANIFEST_DIR")).join("include/igaparam.h"))
+            .unwrap();
     for (name, value) in [
         ("IGAPARAM_VERSION_MAJOR", env!("CARGO_PKG_VERSION_MAJOR")),
         ("IGAPARAM_VERSION_MINOR", env!("CARGO_PKG_VERSION_MINOR")),

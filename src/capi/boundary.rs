@@ -101,20 +101,30 @@ pub(crate) fn run(
 }
 
 /// A shared reference from a pointer that must not be NULL.
-pub(crate) fn non_null<'a, T>(ptr: *const T, name: &'static str) -> std::result::Result<&'a T, NullArgument> {
+pub(crate) fn non_null<'a, T>(
+    ptr: *const T,
+    name: &'static str,
+) -> std::result::Result<&'a T, NullArgument> {
     // SAFETY: the caller passes a pointer to a live, properly aligned object (documented contract);
     // NULL is rejected here.
     unsafe { ptr.as_ref() }.ok_or(NullArgument(name))
 }
 
 /// A mutable reference from a pointer that must not be NULL.
-pub(crate) fn non_null_mut<'a, T>(ptr: *mut T, name: &'static str) -> std::result::Result<&'a mut T, NullArgument> {
+pub(crate) fn non_null_mut<'a, T>(
+    ptr: *mut T,
+    name: &'static str,
+) -> std::result::Result<&'a mut T, NullArgument> {
     // SAFETY: as in `non_null`, and the object is not aliased during the call.
     unsafe { ptr.as_mut() }.ok_or(NullArgument(name))
 }
 
 /// A slice of `len` elements; NULL is allowed only for `len == 0`.
-pub(crate) fn slice<'a, T>(ptr: *const T, len: usize, name: &'static str) -> std::result::Result<&'a [T], NullArgument> {
+pub(crate) fn slice<'a, T>(
+    ptr: *const T,
+    len: usize,
+    name: &'static str,
+) -> std::result::Result<&'a [T], NullArgument> {
     if len == 0 {
         return Ok(&[]);
     }
@@ -126,7 +136,11 @@ pub(crate) fn slice<'a, T>(ptr: *const T, len: usize, name: &'static str) -> std
 }
 
 /// A writable slice of `len` elements; NULL is allowed only for `len == 0`.
-pub(crate) fn slice_mut<'a, T>(ptr: *mut T, len: usize, name: &'static str) -> std::result::Result<&'a mut [T], NullArgument> {
+pub(crate) fn slice_mut<'a, T>(
+    ptr: *mut T,
+    len: usize,
+    name: &'static str,
+) -> std::result::Result<&'a mut [T], NullArgument> {
     if len == 0 {
         return Ok(&mut []);
     }
@@ -173,9 +187,10 @@ pub extern "C" fn igaparam_last_error_message(buf: *mut c_char, len: usize) -> u
 /// freed.
 #[no_mangle]
 pub extern "C" fn igaparam_version() -> *const c_char {
-    static VERSION: &CStr = match CStr::from_bytes_with_nul(concat!(env!("CARGO_PKG_VERSION"), "\0").as_bytes()) {
-        Ok(v) => v,
-        Err(_) => panic!("version string"),
-    };
+    static VERSION: &CStr =
+        match CStr::from_bytes_with_nul(concat!(env!("CARGO_PKG_VERSION"), "\0").as_bytes()) {
+            Ok(v) => v,
+            Err(_) => panic!("version string"),
+        };
     VERSION.as_ptr()
 }

@@ -2,7 +2,9 @@
 
 use std::ffi::{c_int, c_void};
 
-use super::boundary::{check_capacity, non_null, non_null_mut, run, slice, slice_mut, NullArgument};
+use super::boundary::{
+    check_capacity, non_null, non_null_mut, run, slice, slice_mut, NullArgument,
+};
 use super::igaparam_status;
 use crate::error::{Error, Result};
 use crate::homesh::{CellType, Mesh, Placement, RelocateOptions, Stage};
@@ -50,15 +52,22 @@ pub const IGAPARAM_PLACEMENT_CURRENT: igaparam_placement = 1;
 pub enum igaparam_stage {
     /// First placement of the free nodes.
     IGAPARAM_STAGE_PLACEMENT = 0,
-    /// Optimization sweeps (`done` sweeps of at most `total`).
+    /// Optimization sweeps: `done` sweeps so far over all steps; `total` is 0 (not known in
+    /// advance, as large motions may be split into more steps).
     IGAPARAM_STAGE_OPTIMIZATION = 1,
 }
 
 /// Progress callback: `user` is the options' `progress_user`; `done` of `total` steps of `stage`
 /// are complete. Return 0 to go on, non-zero to cancel (the call then returns
 /// `IGAPARAM_STATUS_CANCELLED` and leaves the mesh unchanged). Called on the calling thread.
-pub type igaparam_progress_fn =
-    Option<unsafe extern "C" fn(user: *mut c_void, stage: igaparam_stage, done: usize, total: usize) -> c_int>;
+pub type igaparam_progress_fn = Option<
+    unsafe extern "C" fn(
+        user: *mut c_void,
+        stage: igaparam_stage,
+        done: usize,
+        total: usize,
+    ) -> c_int,
+>;
 
 /// Options of `igaparam_mesh_relocate`; get the defaults from `igaparam_relocate_options_default`.
 #[repr(C)]
@@ -70,7 +79,7 @@ pub struct igaparam_relocate_options {
     pub placement: igaparam_placement,
     /// Non-zero (default) runs the optimizer after the placement; 0 stops after the placement.
     pub optimize: c_int,
-    /// Largest number of Gauss–Seidel sweeps (default 100).
+    /// Largest number of Gauss–Seidel sweeps (default 100 per step).
     pub max_sweeps: u32,
     /// Stop when the mesh is valid and no node moved more than this fraction of its local cell
     /// size in a sweep (default 1e-3).
@@ -80,6 +89,9 @@ pub struct igaparam_relocate_options {
     pub gradient_tolerance: f64,
     /// Largest number of Newton iterations per node and sweep (default 150).
     pub max_newton_iterations: u32,
+    /// Over-relaxation of each node's move, in [1, 2) (default 1.8; 1 disables it). A relaxed
+    /// move is kept only if it lowers the node's objective and inverts nothing.
+    pub relaxation: f64,
     /// Worker threads; 0 (default) uses one per core. The result does not depend on it.
     pub threads: u32,
     /// Progress callback, or NULL (default).
@@ -109,8 +121,11 @@ pub struct igaparam_relocate_report {
     pub min_quality: f64,
     /// Mean cell quality at the end.
     pub mean_quality: f64,
-    /// Optimization sweeps performed.
+    /// Optimization sweeps performed (over all steps).
     pub sweeps: u32,
+    /// Steps the prescribed motion was applied in (large motions are split so that no prescribed
+    /// node moves more than about one cell size per step).
+    pub steps: u32,
     /// 1 when the sweeps met their stopping rule (valid mesh, small moves), else 0.
     pub converged: c_int,
     /// Wall-clock seconds of the call.
@@ -129,6 +144,7 @@ pub extern "C" fn igaparam_relocate_options_default() -> igaparam_relocate_optio
         move_tolerance: d.move_tolerance,
         gradient_tolerance: d.gradient_tolerance,
         max_newton_iterations: d.max_newton_iterations,
+        relaxation: d.relaxation,
         threads: d.threads as u32,
         progress: None,
         progress_user: std::ptr::null_mut(),
@@ -171,6 +187,7 @@ fn relocate_options(o: &igaparam_relocate_options) -> Result<RelocateOptions> {
         move_tolerance: o.move_tolerance,
         gradient_tolerance: o.gradient_tolerance,
         max_newton_iterations: o.max_newton_iterations,
+        relaxation: o.relaxation,
         threads: o.threads as usize,
     })
 }
@@ -201,7 +218,11 @@ pub extern "C" fn igaparam_mesh_new(
                 .ok_or_else(|| Error::invalid(format!("{what} is too large")))
         };
         let xyz = slice(xyz, len(num_nodes, 3, "num_nodes")?, "xyz")?;
-        let conn = slice(connectivity, len(num_cells, ct.node_count(), "num_cells")?, "connectivity")?;
+        let conn = slice(
+            connectivity,
+            len(num_cells, ct.node_count(), "num_cells")?,
+            "connectivity",
+        )?;
         let mesh = Mesh::new(ct, xyz, conn)?;
         *out = Box::into_raw(Box::new(igaparam_mesh { mesh }));
         Ok(())
@@ -227,7 +248,10 @@ fn with_mesh_mut<'a>(mesh: *mut igaparam_mesh) -> std::result::Result<&'a mut Me
 
 /// Writes the number of nodes to `*out`.
 #[no_mangle]
-pub extern "C" fn igaparam_mesh_node_count(mesh: *const igaparam_mesh, out: *mut usize) -> igaparam_status {
+pub extern "C" fn igaparam_mesh_node_count(
+    mesh: *const igaparam_mesh,
+    out: *mut usize,
+) -> igaparam_status {
     run("igaparam_mesh_node_count", || {
         *non_null_mut(out, "out")? = with_mesh(mesh)?.node_count();
         Ok(())
@@ -236,7 +260,10 @@ pub extern "C" fn igaparam_mesh_node_count(mesh: *const igaparam_mesh, out: *mut
 
 /// Writes the number of cells to `*out`.
 #[no_mangle]
-pub extern "C" fn igaparam_mesh_cell_count(mesh: *const igaparam_mesh, out: *mut usize) -> igaparam_status {
+pub extern "C" fn igaparam_mesh_cell_count(
+    mesh: *const igaparam_mesh,
+    out: *mut usize,
+) -> igaparam_status {
     run("igaparam_mesh_cell_count", || {
         *non_null_mut(out, "out")? = with_mesh(mesh)?.cell_count();
         Ok(())
@@ -245,7 +272,10 @@ pub extern "C" fn igaparam_mesh_cell_count(mesh: *const igaparam_mesh, out: *mut
 
 /// Writes the spatial dimension of the cells (2 or 3) to `*out`.
 #[no_mangle]
-pub extern "C" fn igaparam_mesh_dimension(mesh: *const igaparam_mesh, out: *mut c_int) -> igaparam_status {
+pub extern "C" fn igaparam_mesh_dimension(
+    mesh: *const igaparam_mesh,
+    out: *mut c_int,
+) -> igaparam_status {
     run("igaparam_mesh_dimension", || {
         *non_null_mut(out, "out")? = with_mesh(mesh)?.dimension() as c_int;
         Ok(())
@@ -256,7 +286,11 @@ pub extern "C" fn igaparam_mesh_dimension(mesh: *const igaparam_mesh, out: *mut 
 /// y, bit 2 keeps z (0 free, 3 fixed in 2D, 7 fixed in 3D, 4 sliding in its plane z = const).
 /// `num_nodes` must equal the mesh's node count.
 #[no_mangle]
-pub extern "C" fn igaparam_mesh_set_fixed(mesh: *mut igaparam_mesh, num_nodes: usize, mask: *const u8) -> igaparam_status {
+pub extern "C" fn igaparam_mesh_set_fixed(
+    mesh: *mut igaparam_mesh,
+    num_nodes: usize,
+    mask: *const u8,
+) -> igaparam_status {
     run("igaparam_mesh_set_fixed", || {
         let m = with_mesh_mut(mesh)?;
         m.set_fixed(slice(mask, num_nodes, "mask")?)?;
@@ -276,7 +310,13 @@ pub extern "C" fn igaparam_mesh_move_nodes(
 ) -> igaparam_status {
     run("igaparam_mesh_move_nodes", || {
         let m = with_mesh_mut(mesh)?;
-        let xyz = slice(xyz, count.checked_mul(3).ok_or_else(|| Error::invalid("count is too large"))?, "xyz")?;
+        let xyz = slice(
+            xyz,
+            count
+                .checked_mul(3)
+                .ok_or_else(|| Error::invalid("count is too large"))?,
+            "xyz",
+        )?;
         let idx = if indices.is_null() {
             None
         } else {
@@ -285,7 +325,8 @@ pub extern "C" fn igaparam_mesh_move_nodes(
                 raw.iter()
                     .enumerate()
                     .map(|(i, &v)| {
-                        usize::try_from(v).map_err(|_| Error::invalid(format!("indices[{i}] = {v} is negative")))
+                        usize::try_from(v)
+                            .map_err(|_| Error::invalid(format!("indices[{i}] = {v} is negative")))
                     })
                     .collect::<Result<Vec<usize>>>()?,
             )
@@ -347,6 +388,7 @@ pub extern "C" fn igaparam_mesh_relocate(
                 min_quality: r.min_quality,
                 mean_quality: r.mean_quality,
                 sweeps: r.sweeps,
+                steps: r.steps,
                 converged: r.converged as c_int,
                 seconds: r.seconds,
             };
@@ -358,7 +400,11 @@ pub extern "C" fn igaparam_mesh_relocate(
 /// Copies the current node positions into `xyz` (`len` doubles, at least `3 × num_nodes`; x0 y0
 /// z0 x1 ...).
 #[no_mangle]
-pub extern "C" fn igaparam_mesh_copy_positions(mesh: *const igaparam_mesh, xyz: *mut f64, len: usize) -> igaparam_status {
+pub extern "C" fn igaparam_mesh_copy_positions(
+    mesh: *const igaparam_mesh,
+    xyz: *mut f64,
+    len: usize,
+) -> igaparam_status {
     run("igaparam_mesh_copy_positions", || {
         let m = with_mesh(mesh)?;
         let needed = 3 * m.node_count();
@@ -394,7 +440,10 @@ pub extern "C" fn igaparam_mesh_copy_cell_quality(
 
 /// Writes to `*out` the number of cells with det J <= 0 at some Gauss–Lobatto point.
 #[no_mangle]
-pub extern "C" fn igaparam_mesh_invalid_cell_count(mesh: *const igaparam_mesh, out: *mut usize) -> igaparam_status {
+pub extern "C" fn igaparam_mesh_invalid_cell_count(
+    mesh: *const igaparam_mesh,
+    out: *mut usize,
+) -> igaparam_status {
     run("igaparam_mesh_invalid_cell_count", || {
         let m = with_mesh(mesh)?;
         let n = m.invalid_cell_count()?;

@@ -3,6 +3,7 @@
 //! and well shaped, with the connectivity unchanged.
 
 mod cell_type;
+mod from_vtu;
 mod relocate;
 
 pub use cell_type::CellType;
@@ -134,7 +135,10 @@ impl Mesh {
     /// nodes, or `None` for nodes `0..xyz.len()/3`. Nothing changes on error.
     pub fn move_nodes(&mut self, indices: Option<&[usize]>, xyz: &[f64]) -> Result<()> {
         if xyz.len() % 3 != 0 {
-            return Err(Error::invalid(format!("xyz has {} values, not a multiple of 3", xyz.len())));
+            return Err(Error::invalid(format!(
+                "xyz has {} values, not a multiple of 3",
+                xyz.len()
+            )));
         }
         check_finite("xyz", xyz)?;
         let count = xyz.len() / 3;
@@ -189,7 +193,13 @@ impl Mesh {
             })
             .collect();
         let free = self.fixed.iter().map(|m| !m & ((1u8 << D) - 1)).collect();
-        Problem::new(vec![pattern], &specs, &project::<D>(&self.reference), target, free)
+        Problem::new(
+            vec![pattern],
+            &specs,
+            &project::<D>(&self.reference),
+            target,
+            free,
+        )
     }
 
     /// Quality of every cell against the given target: 1/mean distortion over the
@@ -204,7 +214,9 @@ impl Mesh {
     fn quality_d<const D: usize>(&self, target: TargetKind) -> Result<Vec<f64>> {
         let problem = self.problem::<D>(target)?;
         let x = project::<D>(&self.positions);
-        Ok((0..self.cell_count()).map(|c| problem.cell_quality(c, &x)).collect())
+        Ok((0..self.cell_count())
+            .map(|c| problem.cell_quality(c, &x))
+            .collect())
     }
 
     /// Number of cells with `det J ≤ 0` at some Gauss–Lobatto point.
@@ -219,5 +231,8 @@ impl Mesh {
 
 /// The first `D` coordinates of each point.
 fn project<const D: usize>(points: &[[f64; 3]]) -> Vec<[f64; D]> {
-    points.iter().map(|p| std::array::from_fn(|k| p[k])).collect()
+    points
+        .iter()
+        .map(|p| std::array::from_fn(|k| p[k]))
+        .collect()
 }

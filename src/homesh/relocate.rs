@@ -3,10 +3,10 @@
 use std::time::Instant;
 
 use super::{project, Mesh};
-use crate::error::{Error, Result};
+use crate::error::{Error, ErrorKind, Result};
 use crate::optimize::{
-    invalid_cells, laplace::harmonic_placement, optimize, NodeSolverOptions, SweepOptions,
-    TargetKind,
+    invalid_cells, laplace::MeshGraph, optimize, small::Vector, NodeSolverOptions, Problem,
+    SweepOptions, TargetKind,
 };
 
 /// Where the free nodes start before the optimizer runs.
@@ -44,6 +44,9 @@ pub struct RelocateOptions {
     pub gradient_tolerance: f64,
     /// Largest number of Newton iterations per node and sweep.
     pub max_newton_iterations: u32,
+    /// Over-relaxation of each node's move, in [1, 2): speeds up smoothing; a relaxed move is
+    /// kept only if it lowers the node's objective and inverts nothing.
+    pub relaxation: f64,
     /// Worker threads; 0 uses one per core. The result does not depend on it.
     pub threads: usize,
 }
@@ -58,6 +61,7 @@ impl Default for RelocateOptions {
             move_tolerance: 1e-3,
             gradient_tolerance: 6e-6,
             max_newton_iterations: 150,
+            relaxation: 1.8,
             threads: 0,
         }
     }
@@ -70,11 +74,22 @@ impl RelocateOptions {
             ("gradient_tolerance", self.gradient_tolerance),
         ] {
             if !(v.is_finite() && v >= 0.0) {
-                return Err(Error::invalid(format!("{name} = {v} must be finite and non-negative")));
+                return Err(Error::invalid(format!(
+                    "{name} = {v} must be finite and non-negative"
+                )));
             }
         }
+        if !(self.relaxation >= 1.0 && self.relaxation < 2.0) {
+            return Err(Error::invalid(format!(
+                "relaxation = {} is not in [1, 2)",
+                self.relaxation
+            )));
+        }
         if self.threads > 4096 {
-            return Err(Error::invalid(format!("threads = {} is more than 4096", self.threads)));
+            return Err(Error::invalid(format!(
+                "threads = {} is more than 4096",
+                self.threads
+            )));
         }
         Ok(())
     }
@@ -99,8 +114,10 @@ pub struct RelocateReport {
     pub min_quality: f64,
     /// Mean cell quality at the end.
     pub mean_quality: f64,
-    /// Optimization sweeps performed.
+    /// Optimization sweeps performed (over all steps).
     pub sweeps: u32,
+    /// Steps the prescribed motion was applied in.
+    pub steps: u32,
     /// Whether the sweeps met their stopping rule (valid mesh, small moves).
     pub converged: bool,
     /// Wall-clock seconds.
@@ -120,7 +137,9 @@ impl Mesh {
         let pool = rayon::ThreadPoolBuilder::new()
             .num_threads(options.threads)
             .build()
-            .map_err(|e| Error::invalid(format!("cannot start {} threads: {e}", options.threads)))?;
+            .map_err(|e| {
+                Error::invalid(format!("cannot start {} threads: {e}", options.threads))
+            })?;
         match self.dimension() {
             2 => self.relocate_d::<2>(&pool, options, progress),
             _ => self.relocate_d::<3>(&pool, options, progress),
@@ -136,20 +155,26 @@ impl Mesh {
         let start = Instant::now();
         let problem = self.problem::<D>(options.target)?;
         let reference = project::<D>(&self.reference);
-        let mut x = project::<D>(&self.positions);
+        let goal = project::<D>(&self.positions);
         let mut report = RelocateReport {
             cells: self.cell_count(),
             nodes: self.node_count(),
-            free_nodes: (0..self.node_count()).filter(|&v| problem.free_mask(v) != 0).count(),
-            invalid_before: invalid_cells(pool, &problem, &x).len(),
+            free_nodes: (0..self.node_count())
+                .filter(|&v| problem.free_mask(v) != 0)
+                .count(),
+            invalid_before: invalid_cells(pool, &problem, &goal).len(),
             ..Default::default()
         };
-        let cancelled = || Error::new(crate::error::ErrorKind::Cancelled, "cancelled by the progress callback");
         if !progress(Stage::Placement, 0, 1) {
             return Err(cancelled());
         }
+        let mut x = goal.clone();
+        let graph = MeshGraph::new(&problem);
+        let place = |from: &[Vector<D>], x: &mut [Vector<D>]| {
+            pool.install(|| graph.harmonic_placement(&problem, from, x));
+        };
         if options.placement == Placement::Laplacian {
-            harmonic_placement(&problem, &reference, &mut x);
+            place(&reference, &mut x);
         }
         report.invalid_after_placement = invalid_cells(pool, &problem, &x).len();
         if !progress(Stage::Placement, 1, 1) {
@@ -162,15 +187,51 @@ impl Mesh {
                 node: NodeSolverOptions {
                     gradient_tolerance: options.gradient_tolerance,
                     max_iterations: options.max_newton_iterations,
+                    relaxation: options.relaxation,
                 },
             };
-            let stats = optimize(pool, &problem, &mut x, &sweep_options, &mut |done, total| {
-                progress(Stage::Optimization, done, total)
-            })?;
-            report.sweeps = stats.sweeps;
-            report.converged = stats.converged;
+            let mut run = |x: &mut Vec<Vector<D>>, sweeps_done: u32, last: bool| {
+                let mut step_options = sweep_options;
+                if !last {
+                    step_options.move_tolerance *= INTERMEDIATE_TOLERANCE_FACTOR;
+                }
+                let stats = optimize(pool, &problem, x, &step_options, &mut |done, _| {
+                    progress(Stage::Optimization, sweeps_done as usize + done, 0)
+                })?;
+                Ok::<_, Error>((stats, invalid_cells(pool, &problem, x).is_empty()))
+            };
+            if options.placement == Placement::Current {
+                let (stats, _) = run(&mut x, 0, true)?;
+                report.sweeps = stats.sweeps;
+                report.converged = stats.converged;
+            } else {
+                // Large motions are applied in steps, each placed harmonically from the previous
+                // optimized state and optimized; a step that leaves invalid cells is halved.
+                let mut done_t = 0.0;
+                let mut state = reference.clone();
+                let mut dt = 1.0 / initial_steps(&problem, &reference, &goal) as f64;
+                while done_t < 1.0 {
+                    let t = (done_t + dt).min(1.0);
+                    let mut trial = state.clone();
+                    set_fixed_at(&problem, &reference, &goal, t, &mut trial);
+                    place(&state, &mut trial);
+                    let (stats, valid) = run(&mut trial, report.sweeps, t >= 1.0)?;
+                    report.sweeps += stats.sweeps;
+                    if !valid && dt > MIN_STEP {
+                        dt *= 0.5;
+                        continue;
+                    }
+                    report.converged = stats.converged;
+                    report.steps += 1;
+                    done_t = t;
+                    state = trial;
+                }
+                x = state;
+            }
         }
-        let quality: Vec<f64> = (0..problem.cell_count()).map(|c| problem.cell_quality(c, &x)).collect();
+        let quality: Vec<f64> = (0..problem.cell_count())
+            .map(|c| problem.cell_quality(c, &x))
+            .collect();
         report.invalid_after = invalid_cells(pool, &problem, &x).len();
         report.min_quality = quality.iter().copied().fold(f64::INFINITY, f64::min);
         report.mean_quality = quality.iter().sum::<f64>() / quality.len() as f64;
@@ -179,5 +240,67 @@ impl Mesh {
         }
         report.seconds = start.elapsed().as_secs_f64();
         Ok(report)
+    }
+}
+
+/// Smallest fraction of the motion applied in one step.
+const MIN_STEP: f64 = 1.0 / 256.0;
+
+/// Intermediate steps stop at a looser move tolerance: only the last one needs to be smooth.
+const INTERMEDIATE_TOLERANCE_FACTOR: f64 = 10.0;
+
+/// Largest prescribed move, in local cell sizes, applied in one step.
+const CELLS_PER_STEP: f64 = 1.0;
+
+fn cancelled() -> Error {
+    Error::new(ErrorKind::Cancelled, "cancelled by the progress callback")
+}
+
+/// Number of steps so that no prescribed node moves more than [`CELLS_PER_STEP`] times the size
+/// of its cells in one step.
+fn initial_steps<const D: usize>(
+    problem: &Problem<D>,
+    reference: &[Vector<D>],
+    goal: &[Vector<D>],
+) -> usize {
+    let mut terms = Vec::new();
+    let mut ratio = 0.0f64;
+    for v in 0..reference.len() {
+        if problem.free_mask(v) == (1 << D) - 1 {
+            continue;
+        }
+        let moved = (0..D)
+            .map(|k| (goal[v][k] - reference[v][k]).powi(2))
+            .sum::<f64>()
+            .sqrt();
+        if moved == 0.0 {
+            continue;
+        }
+        let (_, length) = problem.node_terms(v, reference, &mut terms);
+        if length > 0.0 {
+            ratio = ratio.max(moved / (2.0 * length));
+        }
+    }
+    ((ratio / CELLS_PER_STEP).ceil() as usize).clamp(1, (1.0 / MIN_STEP) as usize)
+}
+
+/// Puts the constrained components at `reference + t·(goal − reference)`.
+fn set_fixed_at<const D: usize>(
+    problem: &Problem<D>,
+    reference: &[Vector<D>],
+    goal: &[Vector<D>],
+    t: f64,
+    x: &mut [Vector<D>],
+) {
+    for (v, p) in x.iter_mut().enumerate() {
+        for k in 0..D {
+            if problem.free_mask(v) & (1 << k) == 0 {
+                p[k] = if t >= 1.0 {
+                    goal[v][k]
+                } else {
+                    reference[v][k] + t * (goal[v][k] - reference[v][k])
+                };
+            }
+        }
     }
 }

@@ -18,7 +18,14 @@ pub fn mean_ratio<const D: usize>(s: &Matrix<D>) -> f64 {
     if sigma <= 0.0 || n == 0.0 || !sigma.is_finite() {
         return 0.0;
     }
-    D as f64 * sigma.powf(2.0 / D as f64) / n
+    let power = match D {
+        2 => sigma,
+        _ => {
+            let c = super::small::cube_root(sigma);
+            c * c
+        }
+    };
+    D as f64 * power / n
 }
 
 /// `h(σ) = ½(σ + √(σ²+4δ²))` and its first two derivatives, evaluated without cancellation.
@@ -33,6 +40,18 @@ fn regularised_det(sigma: f64, delta: f64) -> (f64, f64, f64) {
         return (0.0, 0.5, 0.0);
     }
     (h, h / r, 2.0 * delta * delta / (r * r * r))
+}
+
+/// `h^{-2/d}` without the general power function (the hot path of the optimizer).
+fn inverse_power<const D: usize>(h: f64) -> f64 {
+    match D {
+        2 => 1.0 / h,
+        3 => {
+            let c = super::small::cube_root(h);
+            1.0 / (c * c)
+        }
+        _ => h.powf(-2.0 / D as f64),
+    }
 }
 
 /// One term of a node's objective: the Jacobian at one point of one cell, as a function of
@@ -89,7 +108,7 @@ pub fn evaluate<const D: usize>(
             out.value = f64::INFINITY;
             return out;
         }
-        let p = h.powf(-m);
+        let p = inverse_power::<D>(h);
         out.value += t.w * inv_d * n * p;
         if !derivatives {
             continue;
@@ -181,12 +200,21 @@ mod tests {
                 let mut xm = x;
                 xp[i] += h;
                 xm[i] -= h;
-                let (fp, fm) = (evaluate(&terms, &xp, delta, true), evaluate(&terms, &xm, delta, true));
+                let (fp, fm) = (
+                    evaluate(&terms, &xp, delta, true),
+                    evaluate(&terms, &xm, delta, true),
+                );
                 let fd = (fp.value - fm.value) / (2.0 * h);
-                assert!((fd - l.gradient[i]).abs() < 1e-6 * (1.0 + fd.abs()), "grad {i}");
+                assert!(
+                    (fd - l.gradient[i]).abs() < 1e-6 * (1.0 + fd.abs()),
+                    "grad {i}"
+                );
                 for j in 0..3 {
                     let fdh = (fp.gradient[j] - fm.gradient[j]) / (2.0 * h);
-                    assert!((fdh - l.hessian[i][j]).abs() < 1e-5 * (1.0 + fdh.abs()), "hess {i}{j}");
+                    assert!(
+                        (fdh - l.hessian[i][j]).abs() < 1e-5 * (1.0 + fdh.abs()),
+                        "hess {i}{j}"
+                    );
                 }
             }
         }
@@ -194,10 +222,20 @@ mod tests {
 
     #[test]
     fn delta_is_positive_only_when_needed() {
-        let ideal = [Term { a: [[1.0, 0.0], [0.0, 1.0]], g: [0.0, 0.0], w: 1.0 }];
+        let ideal = [Term {
+            a: [[1.0, 0.0], [0.0, 1.0]],
+            g: [0.0, 0.0],
+            w: 1.0,
+        }];
         let d = choose_delta(&ideal, &[0.0, 0.0]);
         assert!((d - 1e-4).abs() < 1e-18);
-        let tangled = [Term { a: [[1.0, 0.0], [0.0, -1.0]], g: [0.0, 0.0], w: 1.0 }];
-        assert!(choose_delta(&tangled, &[0.0, 0.0]) >= (DELTA_EPSILON * (DELTA_EPSILON + 1.0)).sqrt());
+        let tangled = [Term {
+            a: [[1.0, 0.0], [0.0, -1.0]],
+            g: [0.0, 0.0],
+            w: 1.0,
+        }];
+        assert!(
+            choose_delta(&tangled, &[0.0, 0.0]) >= (DELTA_EPSILON * (DELTA_EPSILON + 1.0)).sqrt()
+        );
     }
 }

@@ -11,6 +11,8 @@ pub struct NodeSolverOptions {
     pub gradient_tolerance: f64,
     /// Largest number of Newton iterations per node and sweep.
     pub max_iterations: u32,
+    /// Over-relaxation factor of the move (1: none).
+    pub relaxation: f64,
 }
 
 /// Minimises `Σ w η*` over the terms starting from `x0`, moving only the components whose bit is
@@ -60,7 +62,7 @@ pub fn minimise<const D: usize>(
             step = step.map(|v| v * length / step_length);
         }
         let slope = dot(&current.gradient, &step);
-        if !(slope < 0.0) {
+        if slope.is_nan() || slope >= 0.0 {
             break;
         }
         let mut alpha = 1.0;
@@ -81,5 +83,21 @@ pub fn minimise<const D: usize>(
         x = next;
         current = objective(&x, true);
     }
-    (x != x0 && current.value < start.value).then_some(x)
+    if !(x != x0 && current.value < start.value) {
+        return None;
+    }
+    let omega = options.relaxation;
+    if omega > 1.0 {
+        // Over-relaxation speeds up the slow global smoothing of Gauss–Seidel sweeps; it is kept
+        // only when the node's objective still decreased and no point it touches inverts.
+        let over: Vector<D> = std::array::from_fn(|k| x0[k] + omega * (x[k] - x0[k]));
+        let keeps_signs = terms.iter().all(|t| {
+            let before = super::small::det(&t.jacobian(&x));
+            before <= 0.0 || super::small::det(&t.jacobian(&over)) > 0.0
+        });
+        if keeps_signs && objective(&over, false).value < start.value {
+            return Some(over);
+        }
+    }
+    Some(x)
 }

@@ -32,6 +32,8 @@ pub struct Problem<const D: usize> {
     cell_nodes: Vec<u32>,
     /// `W⁻¹` per cell and lattice point (`cell·3^d + q`).
     target_inverse: Vec<Matrix<D>>,
+    /// Per cell: its target size, `|det W|^{1/d}` at the first point.
+    target_length: Vec<f64>,
     /// Per node: bit `k` set when component `k` may move.
     free: Vec<u8>,
     incidence_start: Vec<usize>,
@@ -72,7 +74,9 @@ impl<const D: usize> Problem<D> {
                 .get(spec.pattern)
                 .ok_or_else(|| Error::mesh(format!("cell {c} refers to a missing pattern")))?;
             if spec.nodes.len() != pattern.real_count {
-                return Err(Error::mesh(format!("cell {c} has the wrong number of nodes")));
+                return Err(Error::mesh(format!(
+                    "cell {c} has the wrong number of nodes"
+                )));
             }
             for (i, &n) in spec.nodes.iter().enumerate() {
                 if n as usize >= node_count {
@@ -102,7 +106,10 @@ impl<const D: usize> Problem<D> {
         let mut incidence = vec![(0u32, 0u8); cell_nodes.len()];
         for (c, cell) in cell_refs.iter().enumerate() {
             let count = patterns[cell.pattern as usize].real_count;
-            for (r, &n) in cell_nodes[cell.first..cell.first + count].iter().enumerate() {
+            for (r, &n) in cell_nodes[cell.first..cell.first + count]
+                .iter()
+                .enumerate()
+            {
                 incidence[fill[n as usize]] = (c as u32, r as u8);
                 fill[n as usize] += 1;
             }
@@ -112,12 +119,18 @@ impl<const D: usize> Problem<D> {
             cells: cell_refs,
             cell_nodes,
             target_inverse: Vec::new(),
+            target_length: Vec::new(),
             free,
             incidence_start: counts,
             incidence,
         };
         problem.target_inverse = (0..problem.cells.len())
             .flat_map(|c| problem.cell_targets(c, reference, target))
+            .collect();
+        problem.target_length = problem
+            .target_inverse
+            .chunks(Self::POINTS)
+            .map(|w| det(&w[0]).abs().powf(-1.0 / D as f64))
             .collect();
         Ok(problem)
     }
@@ -211,7 +224,12 @@ impl<const D: usize> Problem<D> {
 
     /// The objective terms of `node` (all other nodes fixed at `positions`), the sum of the
     /// cell weights, and a local length (mean target size of the incident cells).
-    pub fn node_terms(&self, node: usize, positions: &[Vector<D>], terms: &mut Vec<Term<D>>) -> (f64, f64) {
+    pub fn node_terms(
+        &self,
+        node: usize,
+        positions: &[Vector<D>],
+        terms: &mut Vec<Term<D>>,
+    ) -> (f64, f64) {
         terms.clear();
         let mut weight_sum = 0.0;
         let mut length = 0.0;
@@ -244,7 +262,7 @@ impl<const D: usize> Problem<D> {
                     w,
                 });
             }
-            length += det(&self.target_inverse[c * Self::POINTS]).abs().powf(-1.0 / D as f64);
+            length += self.target_length[c];
         }
         if !incident.is_empty() {
             length /= incident.len() as f64;

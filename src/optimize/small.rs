@@ -22,6 +22,20 @@ pub fn scaled_identity<const D: usize>(s: f64) -> Matrix<D> {
     m
 }
 
+/// Cube root of a positive finite number: a bit-level first guess refined by three Halley steps
+/// (each triples the correct digits), several times faster than the portable `cbrt`.
+pub fn cube_root(x: f64) -> f64 {
+    if !(x > 0.0 && x.is_finite()) || x < 1e-290 {
+        return x.cbrt();
+    }
+    let mut y = f64::from_bits(x.to_bits() / 3 + 0x2A9F_7893_782D_A1CE);
+    for _ in 0..3 {
+        let y3 = y * y * y;
+        y *= (y3 + 2.0 * x) / (2.0 * y3 + x);
+    }
+    y
+}
+
 /// Determinant.
 pub fn det<const D: usize>(a: &Matrix<D>) -> f64 {
     match D {
@@ -130,18 +144,20 @@ pub fn add_outer<const D: usize>(a: &Matrix<D>, x: &Vector<D>, y: &Vector<D>) ->
 /// Solves `h·p = b` for a symmetric `h` made positive definite by adding a multiple of the
 /// identity (modified Cholesky, Nocedal & Wright Alg. 3.3). Rows/columns where `active` is
 /// false are treated as identity rows with a zero right-hand side.
-pub fn solve_spd_modified<const D: usize>(h: &Matrix<D>, b: &Vector<D>, active: &[bool; D]) -> Vector<D> {
+pub fn solve_spd_modified<const D: usize>(
+    h: &Matrix<D>,
+    b: &Vector<D>,
+    active: &[bool; D],
+) -> Vector<D> {
     let mut a = *h;
     let mut rhs = *b;
-    for i in 0..D {
-        if !active[i] {
-            for j in 0..D {
-                a[i][j] = 0.0;
-                a[j][i] = 0.0;
-            }
-            a[i][i] = 1.0;
-            rhs[i] = 0.0;
+    for (i, _) in active.iter().enumerate().filter(|(_, &on)| !on) {
+        for row in a.iter_mut() {
+            row[i] = 0.0;
         }
+        a[i] = [0.0; D];
+        a[i][i] = 1.0;
+        rhs[i] = 0.0;
     }
     let norm = frobenius2(&a).sqrt().max(f64::MIN_POSITIVE);
     let beta = 1e-3 * norm;
@@ -191,6 +207,17 @@ fn cholesky_solve<const D: usize>(l: &Matrix<D>, b: &Vector<D>) -> Vector<D> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn fast_cube_root_is_accurate() {
+        for &x in &[1e-280, 1e-30, 2.2e-10, 0.3, 1.0, 8.0, 12345.678, 1e200] {
+            let (fast, exact) = (cube_root(x), f64::cbrt(x));
+            assert!(
+                (fast - exact).abs() <= 4.0 * f64::EPSILON * exact,
+                "{x}: {fast} vs {exact}"
+            );
+        }
+    }
 
     #[test]
     fn inverse_and_cofactor_agree_with_determinant() {

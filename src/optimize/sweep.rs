@@ -61,6 +61,8 @@ pub fn optimize<const D: usize>(
     let colours = colour_nodes(problem, &free_nodes);
     let mut active = vec![true; n];
     let mut stats = SweepStats::default();
+    let mut history: Vec<(f64, f64)> = Vec::new();
+
     let total = options.max_sweeps as usize;
     for sweep in 1..=options.max_sweeps {
         let mut next_active = vec![false; n];
@@ -78,7 +80,10 @@ pub fn optimize<const D: usize>(
                 pool.install(|| todo.par_iter().map_init(Vec::new, solve).collect());
             for (v, x, length) in results {
                 let Some(x) = x else { continue };
-                let step = (0..D).map(|k| (x[k] - positions[v][k]).powi(2)).sum::<f64>().sqrt();
+                let step = (0..D)
+                    .map(|k| (x[k] - positions[v][k]).powi(2))
+                    .sum::<f64>()
+                    .sqrt();
                 let relative = step / length;
                 max_move = max_move.max(relative);
                 positions[v] = x;
@@ -90,14 +95,22 @@ pub fn optimize<const D: usize>(
         stats.sweeps = sweep;
         stats.last_max_move = max_move;
         if !progress(sweep as usize, total) {
-            return Err(Error::new(ErrorKind::Cancelled, "cancelled by the progress callback"));
+            return Err(Error::new(
+                ErrorKind::Cancelled,
+                "cancelled by the progress callback",
+            ));
         }
-        let invalid = invalid_cells(pool, problem, positions);
-        if invalid.is_empty() && max_move < options.move_tolerance {
+        let quality = QualitySummary::of(pool, problem, positions);
+        let stalled = history
+            .len()
+            .checked_sub(STALL_WINDOW)
+            .is_some_and(|i| quality.stalled_since(history[i]));
+        history.push((quality.min, quality.mean));
+        if quality.invalid.is_empty() && (max_move < options.move_tolerance || stalled) {
             stats.converged = true;
             break;
         }
-        for c in invalid {
+        for &c in &quality.invalid {
             for &v in problem.cell_nodes(c) {
                 mark_neighbours(problem, v as usize, &mut next_active);
             }
@@ -108,6 +121,44 @@ pub fn optimize<const D: usize>(
         active = next_active;
     }
     Ok(stats)
+}
+
+/// Sweeps over which a stalled quality ends the optimization.
+const STALL_WINDOW: usize = 10;
+
+/// Quality of the whole mesh after a sweep.
+#[derive(Clone, Debug)]
+struct QualitySummary {
+    min: f64,
+    mean: f64,
+    invalid: Vec<usize>,
+}
+
+impl QualitySummary {
+    fn of<const D: usize>(
+        pool: &ThreadPool,
+        problem: &Problem<D>,
+        positions: &[Vector<D>],
+    ) -> Self {
+        let quality: Vec<f64> = pool.install(|| {
+            (0..problem.cell_count())
+                .into_par_iter()
+                .map(|c| problem.cell_quality(c, positions))
+                .collect()
+        });
+        // Sequential sums keep the result independent of the thread count.
+        QualitySummary {
+            min: quality.iter().copied().fold(f64::INFINITY, f64::min),
+            mean: quality.iter().sum::<f64>() / quality.len().max(1) as f64,
+            invalid: (0..quality.len()).filter(|&c| quality[c] <= 0.0).collect(),
+        }
+    }
+
+    /// Whether neither the smallest nor the mean quality improved noticeably since the
+    /// `(min, mean)` of an earlier sweep.
+    fn stalled_since(&self, (old_min, old_mean): (f64, f64)) -> bool {
+        self.min - old_min < 5e-3 && self.mean - old_mean < 1e-4
+    }
 }
 
 fn mark_neighbours<const D: usize>(problem: &Problem<D>, v: usize, active: &mut [bool]) {
