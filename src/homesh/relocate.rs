@@ -250,7 +250,7 @@ const MIN_STEP: f64 = 1.0 / 256.0;
 const INTERMEDIATE_TOLERANCE_FACTOR: f64 = 10.0;
 
 /// Largest prescribed move, in local cell sizes, applied in one step.
-const CELLS_PER_STEP: f64 = 1.0;
+const CELLS_PER_STEP: f64 = 4.0;
 
 fn cancelled() -> Error {
     Error::new(ErrorKind::Cancelled, "cancelled by the progress callback")

@@ -65,23 +65,30 @@ pub fn minimise<const D: usize>(
         if slope.is_nan() || slope >= 0.0 {
             break;
         }
+        // The full step is tried with derivatives (it is usually taken); shorter ones by value.
         let mut alpha = 1.0;
         let mut accepted = None;
-        for _ in 0..40 {
+        for attempt in 0..40 {
             let trial: Vector<D> = std::array::from_fn(|k| x[k] + alpha * step[k]);
-            let value = objective(&trial, false).value;
-            if value.is_finite() && value <= current.value + 1e-4 * alpha * slope {
-                accepted = Some(trial);
+            let local = objective(&trial, attempt == 0);
+            if local.value.is_finite() && local.value <= current.value + 1e-4 * alpha * slope {
+                accepted = Some((trial, local, attempt == 0));
                 break;
             }
             alpha *= 0.5;
         }
-        let Some(next) = accepted else { break };
+        let Some((next, local, has_derivatives)) = accepted else {
+            break;
+        };
         if next == x {
             break;
         }
         x = next;
-        current = objective(&x, true);
+        current = if has_derivatives {
+            local
+        } else {
+            objective(&x, true)
+        };
     }
     if !(x != x0 && current.value < start.value) {
         return None;

@@ -1,0 +1,86 @@
+//! Shared helpers of the integration tests: structured grids in VTK node order and a small
+//! deterministic random generator.
+#![allow(dead_code)]
+
+use igaparam::optimize::lattice;
+use igaparam::CellType;
+
+/// A structured grid of `n^d` cells of the given type on [0,1]^d: flat `xyz` (3 per node) and
+/// connectivity. Quadratic types use a `(2n+1)^d` node lattice, linear ones `(n+1)^d`; nodes a
+/// serendipity cell does not use stay unconnected.
+pub fn grid(cell_type: CellType, n: usize) -> (Vec<f64>, Vec<i64>) {
+    let d = cell_type.dimension();
+    let quadratic = cell_type.node_count() > 1 << d;
+    let per = if quadratic { 2 } else { 1 };
+    let m = per * n + 1;
+    let count = m.pow(d as u32);
+    let index = |c: &[usize]| c.iter().rev().fold(0, |acc, &ck| acc * m + ck);
+    let mut xyz = Vec::with_capacity(3 * count);
+    for i in 0..count {
+        let mut rest = i;
+        for _ in 0..3 {
+            let c = if xyz.len() % 3 < d { rest % m } else { 0 };
+            rest /= m;
+            xyz.push(c as f64 / (m - 1) as f64);
+        }
+    }
+    let mut conn = Vec::new();
+    for cell in 0..n.pow(d as u32) {
+        let mut rest = cell;
+        let base: Vec<usize> = (0..d)
+            .map(|_| {
+                let c = rest % n;
+                rest /= n;
+                c * per
+            })
+            .collect();
+        for &l in cell_type.lattice() {
+            let lc: Vec<usize> = if d == 2 {
+                lattice::coords::<2>(l).to_vec()
+            } else {
+                lattice::coords::<3>(l).to_vec()
+            };
+            let c: Vec<usize> = (0..d)
+                .map(|k| base[k] + if quadratic { lc[k] } else { lc[k] / 2 })
+                .collect();
+            conn.push(index(&c) as i64);
+        }
+    }
+    (xyz, conn)
+}
+
+/// Mask fixing every coordinate of the nodes on the boundary of [0,1]^d.
+pub fn boundary_mask(xyz: &[f64], d: usize) -> Vec<u8> {
+    xyz.chunks(3)
+        .map(|p| {
+            let on_boundary = p[..d].iter().any(|&v| v == 0.0 || v == 1.0);
+            if on_boundary {
+                (1u8 << d) - 1
+            } else {
+                0
+            }
+        })
+        .collect()
+}
+
+/// A small linear congruential generator, uniform in [-1, 1).
+pub struct Lcg(pub u64);
+
+impl Lcg {
+    pub fn next(&mut self) -> f64 {
+        self.0 = self
+            .0
+            .wrapping_mul(6364136223846793005)
+            .wrapping_add(1442695040888963407);
+        ((self.0 >> 11) as f64 / (1u64 << 53) as f64) * 2.0 - 1.0
+    }
+}
+
+/// Reads a bundled test mesh with its prescribed motion.
+pub fn load_case(name: &str) -> igaparam::Mesh {
+    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("tests/data")
+        .join(name);
+    let grid = igaparam::io::vtu::read(&path).expect("test mesh");
+    igaparam::Mesh::from_grid_with_motion(&grid).expect("test mesh motion")
+}
