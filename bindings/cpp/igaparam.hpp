@@ -1,0 +1,218 @@
+// igaparam: header-only C++17 wrapper of the C API in igaparam.h.
+//
+// - igaparam::Error (a std::runtime_error) carries the status and message of a failed call.
+// - igaparam::Mesh is a move-only owner of an igaparam_mesh*, with methods that check sizes,
+//   throw on failure and return std::vector for the arrays the C API copies out.
+//
+// Every C call goes through `detail::check`, so a method either succeeds or throws; as in the C
+// API, a method that throws leaves the mesh unchanged.
+
+#ifndef IGAPARAM_HPP
+#define IGAPARAM_HPP
+
+#include <cstddef>
+#include <cstdint>
+#include <exception>
+#include <functional>
+#include <stdexcept>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "igaparam.h"
+
+namespace igaparam {
+
+/// A failed call: what() is the library's message, status() the igaparam_status it returned.
+class Error : public std::runtime_error {
+ public:
+  Error(igaparam_status status, const std::string& message)
+      : std::runtime_error(message), status_(status) {}
+
+  igaparam_status status() const noexcept { return status_; }
+
+ private:
+  igaparam_status status_;
+};
+
+/// The library version string, e.g. "0.1.0".
+inline std::string version() { return igaparam_version(); }
+
+/// The default relocation options.
+inline igaparam_relocate_options default_options() { return igaparam_relocate_options_default(); }
+
+/// Nodes per cell of a supported cell type (VTK codes), or 0 for an unsupported one.
+inline std::size_t nodes_per_cell(igaparam_cell_type type) noexcept {
+  switch (type) {
+    case IGAPARAM_CELL_QUAD4: return 4;
+    case IGAPARAM_CELL_QUAD8: return 8;
+    case IGAPARAM_CELL_QUAD9: return 9;
+    case IGAPARAM_CELL_HEX8: return 8;
+    case IGAPARAM_CELL_HEX20: return 20;
+    case IGAPARAM_CELL_HEX27: return 27;
+    default: return 0;
+  }
+}
+
+/// Progress of igaparam_mesh_relocate: return true to go on, false to cancel.
+using Progress = std::function<bool(igaparam_stage stage, std::size_t done, std::size_t total)>;
+
+namespace detail {
+
+/// The calling thread's last error message.
+inline std::string last_error_message() {
+  const std::size_t size = igaparam_last_error_message(nullptr, 0);
+  std::string message(size, '\0');
+  igaparam_last_error_message(message.data(), message.size());
+  message.resize(size > 0 ? size - 1 : 0);
+  return message;
+}
+
+/// Throws Error unless `status` is IGAPARAM_STATUS_OK.
+inline void check(igaparam_status status) {
+  if (status != IGAPARAM_STATUS_OK) {
+    throw Error(status, last_error_message());
+  }
+}
+
+/// Throws Error(IGAPARAM_STATUS_INVALID_ARGUMENT) with `message` unless `ok`: for size checks the
+/// wrapper must do itself, since the C API trusts the sizes it is given.
+inline void require(bool ok, const std::string& message) {
+  if (!ok) {
+    throw Error(IGAPARAM_STATUS_INVALID_ARGUMENT, message);
+  }
+}
+
+/// Carries a C++ progress function through the C callback; an exception it throws is kept and
+/// rethrown once the C call has returned (exceptions must not cross the C boundary).
+struct ProgressTrampoline {
+  const Progress* progress;
+  std::exception_ptr exception;
+
+  static int call(void* user, igaparam_stage stage, std::size_t done, std::size_t total) {
+    auto* self = static_cast<ProgressTrampoline*>(user);
+    try {
+      return (*self->progress)(stage, done, total) ? 0 : 1;
+    } catch (...) {
+      self->exception = std::current_exception();
+      return 1;
+    }
+  }
+};
+
+}  // namespace detail
+
+/// A quadrilateral or hexahedral mesh (owner of an igaparam_mesh*). Move-only.
+class Mesh {
+ public:
+  /// Builds a mesh from `xyz` (3 coordinates per node, flat) and `connectivity` (VTK node order,
+  /// nodes_per_cell(type) indices per cell). The arrays are copied; all nodes start free.
+  Mesh(igaparam_cell_type type, const std::vector<double>& xyz, const std::vector<std::int64_t>& connectivity) {
+    detail::require(xyz.size() % 3 == 0, "igaparam::Mesh: xyz must hold 3 coordinates per node");
+    const std::size_t per_cell = nodes_per_cell(type);
+    // For an unsupported type, pass no cells and let the library report the type.
+    detail::require(per_cell == 0 || connectivity.size() % per_cell == 0,
+                    "igaparam::Mesh: connectivity must hold " + std::to_string(per_cell) + " indices per cell");
+    const std::size_t cells = per_cell == 0 ? 0 : connectivity.size() / per_cell;
+    detail::check(igaparam_mesh_new(type, xyz.size() / 3, xyz.data(), cells, connectivity.data(), &mesh_));
+  }
+
+  /// Takes ownership of a handle from igaparam_mesh_new (may be NULL).
+  explicit Mesh(igaparam_mesh* handle) noexcept : mesh_(handle) {}
+
+  ~Mesh() { igaparam_mesh_free(mesh_); }
+
+  Mesh(const Mesh&) = delete;
+  Mesh& operator=(const Mesh&) = delete;
+  Mesh(Mesh&& other) noexcept : mesh_(std::exchange(other.mesh_, nullptr)) {}
+  Mesh& operator=(Mesh&& other) noexcept {
+    if (this != &other) {
+      igaparam_mesh_free(mesh_);
+      mesh_ = std::exchange(other.mesh_, nullptr);
+    }
+    return *this;
+  }
+
+  /// The C handle (still owned by this object).
+  igaparam_mesh* get() const noexcept { return mesh_; }
+  /// Gives up ownership of the C handle.
+  igaparam_mesh* release() noexcept { return std::exchange(mesh_, nullptr); }
+
+  std::size_t node_count() const { return query<std::size_t>(igaparam_mesh_node_count); }
+  std::size_t cell_count() const { return query<std::size_t>(igaparam_mesh_cell_count); }
+  /// 2 for quadrilaterals, 3 for hexahedra.
+  int dimension() const { return query<int>(igaparam_mesh_dimension); }
+  /// Cells with det J <= 0 at some Gauss–Lobatto point.
+  std::size_t invalid_cell_count() const { return query<std::size_t>(igaparam_mesh_invalid_cell_count); }
+
+  /// Sets every node's constraint mask (bit 0 keeps x, bit 1 y, bit 2 z); one entry per node.
+  void set_fixed(const std::vector<std::uint8_t>& mask) {
+    detail::check(igaparam_mesh_set_fixed(mesh_, mask.size(), mask.data()));
+  }
+
+  /// Moves node indices[i] to xyz[3i..3i+3].
+  void move_nodes(const std::vector<std::int64_t>& indices, const std::vector<double>& xyz) {
+    detail::require(xyz.size() == 3 * indices.size(), "igaparam::Mesh::move_nodes: xyz must hold 3 values per index");
+    detail::check(igaparam_mesh_move_nodes(mesh_, indices.size(), indices.data(), xyz.data()));
+  }
+
+  /// Moves nodes 0..xyz.size()/3-1 to xyz.
+  void move_nodes(const std::vector<double>& xyz) {
+    detail::require(xyz.size() % 3 == 0, "igaparam::Mesh::move_nodes: xyz must hold 3 values per node");
+    detail::check(igaparam_mesh_move_nodes(mesh_, xyz.size() / 3, nullptr, xyz.data()));
+  }
+
+  /// Makes the current positions the reference shape of the targets.
+  void reset_reference() { detail::check(igaparam_mesh_reset_reference(mesh_)); }
+
+  /// Relocates the free nodes; `options.progress` (a C callback) is used as given.
+  igaparam_relocate_report relocate(const igaparam_relocate_options& options = default_options()) {
+    igaparam_relocate_report report{};
+    detail::check(igaparam_mesh_relocate(mesh_, &options, &report));
+    return report;
+  }
+
+  /// Relocates the free nodes, calling `progress` (instead of options.progress) as work proceeds.
+  /// If `progress` throws, the relocation is cancelled and the exception is rethrown.
+  igaparam_relocate_report relocate(igaparam_relocate_options options, const Progress& progress) {
+    detail::ProgressTrampoline trampoline{&progress, nullptr};
+    options.progress = &detail::ProgressTrampoline::call;
+    options.progress_user = &trampoline;
+    igaparam_relocate_report report{};
+    const igaparam_status status = igaparam_mesh_relocate(mesh_, &options, &report);
+    if (trampoline.exception) {
+      std::rethrow_exception(trampoline.exception);
+    }
+    detail::check(status);
+    return report;
+  }
+
+  /// Current node positions, 3 per node (x0 y0 z0 x1 ...).
+  std::vector<double> positions() const {
+    std::vector<double> xyz(3 * node_count());
+    detail::check(igaparam_mesh_copy_positions(mesh_, xyz.data(), xyz.size()));
+    return xyz;
+  }
+
+  /// Quality of every cell against `target` (IGAPARAM_TARGET_*): in (0, 1], 0 for an invalid cell.
+  std::vector<double> cell_quality(igaparam_target target = IGAPARAM_TARGET_INITIAL) const {
+    std::vector<double> quality(cell_count());
+    detail::check(igaparam_mesh_copy_cell_quality(mesh_, target, quality.data(), quality.size()));
+    return quality;
+  }
+
+ private:
+  /// Calls a getter of the form f(const igaparam_mesh*, T*) and returns its output.
+  template <typename T>
+  T query(igaparam_status (*getter)(const igaparam_mesh*, T*)) const {
+    T value{};
+    detail::check(getter(mesh_, &value));
+    return value;
+  }
+
+  igaparam_mesh* mesh_ = nullptr;
+};
+
+}  // namespace igaparam
+
+#endif  // IGAPARAM_HPP

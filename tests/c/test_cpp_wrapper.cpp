@@ -1,0 +1,122 @@
+// Tests of the C++ wrapper bindings/cpp/igaparam.hpp: errors become igaparam::Error with the
+// status and the library's message, Mesh owns and moves its handle, vectors have the right sizes,
+// and a progress function can cancel or throw through the C callback.
+
+#include <cstdio>
+#include <cstring>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "igaparam.hpp"
+#include "structured_grid.h"
+
+namespace {
+
+int passed = 0, failed = 0;
+
+void check_at(bool ok, const char* file, int line, const char* what) {
+  if (ok) {
+    passed++;
+  } else {
+    failed++;
+    std::fprintf(stderr, "FAIL %s:%d: %s\n", file, line, what);
+  }
+}
+
+#define CHECK(cond) check_at((cond), __FILE__, __LINE__, #cond)
+
+/// Runs `f`, which must throw igaparam::Error with `status` and a non-empty message.
+template <typename F>
+void expect_error_at(igaparam_status status, F&& f, const char* file, int line, const char* what) {
+  try {
+    f();
+    check_at(false, file, line, what);
+  } catch (const igaparam::Error& e) {
+    check_at(e.status() == status && std::strlen(e.what()) > 0, file, line, what);
+  }
+}
+
+#define EXPECT_ERROR(status, statement) expect_error_at((status), [&] { statement; }, __FILE__, __LINE__, #statement)
+
+/// A Q4 grid mesh with its boundary fixed and its middle node pushed past a neighbour (a folded cell).
+igaparam::Mesh tangled_mesh(structured_grid& g) {
+  structured_grid_init(&g, IGAPARAM_CELL_QUAD4, 4, 4, 1);
+  igaparam::Mesh mesh(g.type, std::vector<double>(g.xyz, g.xyz + 3 * g.num_nodes),
+                      std::vector<std::int64_t>(g.connectivity, g.connectivity + 4 * g.num_cells));
+  uint8_t* mask = structured_grid_boundary_mask(&g);
+  mesh.set_fixed(std::vector<std::uint8_t>(mask, mask + g.num_nodes));
+  std::free(mask);
+  const auto middle = static_cast<std::int64_t>(structured_grid_node(&g, 2, 2, 0));  // at (0.5, 0.5)
+  mesh.move_nodes({middle}, {0.3, 0.3, 0.0});
+  return mesh;
+}
+
+igaparam_relocate_options from_current() {
+  igaparam_relocate_options o = igaparam::default_options();
+  o.placement = IGAPARAM_PLACEMENT_CURRENT;
+  return o;
+}
+
+}  // namespace
+
+int main() {
+  CHECK(igaparam::version() == igaparam_version());
+  CHECK(igaparam::nodes_per_cell(IGAPARAM_CELL_HEX27) == 27 && igaparam::nodes_per_cell(7) == 0);
+
+  // Errors carry the status and the library's message.
+  EXPECT_ERROR(IGAPARAM_STATUS_INVALID_MESH, igaparam::Mesh(IGAPARAM_CELL_QUAD4, {0, 0, 0, 1, 0, 0, 1, 1, 0}, {0, 1, 2, 3}));
+  EXPECT_ERROR(IGAPARAM_STATUS_INVALID_ARGUMENT, igaparam::Mesh(IGAPARAM_CELL_QUAD4, {0, 0, 0, 1}, {0, 1, 2, 3}));
+  try {
+    igaparam::Mesh(IGAPARAM_CELL_QUAD4, {0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0}, {0, 1, 2, 2});
+    CHECK(false);
+  } catch (const std::runtime_error& e) {  // igaparam::Error is a std::runtime_error
+    CHECK(std::strlen(e.what()) > 0);
+  }
+
+  structured_grid g;
+  igaparam::Mesh mesh = tangled_mesh(g);
+  CHECK(mesh.node_count() == g.num_nodes && mesh.cell_count() == g.num_cells && mesh.dimension() == 2);
+  CHECK(mesh.positions().size() == 3 * g.num_nodes && mesh.cell_quality().size() == g.num_cells);
+  CHECK(mesh.invalid_cell_count() > 0);
+  EXPECT_ERROR(IGAPARAM_STATUS_INVALID_ARGUMENT, mesh.move_nodes({0}, {1.0, 2.0}));
+  EXPECT_ERROR(IGAPARAM_STATUS_INVALID_ARGUMENT, mesh.set_fixed({0, 0}));
+  EXPECT_ERROR(IGAPARAM_STATUS_INVALID_ARGUMENT, mesh.cell_quality(5));
+
+  // Moving transfers the handle.
+  igaparam_mesh* handle = mesh.get();
+  igaparam::Mesh moved(std::move(mesh));
+  CHECK(moved.get() == handle && mesh.get() == nullptr);
+  mesh = std::move(moved);
+  CHECK(mesh.get() == handle && moved.get() == nullptr);
+
+  // A progress function that declines cancels; one that throws has its exception rethrown; the
+  // mesh is unchanged either way.
+  const std::vector<double> before = mesh.positions();
+  EXPECT_ERROR(IGAPARAM_STATUS_CANCELLED, mesh.relocate(from_current(), [](igaparam_stage, std::size_t, std::size_t) {
+    return false;
+  }));
+  bool rethrown = false;
+  try {
+    mesh.relocate(from_current(), [](igaparam_stage, std::size_t, std::size_t) -> bool {
+      throw std::logic_error("stop");
+    });
+  } catch (const std::logic_error& e) {
+    rethrown = std::string(e.what()) == "stop";
+  }
+  CHECK(rethrown);
+  CHECK(mesh.positions() == before);
+
+  // Untangling through the wrapper.
+  std::size_t calls = 0;
+  const igaparam_relocate_report r = mesh.relocate(from_current(), [&](igaparam_stage, std::size_t, std::size_t) {
+    calls++;
+    return true;
+  });
+  CHECK(calls > 0 && r.invalid_after == 0 && mesh.invalid_cell_count() == 0);
+  CHECK(mesh.relocate().invalid_after == 0);
+
+  structured_grid_free(&g);
+  std::printf("%d passed, %d failed\n", passed, failed);
+  return failed == 0 ? 0 : 1;
+}
