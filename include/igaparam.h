@@ -70,7 +70,8 @@ typedef enum {
    */
   IGAPARAM_STATUS_NOT_FINITE = 3,
   /**
-   * The mesh is unusable (bad cell type, node index out of range, node repeated in a cell).
+   * The mesh is unusable: its connectivity refers to a node that does not exist or repeats a
+   * node within a cell.
    */
   IGAPARAM_STATUS_INVALID_MESH = 4,
   /**
@@ -141,7 +142,8 @@ typedef struct {
   double move_tolerance;
   /**
    * A node's Newton iteration stops when the gradient of its objective times its local cell
-   * size is below this (default 6e-6).
+   * size is below this (default 1e-3: nodes are revisited by the following sweeps, so an
+   * inexact solve per sweep suffices).
    */
   double gradient_tolerance;
   /**
@@ -154,7 +156,8 @@ typedef struct {
    */
   double relaxation;
   /**
-   * Worker threads; 0 (default) uses one per core. The result does not depend on it.
+   * Worker threads, at most 4096; 0 (default) uses one per core. The result does not depend
+   * on it.
    */
   uint32_t threads;
   /**
@@ -286,12 +289,14 @@ extern "C" {
 #endif // __cplusplus
 
 /**
- * Copies the calling thread's last error message into `buf` (at most `len` bytes including the
+ * Copies the message of the calling thread's latest call into `buf` (at most `len` bytes including the
  * terminating NUL, truncated if needed) and returns the length of the whole message plus one,
  * so a caller can size the buffer. `buf` may be NULL (with any `len`) to ask for the size only.
- * The message is empty (returns 1) when no call has failed on this thread.
+ * The message is empty (returns 1) when that call succeeded: every call that returns an
+ * `igaparam_status` replaces it.
  */
-size_t igaparam_last_error_message(char *buf, size_t len);
+size_t igaparam_last_error_message(char *buf,
+                                   size_t len);
 
 /**
  * The library version as a static NUL-terminated string, e.g. `"0.1.0"`. Never NULL; not to be
@@ -389,6 +394,24 @@ igaparam_status igaparam_mesh_copy_cell_quality(const igaparam_mesh *mesh,
                                                 igaparam_target target_kind,
                                                 double *quality,
                                                 size_t len);
+
+/**
+ * Copies the reference positions (the shape the targets are taken from) into `xyz` (`len`
+ * doubles, at least `3 × num_nodes`).
+ */
+igaparam_status igaparam_mesh_copy_reference(const igaparam_mesh *mesh, double *xyz, size_t len);
+
+/**
+ * Copies the constraint mask of every node (see `igaparam_mesh_set_fixed`) into `mask` (`len`
+ * bytes, at least `num_nodes`).
+ */
+igaparam_status igaparam_mesh_copy_fixed(const igaparam_mesh *mesh, uint8_t *mask, size_t len);
+
+/**
+ * Writes to `*out` the number of nodes of one cell of type `cell_type_code`, e.g. 9 for
+ * `IGAPARAM_CELL_QUAD9`.
+ */
+igaparam_status igaparam_cell_type_node_count(igaparam_cell_type cell_type_code, size_t *out);
 
 /**
  * Writes to `*out` the number of cells with det J <= 0 at some Gauss–Lobatto point.

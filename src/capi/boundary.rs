@@ -20,7 +20,8 @@ pub enum igaparam_status {
     IGAPARAM_STATUS_INVALID_ARGUMENT = 2,
     /// An input value is NaN or infinite.
     IGAPARAM_STATUS_NOT_FINITE = 3,
-    /// The mesh is unusable (bad cell type, node index out of range, node repeated in a cell).
+    /// The mesh is unusable: its connectivity refers to a node that does not exist or repeats a
+    /// node within a cell.
     IGAPARAM_STATUS_INVALID_MESH = 4,
     /// A caller-provided output buffer is too small; the message says the size needed.
     IGAPARAM_STATUS_BUFFER_TOO_SMALL = 5,
@@ -78,6 +79,7 @@ pub(crate) fn run(
     function: &str,
     body: impl FnOnce() -> std::result::Result<(), Failure>,
 ) -> igaparam_status {
+    set_last_error(String::new());
     match catch_unwind(AssertUnwindSafe(body)) {
         Ok(Ok(())) => igaparam_status::IGAPARAM_STATUS_OK,
         Ok(Err(Failure::Library(e))) => {
@@ -162,10 +164,11 @@ pub(crate) fn check_capacity(name: &str, len: usize, needed: usize) -> Result<()
     Ok(())
 }
 
-/// Copies the calling thread's last error message into `buf` (at most `len` bytes including the
+/// Copies the message of the calling thread's latest call into `buf` (at most `len` bytes including the
 /// terminating NUL, truncated if needed) and returns the length of the whole message plus one,
 /// so a caller can size the buffer. `buf` may be NULL (with any `len`) to ask for the size only.
-/// The message is empty (returns 1) when no call has failed on this thread.
+/// The message is empty (returns 1) when that call succeeded: every call that returns an
+/// `igaparam_status` replaces it.
 #[no_mangle]
 pub extern "C" fn igaparam_last_error_message(buf: *mut c_char, len: usize) -> usize {
     LAST_ERROR.with(|e| {

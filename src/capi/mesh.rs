@@ -85,14 +85,16 @@ pub struct igaparam_relocate_options {
     /// size in a sweep (default 1e-3).
     pub move_tolerance: f64,
     /// A node's Newton iteration stops when the gradient of its objective times its local cell
-    /// size is below this (default 6e-6).
+    /// size is below this (default 1e-3: nodes are revisited by the following sweeps, so an
+    /// inexact solve per sweep suffices).
     pub gradient_tolerance: f64,
     /// Largest number of Newton iterations per node and sweep (default 150).
     pub max_newton_iterations: u32,
     /// Over-relaxation of each node's move, in [1, 2) (default 1.8; 1 disables it). A relaxed
     /// move is kept only if it lowers the node's objective and inverts nothing.
     pub relaxation: f64,
-    /// Worker threads; 0 (default) uses one per core. The result does not depend on it.
+    /// Worker threads, at most 4096; 0 (default) uses one per core. The result does not depend
+    /// on it.
     pub threads: u32,
     /// Progress callback, or NULL (default).
     pub progress: igaparam_progress_fn,
@@ -407,14 +409,22 @@ pub extern "C" fn igaparam_mesh_copy_positions(
 ) -> igaparam_status {
     run("igaparam_mesh_copy_positions", || {
         let m = with_mesh(mesh)?;
-        let needed = 3 * m.node_count();
-        check_capacity("xyz", len, needed)?;
-        let out = slice_mut(xyz, len, "xyz")?;
-        for (o, p) in out.chunks_mut(3).zip(m.positions()) {
-            o.copy_from_slice(p);
-        }
-        Ok(())
+        copy_points(m.positions(), xyz, len)
     })
+}
+
+/// Copies points into a caller's buffer of `len` doubles.
+fn copy_points(
+    points: &[[f64; 3]],
+    xyz: *mut f64,
+    len: usize,
+) -> std::result::Result<(), super::boundary::Failure> {
+    check_capacity("xyz", len, 3 * points.len())?;
+    let out = slice_mut(xyz, len, "xyz")?;
+    for (o, p) in out.chunks_mut(3).zip(points) {
+        o.copy_from_slice(p);
+    }
+    Ok(())
 }
 
 /// Copies the quality of every cell against `target` (an `IGAPARAM_TARGET_*` value) into
@@ -434,6 +444,50 @@ pub extern "C" fn igaparam_mesh_copy_cell_quality(
         let out = slice_mut(quality, len, "quality")?;
         let q = m.cell_quality(t)?;
         out[..q.len()].copy_from_slice(&q);
+        Ok(())
+    })
+}
+
+/// Copies the reference positions (the shape the targets are taken from) into `xyz` (`len`
+/// doubles, at least `3 × num_nodes`).
+#[no_mangle]
+pub extern "C" fn igaparam_mesh_copy_reference(
+    mesh: *const igaparam_mesh,
+    xyz: *mut f64,
+    len: usize,
+) -> igaparam_status {
+    run("igaparam_mesh_copy_reference", || {
+        let m = with_mesh(mesh)?;
+        copy_points(m.reference(), xyz, len)
+    })
+}
+
+/// Copies the constraint mask of every node (see `igaparam_mesh_set_fixed`) into `mask` (`len`
+/// bytes, at least `num_nodes`).
+#[no_mangle]
+pub extern "C" fn igaparam_mesh_copy_fixed(
+    mesh: *const igaparam_mesh,
+    mask: *mut u8,
+    len: usize,
+) -> igaparam_status {
+    run("igaparam_mesh_copy_fixed", || {
+        let m = with_mesh(mesh)?;
+        check_capacity("mask", len, m.node_count())?;
+        slice_mut(mask, len, "mask")?[..m.node_count()].copy_from_slice(m.fixed());
+        Ok(())
+    })
+}
+
+/// Writes to `*out` the number of nodes of one cell of type `cell_type_code`, e.g. 9 for
+/// `IGAPARAM_CELL_QUAD9`.
+#[no_mangle]
+pub extern "C" fn igaparam_cell_type_node_count(
+    cell_type_code: igaparam_cell_type,
+    out: *mut usize,
+) -> igaparam_status {
+    run("igaparam_cell_type_node_count", || {
+        let out = non_null_mut(out, "out")?;
+        *out = cell_type(cell_type_code)?.node_count();
         Ok(())
     })
 }

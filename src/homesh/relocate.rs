@@ -40,7 +40,9 @@ pub struct RelocateOptions {
     pub max_sweeps: u32,
     /// Stop when the mesh is valid and no node moved more than this fraction of its local size.
     pub move_tolerance: f64,
-    /// Per-node Newton stops when the gradient times the local size is below this.
+    /// Per-node Newton stops when the gradient times the local size is below this. Every node
+    /// is revisited by the following sweeps, so an inexact solve (10⁻³, the default) reaches the
+    /// same meshes in less time than the tight 6·10⁻⁶ of a one-pass optimizer.
     pub gradient_tolerance: f64,
     /// Largest number of Newton iterations per node and sweep.
     pub max_newton_iterations: u32,
@@ -59,7 +61,7 @@ impl Default for RelocateOptions {
             optimize: true,
             max_sweeps: 100,
             move_tolerance: 1e-3,
-            gradient_tolerance: 6e-6,
+            gradient_tolerance: 1e-3,
             max_newton_iterations: 150,
             relaxation: 1.8,
             threads: 0,

@@ -157,7 +157,7 @@ impl QualitySummary {
     /// Whether neither the smallest nor the mean quality improved noticeably since the
     /// `(min, mean)` of an earlier sweep.
     fn stalled_since(&self, (old_min, old_mean): (f64, f64)) -> bool {
-        self.min - old_min < 5e-3 && self.mean - old_mean < 1e-4
+        self.min - old_min < 1e-2 && self.mean - old_mean < 1e-4
     }
 }
 
