@@ -43,15 +43,8 @@ inline igaparam_relocate_options default_options() { return igaparam_relocate_op
 
 /// Nodes per cell of a supported cell type (VTK codes), or 0 for an unsupported one.
 inline std::size_t nodes_per_cell(igaparam_cell_type type) noexcept {
-  switch (type) {
-    case IGAPARAM_CELL_QUAD4: return 4;
-    case IGAPARAM_CELL_QUAD8: return 8;
-    case IGAPARAM_CELL_QUAD9: return 9;
-    case IGAPARAM_CELL_HEX8: return 8;
-    case IGAPARAM_CELL_HEX20: return 20;
-    case IGAPARAM_CELL_HEX27: return 27;
-    default: return 0;
-  }
+  std::size_t count = 0;
+  return igaparam_cell_type_node_count(type, &count) == IGAPARAM_STATUS_OK ? count : 0;
 }
 
 /// Progress of igaparam_mesh_relocate: return true to go on, false to cancel.
@@ -192,6 +185,20 @@ class Mesh {
     std::vector<double> xyz(3 * node_count());
     detail::check(igaparam_mesh_copy_positions(mesh_, xyz.data(), xyz.size()));
     return xyz;
+  }
+
+  /// Reference positions (the shape of the targets), 3 per node.
+  std::vector<double> reference() const {
+    std::vector<double> xyz(3 * node_count());
+    detail::check(igaparam_mesh_copy_reference(mesh_, xyz.data(), xyz.size()));
+    return xyz;
+  }
+
+  /// Constraint mask of every node (bit 0 x, bit 1 y, bit 2 z fixed).
+  std::vector<std::uint8_t> fixed() const {
+    std::vector<std::uint8_t> mask(node_count());
+    detail::check(igaparam_mesh_copy_fixed(mesh_, mask.data(), mask.size()));
+    return mask;
   }
 
   /// Quality of every cell against `target` (IGAPARAM_TARGET_*): in (0, 1], 0 for an invalid cell.

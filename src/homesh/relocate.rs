@@ -71,17 +71,21 @@ impl Default for RelocateOptions {
 
 impl RelocateOptions {
     fn validate(&self) -> Result<()> {
-        for (name, v) in [
+        let values = [
             ("move_tolerance", self.move_tolerance),
             ("gradient_tolerance", self.gradient_tolerance),
-        ] {
-            if !(v.is_finite() && v >= 0.0) {
-                return Err(Error::invalid(format!(
-                    "{name} = {v} must be finite and non-negative"
-                )));
-            }
+            ("relaxation", self.relaxation),
+        ];
+        if let Some((name, v)) = values.iter().find(|(_, v)| !v.is_finite()) {
+            return Err(Error::new(
+                ErrorKind::NotFinite,
+                format!("{name} = {v} must be finite"),
+            ));
         }
-        if !(self.relaxation >= 1.0 && self.relaxation < 2.0) {
+        if let Some((name, v)) = values[..2].iter().find(|(_, v)| *v < 0.0) {
+            return Err(Error::invalid(format!("{name} = {v} must be non-negative")));
+        }
+        if !(1.0..2.0).contains(&self.relaxation) {
             return Err(Error::invalid(format!(
                 "relaxation = {} is not in [1, 2)",
                 self.relaxation
