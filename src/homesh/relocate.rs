@@ -215,7 +215,8 @@ impl Mesh {
                 // optimized state and optimized; a step that leaves invalid cells is halved.
                 let mut done_t = 0.0;
                 let mut state = reference.clone();
-                let mut dt = 1.0 / initial_steps(&problem, &reference, &goal) as f64;
+                let first_dt = 1.0 / initial_steps(&problem, &reference, &goal) as f64;
+                let mut dt = first_dt;
                 while done_t < 1.0 {
                     let t = (done_t + dt).min(1.0);
                     let mut trial = state.clone();
@@ -231,6 +232,13 @@ impl Mesh {
                     report.steps += 1;
                     done_t = t;
                     state = trial;
+                    // After a success the step grows back; a failure even at the smallest step
+                    // will not be repaired by more small steps, so the rest comes in one.
+                    dt = if valid {
+                        (2.0 * dt).min(first_dt)
+                    } else {
+                        1.0 - done_t
+                    };
                 }
                 x = state;
             }
