@@ -9,6 +9,7 @@ pub mod error;
 pub mod homesh;
 pub mod io;
 pub mod optimize;
+pub mod tmesh;
 
 pub use error::{Error, ErrorKind, Result};
 pub use homesh::{CellType, Mesh, Placement, RelocateOptions, RelocateReport, Stage};

@@ -1,0 +1,219 @@
+//! The hierarchical quadtree (d = 2) / octree (d = 3) over [0,1]^d: cells, refinement, point
+//! location and the strong 2:1 balance.
+//!
+//! Coordinates are integers on the finest half-grid: a cell of level `l` has side
+//! `2^(MAX_LEVEL + 1 − l)` units, so every lattice point of every cell (its corners, edge
+//! midpoints, face centres, centre) has integer coordinates, and `2^(MAX_LEVEL + 1)` is 1.
+
+use crate::error::{Error, Result};
+
+/// Deepest level a cell may have.
+pub const MAX_LEVEL: u8 = 20;
+
+/// Integer length of the unit interval.
+pub const UNIT: u32 = 1 << (MAX_LEVEL as u32 + 1);
+
+/// One cell of the tree.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Cell<const D: usize> {
+    /// Refinement level (0 = the whole domain).
+    pub level: u8,
+    /// Integer coordinates of the lower corner.
+    pub lower: [u32; D],
+    /// Index of the first of the `2^d` children, if refined.
+    pub first_child: Option<u32>,
+}
+
+impl<const D: usize> Cell<D> {
+    /// Integer side length.
+    pub fn side(&self) -> u32 {
+        UNIT >> self.level
+    }
+
+    /// Whether the cell contains the integer point (closed box).
+    pub fn contains(&self, p: &[i64; D]) -> bool {
+        (0..D).all(|k| {
+            let lo = self.lower[k] as i64;
+            p[k] >= lo && p[k] <= lo + self.side() as i64
+        })
+    }
+}
+
+/// A quadtree/octree over [0,1]^d.
+#[derive(Clone, Debug)]
+pub struct Tree<const D: usize> {
+    cells: Vec<Cell<D>>,
+}
+
+impl<const D: usize> Default for Tree<D> {
+    fn default() -> Self {
+        Self::new()
+    }
+}
+
+impl<const D: usize> Tree<D> {
+    /// The tree with one cell, the whole domain.
+    pub fn new() -> Self {
+        Tree {
+            cells: vec![Cell {
+                level: 0,
+                lower: [0; D],
+                first_child: None,
+            }],
+        }
+    }
+
+    /// All cells, refined ones included; index 0 is the root.
+    pub fn cells(&self) -> &[Cell<D>] {
+        &self.cells
+    }
+
+    /// Indices of the leaves (the active cells), in depth-first order.
+    pub fn leaves(&self) -> Vec<usize> {
+        let mut out = Vec::new();
+        let mut stack = vec![0usize];
+        while let Some(c) = stack.pop() {
+            match self.cells[c].first_child {
+                None => out.push(c),
+                Some(first) => stack.extend((0..1usize << D).rev().map(|k| first as usize + k)),
+            }
+        }
+        out
+    }
+
+    /// Splits leaf `c` into `2^d` children. Fails for a refined cell or one at [`MAX_LEVEL`].
+    pub fn refine(&mut self, c: usize) -> Result<()> {
+        let cell = *self
+            .cells
+            .get(c)
+            .ok_or_else(|| Error::invalid(format!("cell {c} does not exist")))?;
+        if cell.first_child.is_some() {
+            return Err(Error::invalid(format!("cell {c} is already refined")));
+        }
+        if cell.level >= MAX_LEVEL {
+            return Err(Error::invalid(format!(
+                "cell {c} is at the deepest level {MAX_LEVEL}"
+            )));
+        }
+        let half = cell.side() / 2;
+        let first = self.cells.len() as u32;
+        for k in 0..1usize << D {
+            let lower =
+                std::array::from_fn(|d| cell.lower[d] + if k >> d & 1 == 1 { half } else { 0 });
+            self.cells.push(Cell {
+                level: cell.level + 1,
+                lower,
+                first_child: None,
+            });
+        }
+        self.cells[c].first_child = Some(first);
+        Ok(())
+    }
+
+    /// Refines every leaf `levels` times.
+    pub fn refine_uniformly(&mut self, levels: u8) -> Result<()> {
+        for _ in 0..levels {
+            for c in self.leaves() {
+                self.refine(c)?;
+            }
+        }
+        Ok(())
+    }
+
+    /// The leaf containing the integer point `p`, or `None` outside the domain. On shared
+    /// boundaries the cell on the upper side is chosen.
+    pub fn leaf_at(&self, p: &[i64; D]) -> Option<usize> {
+        if !self.cells[0].contains(p) {
+            return None;
+        }
+        let mut c = 0usize;
+        while let Some(first) = self.cells[c].first_child {
+            let cell = self.cells[c];
+            let half = (cell.side() / 2) as i64;
+            let k = (0..D)
+                .filter(|&d| p[d] >= cell.lower[d] as i64 + half)
+                .fold(0, |acc, d| acc | 1 << d);
+            c = first as usize + k;
+        }
+        Some(c)
+    }
+
+    /// Refines leaves until every two leaves that touch (across a face, an edge or a corner)
+    /// differ by at most one level (strong 2:1 balance). Returns the number of refinements.
+    pub fn balance(&mut self) -> Result<usize> {
+        let mut refinements = 0;
+        let mut queue: Vec<usize> = self.leaves();
+        while let Some(c) = queue.pop() {
+            let cell = self.cells[c];
+            if cell.first_child.is_some() {
+                continue;
+            }
+            for coarse in self.too_coarse_neighbours(c) {
+                if self.cells[coarse].first_child.is_none() {
+                    self.refine(coarse)?;
+                    refinements += 1;
+                    let first = self.cells[coarse].first_child.unwrap_or_default() as usize;
+                    queue.extend(first..first + (1 << D));
+                }
+            }
+        }
+        Ok(refinements)
+    }
+
+    /// The leaves touching leaf `c` that are more than one level coarser.
+    pub fn too_coarse_neighbours(&self, c: usize) -> Vec<usize> {
+        let cell = self.cells[c];
+        let side = cell.side() as i64;
+        let mut out = Vec::new();
+        for dir in 0..3usize.pow(D as u32) {
+            let offset: [i64; D] =
+                std::array::from_fn(|k| (dir / 3usize.pow(k as u32) % 3) as i64 - 1);
+            if offset.iter().all(|&o| o == 0) {
+                continue;
+            }
+            // A point just outside the cell, beyond the middle of the face, edge or corner.
+            let probe: [i64; D] = std::array::from_fn(|k| {
+                let centre = cell.lower[k] as i64 + side / 2;
+                centre + offset[k] * (side / 2 + 1)
+            });
+            if let Some(n) = self.leaf_at(&probe) {
+                if self.cells[n].level + 1 < cell.level && !out.contains(&n) {
+                    out.push(n);
+                }
+            }
+        }
+        out
+    }
+
+    /// Whether the leaves are strongly 2:1 balanced.
+    pub fn is_balanced(&self) -> bool {
+        self.leaves()
+            .into_iter()
+            .all(|c| self.too_coarse_neighbours(c).is_empty())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn uniform_refinement_counts_leaves() {
+        let mut t = Tree::<3>::new();
+        t.refine_uniformly(2).unwrap();
+        assert_eq!(t.leaves().len(), 64);
+        assert!(t.is_balanced());
+    }
+
+    #[test]
+    fn refining_a_corner_deeply_is_balanced_by_refining_its_neighbours() {
+        let mut t = Tree::<2>::new();
+        for _ in 0..5 {
+            let corner = t.leaf_at(&[0, 0]).unwrap();
+            t.refine(corner).unwrap();
+        }
+        assert!(!t.is_balanced());
+        assert!(t.balance().unwrap() > 0);
+        assert!(t.is_balanced());
+    }
+}
