@@ -51,6 +51,13 @@ fn refining_one_cell_of_a_grid_adds_hanging_vertices() {
         .map(|c| mesh.cell_vertices(c).0.len())
         .collect();
     assert_eq!(real_counts.iter().filter(|&&n| n == 5).count(), 2);
+    // In a hanging vertex's objective the coarse cell weighs 2, each of the two fine ones 1.
+    let problem = mesh.problem().unwrap();
+    let mut terms = Vec::new();
+    for v in (0..mesh.vertex_count()).filter(|&v| mesh.is_hanging(v)) {
+        let (weight_sum, _) = problem.node_terms(v, &mesh.parametric(), &mut terms);
+        assert_eq!(weight_sum, 4.0);
+    }
 }
 
 fn sweep_options() -> SweepOptions {

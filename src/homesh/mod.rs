@@ -186,11 +186,7 @@ impl Mesh {
         let specs: Vec<CellSpec<'_>> = self
             .connectivity
             .chunks(self.cell_type.node_count())
-            .map(|nodes| CellSpec {
-                pattern: 0,
-                nodes,
-                weight: 1.0,
-            })
+            .map(|nodes| CellSpec { pattern: 0, nodes })
             .collect();
         let free = self.fixed.iter().map(|m| !m & ((1u8 << D) - 1)).collect();
         Problem::new(

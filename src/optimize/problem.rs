@@ -7,12 +7,11 @@ use super::pattern::CellPattern;
 use super::small::{det, inverse, mul, mul_transpose_vec, scaled_identity, Matrix, Vector};
 use crate::error::{Error, Result};
 
-/// One cell: its pattern, where its real node ids start in [`Problem`]'s node list, its weight.
+/// One cell: its pattern and where its real node ids start in [`Problem`]'s node list.
 #[derive(Clone, Copy, Debug)]
 struct CellRef {
     pattern: u32,
     first: usize,
-    weight: f64,
 }
 
 /// The ideal shape a cell is measured against.
@@ -38,16 +37,16 @@ pub struct Problem<const D: usize> {
     free: Vec<u8>,
     incidence_start: Vec<usize>,
     incidence: Vec<(u32, u8)>,
+    /// Weight of each incidence (cell in a node's objective), parallel to `incidence`.
+    incidence_weight: Vec<f64>,
 }
 
-/// A cell as given to [`Problem::new`]: pattern index, real node ids, weight.
+/// A cell as given to [`Problem::new`]: pattern index and real node ids.
 pub struct CellSpec<'a> {
     /// Index into the pattern list.
     pub pattern: usize,
     /// Global ids of the real nodes, in the pattern's real-node order.
     pub nodes: &'a [u32],
-    /// Weight of the cell in its nodes' objectives (2 for a coarser T-mesh neighbour).
-    pub weight: f64,
 }
 
 impl<const D: usize> Problem<D> {
@@ -91,7 +90,6 @@ impl<const D: usize> Problem<D> {
             cell_refs.push(CellRef {
                 pattern: spec.pattern as u32,
                 first: cell_nodes.len(),
-                weight: spec.weight,
             });
             cell_nodes.extend_from_slice(spec.nodes);
         }
@@ -121,6 +119,7 @@ impl<const D: usize> Problem<D> {
             target_inverse: Vec::new(),
             target_length: Vec::new(),
             free,
+            incidence_weight: vec![1.0; incidence.len()],
             incidence_start: counts,
             incidence,
         };
@@ -154,6 +153,27 @@ impl<const D: usize> Problem<D> {
             1.0
         };
         vec![scaled_identity::<D>(1.0 / size); Self::POINTS]
+    }
+
+    /// Weights the cells of a hierarchical mesh as the method does: in the objective of a node,
+    /// a cell one level coarser than the finest cell around the node counts twice.
+    pub fn weight_coarser_cells(&mut self, cell_levels: &[u8]) -> Result<()> {
+        if cell_levels.len() != self.cells.len() {
+            return Err(Error::invalid("one level per cell is needed"));
+        }
+        for node in 0..self.node_count() {
+            let range = self.incidence_start[node]..self.incidence_start[node + 1];
+            let finest = self.incidence[range.clone()]
+                .iter()
+                .map(|&(c, _)| cell_levels[c as usize])
+                .max()
+                .unwrap_or(0);
+            for i in range {
+                let level = cell_levels[self.incidence[i].0 as usize];
+                self.incidence_weight[i] = if level < finest { 2.0 } else { 1.0 };
+            }
+        }
+        Ok(())
     }
 
     /// Number of nodes.
@@ -222,7 +242,7 @@ impl<const D: usize> Problem<D> {
         Self::POINTS as f64 / eta
     }
 
-    /// The objective terms of `node` (all other nodes fixed at `positions`), the sum of the
+    /// The objective terms of `node` (all other nodes fixed at `positions`), the sum of its
     /// cell weights, and a local length (mean target size of the incident cells).
     pub fn node_terms(
         &self,
@@ -233,14 +253,15 @@ impl<const D: usize> Problem<D> {
         terms.clear();
         let mut weight_sum = 0.0;
         let mut length = 0.0;
-        let incident = self.incident_cells(node);
-        for &(c, r) in incident {
+        let range = self.incidence_start[node]..self.incidence_start[node + 1];
+        let incident = &self.incidence[range.clone()];
+        for (&(c, r), &weight) in incident.iter().zip(&self.incidence_weight[range]) {
             let c = c as usize;
             let cell = self.cells[c];
             let pattern = &self.patterns[cell.pattern as usize];
             let nodes = self.cell_nodes(c);
-            weight_sum += cell.weight;
-            let w = cell.weight / Self::POINTS as f64;
+            weight_sum += weight;
+            let w = weight / Self::POINTS as f64;
             for &(q, g) in &pattern.influence[r as usize] {
                 let q = q as usize;
                 let mut j_other = [[0.0; D]; D];

@@ -130,7 +130,8 @@ impl<const D: usize> TMesh<D> {
     }
 
     /// The optimizer's view of the T-mesh: each cell a quadratic map over its real vertices
-    /// (virtual nodes elsewhere), targets the parametric cells, boundary vertices fixed.
+    /// (virtual nodes elsewhere), targets the parametric cells, boundary vertices fixed, and in
+    /// each vertex's objective the cells one level coarser weighted 2.
     pub fn problem(&self) -> Result<Problem<D>> {
         let mut pattern_ids: HashMap<&[usize], usize> = HashMap::new();
         let mut patterns = Vec::new();
@@ -149,7 +150,6 @@ impl<const D: usize> TMesh<D> {
             specs.push(CellSpec {
                 pattern,
                 nodes: ver,
-                weight: 1.0,
             });
         }
         let all = (1u8 << D) - 1;
