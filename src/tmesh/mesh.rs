@@ -156,12 +156,10 @@ impl<const D: usize> TMesh<D> {
         let free = (0..self.vertex_count())
             .map(|v| if self.on_boundary(v) { 0 } else { all })
             .collect();
-        Problem::new(
-            patterns,
-            &specs,
-            &self.parametric(),
-            TargetKind::Reference,
-            free,
-        )
+        let reference = self.parametric();
+        let mut problem = Problem::new(patterns, &specs, &reference, TargetKind::Reference, free)?;
+        let levels: Vec<u8> = (0..self.cell_count()).map(|c| self.cell_level(c)).collect();
+        problem.weight_coarser_cells(&levels)?;
+        Ok(problem)
     }
 }
