@@ -4,6 +4,7 @@
 //! The safe Rust API lives here; the C ABI (`include/igaparam.h`) is in [`capi`].
 #![deny(missing_docs)]
 
+pub mod boundary;
 pub mod capi;
 pub mod error;
 pub mod homesh;
