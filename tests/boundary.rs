@@ -109,3 +109,90 @@ fn bspline_validation_errors_are_readable() {
         BSplineCurve::new(1, vec![0., 0., 1., f64::INFINITY], 2, vec![0.; 4], None).unwrap_err();
     assert_eq!(e.kind, ErrorKind::NotFinite);
 }
+
+fn data(name: &str) -> String {
+    format!("{}/tests/data/boundary/{name}", env!("CARGO_MANIFEST_DIR"))
+}
+
+const BREPS2D: [&str; 4] = [
+    "duck2d_BRep.xml",
+    "male_bdry.xml",
+    "puzzle3_bdry.xml",
+    "rotor_bdry.xml",
+];
+
+#[test]
+fn gismo_breps2d_have_four_planar_curves() {
+    for name in BREPS2D {
+        let curves = read_gismo_curves(data(name)).unwrap();
+        assert_eq!(curves.len(), 4, "{name}");
+        for c in &curves {
+            assert_eq!(c.dim(), 2);
+            assert!(c.is_clamped());
+        }
+    }
+    let duck = read_gismo_curves(data("duck2d_BRep.xml")).unwrap();
+    assert_eq!(duck[0].degree(), 2);
+    assert_eq!(duck[0].num_control_points(), 10);
+    assert_eq!(duck[0].eval(0.0), [30.0, 80.0, 0.0]);
+    assert_eq!(duck[0].eval(1.0), [40.0, 292.0, 0.0]);
+}
+
+#[test]
+fn gismo_duck3d_surfaces_share_their_edges() {
+    let s = read_gismo_surfaces(data("duck3d_BRep.xml")).unwrap();
+    assert_eq!(s.len(), 6);
+    // Sample the four edges of every face; each must coincide with an edge of another face.
+    let edge = |k: usize, e: usize| -> Vec<[f64; 3]> {
+        let ((u0, u1), (v0, v1)) = s[k].domain();
+        (0..=6)
+            .map(|i| {
+                let t = i as f64 / 6.0;
+                let (u, v) = match e {
+                    0 => (u0, v0 + t * (v1 - v0)),
+                    1 => (u1, v0 + t * (v1 - v0)),
+                    2 => (u0 + t * (u1 - u0), v0),
+                    _ => (u0 + t * (u1 - u0), v1),
+                };
+                s[k].eval(u, v)
+            })
+            .collect()
+    };
+    let same = |a: &[[f64; 3]], b: &[[f64; 3]]| {
+        let close = |p: &[f64; 3], q: &[f64; 3]| (0..3).all(|d| (p[d] - q[d]).abs() < 1e-6);
+        a.iter().zip(b).all(|(p, q)| close(p, q))
+            || a.iter().zip(b.iter().rev()).all(|(p, q)| close(p, q))
+    };
+    for (k, face) in s.iter().enumerate() {
+        assert_eq!(face.dim(), 3);
+        for e in 0..4 {
+            let a = edge(k, e);
+            let matches = (0..6)
+                .filter(|&m| m != k)
+                .flat_map(|m| (0..4).map(move |f| (m, f)))
+                .filter(|&(m, f)| same(&a, &edge(m, f)))
+                .count();
+            assert_eq!(matches, 1, "face {k} edge {e}");
+        }
+    }
+}
+
+#[test]
+fn gismo_reader_rejects_unknown_types_and_missing_parts() {
+    let e = parse_gismo_xml("<xml><Geometry type=\"Nurbs\"></Geometry></xml>").unwrap_err();
+    assert_eq!(e.kind, ErrorKind::Io);
+    assert!(e.message.contains("Nurbs"), "{}", e.message);
+    let e = parse_gismo_xml(
+        "<xml>\n<Geometry type=\"BSpline\">\n<KnotVector degree=\"1\">0 0 1 1</KnotVector>\n</Geometry></xml>",
+    )
+    .unwrap_err();
+    assert!(e.message.contains("coefs"), "{}", e.message);
+    let e = parse_gismo_xml(
+        "<xml><Geometry type=\"BSpline\"><KnotVector degree=\"1\">0 0 1 1</KnotVector><coefs geoDim=\"2\">0 0 1 1 2 2</coefs></Geometry></xml>",
+    )
+    .unwrap_err();
+    assert_eq!(e.kind, ErrorKind::InvalidArgument);
+    assert!(e.message.contains("control points"), "{}", e.message);
+    let e = read_gismo_xml(data("no_such_file.xml")).unwrap_err();
+    assert_eq!(e.kind, ErrorKind::Io);
+}

@@ -3,5 +3,9 @@
 //! projection onto a boundary curve.
 
 pub mod bspline;
+pub mod gismo_xml;
 
 pub use bspline::{BSplineCurve, BSplineSurface, KnotVector, Vec3};
+pub use gismo_xml::{
+    parse_gismo_xml, read_gismo_curves, read_gismo_surfaces, read_gismo_xml, GismoGeometry,
+};
