@@ -196,3 +196,188 @@ fn gismo_reader_rejects_unknown_types_and_missing_parts() {
     let e = read_gismo_xml(data("no_such_file.xml")).unwrap_err();
     assert_eq!(e.kind, ErrorKind::Io);
 }
+
+fn assert_valid_loop(l: &BoundaryLoop2, what: &str) {
+    let c = l.corners();
+    let tol = 10.0 * l.tolerance() + 1e-12;
+    // Sides join at the corners.
+    let close = |a: Point2, b: Point2| distance(a, b) <= tol;
+    assert!(
+        close(l.eval(Side::V0, 0.0), c[0]) && close(l.eval(Side::U0, 0.0), c[0]),
+        "{what}"
+    );
+    assert!(
+        close(l.eval(Side::V0, 1.0), c[1]) && close(l.eval(Side::U1, 0.0), c[1]),
+        "{what}"
+    );
+    assert!(
+        close(l.eval(Side::U1, 1.0), c[2]) && close(l.eval(Side::V1, 1.0), c[2]),
+        "{what}"
+    );
+    assert!(
+        close(l.eval(Side::V1, 0.0), c[3]) && close(l.eval(Side::U0, 1.0), c[3]),
+        "{what}"
+    );
+    for a in l.corner_angles_deg() {
+        assert!(a > 0.0 && a < 180.0, "{what}: corner angle {a}");
+    }
+    // Counter-clockwise: positive signed area of the sampled loop (V0, U1, V1 back, U0 back).
+    let mut pts = Vec::new();
+    for (side, rev) in [
+        (Side::V0, false),
+        (Side::U1, false),
+        (Side::V1, true),
+        (Side::U0, true),
+    ] {
+        for i in 0..200 {
+            let t = i as f64 / 200.0;
+            pts.push(l.eval(side, if rev { 1.0 - t } else { t }));
+        }
+    }
+    let area: f64 = (0..pts.len())
+        .map(|i| {
+            let (a, b) = (pts[i], pts[(i + 1) % pts.len()]);
+            a[0] * b[1] - a[1] * b[0]
+        })
+        .sum();
+    assert!(area > 0.0, "{what}: area {area}");
+}
+
+#[test]
+fn breps2d_load_into_valid_four_sided_loops() {
+    for name in BREPS2D {
+        let l = BoundaryLoop2::from_gismo_file(data(name)).unwrap();
+        assert_valid_loop(&l, name);
+    }
+    // The duck's first curve is its u = 0 side, already running with v.
+    let l = BoundaryLoop2::from_gismo_file(data("duck2d_BRep.xml")).unwrap();
+    assert_eq!(l.corners()[0], [30.0, 80.0]);
+    assert_eq!(l.corners()[3], [40.0, 292.0]);
+    assert!(!l.side(Side::U0).is_reversed());
+}
+
+#[test]
+fn coastlines_load_with_four_sides() {
+    for (name, n) in [("gran_canaria.txt", 1170), ("tenerife.txt", 1541)] {
+        let coast = Coastline::read(data(name)).unwrap();
+        assert_eq!(coast.points.len(), n, "{name}");
+        let l = BoundaryLoop2::from_coastline(&coast).unwrap();
+        assert_valid_loop(&l, name);
+        let c = coast.corners;
+        assert_eq!(
+            l.corners(),
+            [c[0], c[1], c[2], c[3]].map(|i| coast.points[i])
+        );
+        // The four polylines hold every point once, plus the four shared corners.
+        let total: usize = Side::ALL
+            .iter()
+            .map(|&s| match l.side(s).kind() {
+                CurveKind::Polyline(p) => p.points().len(),
+                CurveKind::Spline(_) => unreachable!(),
+            })
+            .sum();
+        assert_eq!(total, n + 4, "{name}");
+    }
+}
+
+fn square_sides() -> Vec<Curve2> {
+    vec![
+        Curve2::polyline(vec![[0., 0.], [0., 0.5], [0., 1.]]).unwrap(),
+        Curve2::polyline(vec![[1., 0.], [1., 1.]]).unwrap(),
+        Curve2::polyline(vec![[0., 0.], [1., 0.]]).unwrap(),
+        Curve2::polyline(vec![[0., 1.], [1., 1.]]).unwrap(),
+    ]
+}
+
+#[test]
+fn square_with_a_reversed_side_is_reoriented() {
+    let mut sides = square_sides();
+    sides[1] = Curve2::polyline(vec![[1., 1.], [1., 0.]]).unwrap();
+    sides.swap(2, 3);
+    let l = BoundaryLoop2::from_curves(sides).unwrap();
+    assert_valid_loop(&l, "square");
+    assert_eq!(l.corners(), [[0., 0.], [1., 0.], [1., 1.], [0., 1.]]);
+    assert!(l.side(Side::U1).is_reversed());
+    let p = l.eval(Side::U1, 0.25);
+    assert!((p[0] - 1.0).abs() < 1e-15 && (p[1] - 0.25).abs() < 1e-15);
+    let (_, d) = l.eval_deriv(Side::U1, 0.25);
+    assert!((d[1] - 1.0).abs() < 1e-14, "derivative {d:?}");
+    // A clockwise description of the same square gives the same map.
+    let cw = vec![
+        Curve2::polyline(vec![[0., 1.], [0., 0.]]).unwrap(),
+        Curve2::polyline(vec![[1., 0.], [0., 0.]]).unwrap(),
+        Curve2::polyline(vec![[1., 1.], [1., 0.]]).unwrap(),
+        Curve2::polyline(vec![[0., 1.], [1., 1.]]).unwrap(),
+    ];
+    let l = BoundaryLoop2::from_curves(cw).unwrap();
+    assert_eq!(l.corners(), [[0., 0.], [1., 0.], [1., 1.], [0., 1.]]);
+}
+
+#[test]
+fn reflex_corner_is_refused() {
+    // A dart: the corner at (0.5, 0.6) points inwards (interior angle > 180°).
+    let sides = vec![
+        Curve2::polyline(vec![[0., 0.], [0.5, 0.6]]).unwrap(),
+        Curve2::polyline(vec![[0.5, 0.6], [1., 0.]]).unwrap(),
+        Curve2::polyline(vec![[1., 0.], [0.5, 1.5]]).unwrap(),
+        Curve2::polyline(vec![[0.5, 1.5], [0., 0.]]).unwrap(),
+    ];
+    let e = BoundaryLoop2::from_curves(sides).unwrap_err();
+    assert_eq!(e.kind, ErrorKind::InvalidArgument);
+    assert!(
+        e.message.contains("interior angle") && e.message.contains("(0.500000, 0.600000)"),
+        "{}",
+        e.message
+    );
+    // Straight (180°) corner: also refused.
+    let sides = vec![
+        Curve2::polyline(vec![[0., 0.], [1., 0.]]).unwrap(),
+        Curve2::polyline(vec![[1., 0.], [2., 0.]]).unwrap(),
+        Curve2::polyline(vec![[2., 0.], [2., 1.], [0., 1.]]).unwrap(),
+        Curve2::polyline(vec![[0., 1.], [0., 0.]]).unwrap(),
+    ];
+    let e = BoundaryLoop2::from_curves(sides).unwrap_err();
+    assert!(e.message.contains("180.00°"), "{}", e.message);
+}
+
+#[test]
+fn open_loop_is_refused() {
+    let mut sides = square_sides();
+    sides[3] = Curve2::polyline(vec![[0., 1.], [0.9, 1.]]).unwrap();
+    let e = BoundaryLoop2::from_curves(sides).unwrap_err();
+    assert_eq!(e.kind, ErrorKind::InvalidArgument);
+    assert!(
+        e.message.contains("open") || e.message.contains("not closed"),
+        "{}",
+        e.message
+    );
+    let e = BoundaryLoop2::from_curves(square_sides()[..3].to_vec()).unwrap_err();
+    assert!(e.message.contains("exactly 4"), "{}", e.message);
+}
+
+#[test]
+fn nan_coordinates_are_refused() {
+    let e = Curve2::polyline(vec![[0., 0.], [f64::NAN, 1.]]).unwrap_err();
+    assert_eq!(e.kind, ErrorKind::NotFinite);
+    assert!(e.message.contains("NaN"), "{}", e.message);
+    let e = Coastline::parse("corners 0 1 2 3\n0 0\n1 0\nnan 1\n0 1\n").unwrap_err();
+    assert_eq!(e.kind, ErrorKind::NotFinite);
+    assert!(e.message.contains("line 4"), "{}", e.message);
+    let e = BSplineCurve::new(1, vec![0., 0., 1., 1.], 2, vec![0., 0., f64::NAN, 1.], None)
+        .unwrap_err();
+    assert_eq!(e.kind, ErrorKind::NotFinite);
+}
+
+#[test]
+fn coastline_format_errors() {
+    let e = Coastline::parse("0 0\n1 0\n1 1\n0 1\n").unwrap_err();
+    assert_eq!(e.kind, ErrorKind::Io);
+    let e = Coastline::parse("corners 0 2 1 3\n0 0\n1 0\n1 1\n0 1\n").unwrap_err();
+    assert!(e.message.contains("order"), "{}", e.message);
+    let e = Coastline::parse("corners 0 1 2 9\n0 0\n1 0\n1 1\n0 1\n").unwrap_err();
+    assert!(e.message.contains("out of range"), "{}", e.message);
+    // Corners need not start at point 0.
+    let c = Coastline::parse("corners 1 2 3 0\n0 1\n0 0\n1 0\n1 1\n").unwrap();
+    let l = BoundaryLoop2::from_coastline(&c).unwrap();
+    assert_eq!(l.corners(), [[0., 0.], [1., 0.], [1., 1.], [0., 1.]]);
+}
