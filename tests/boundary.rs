@@ -381,3 +381,73 @@ fn coastline_format_errors() {
     let l = BoundaryLoop2::from_coastline(&c).unwrap();
     assert_eq!(l.corners(), [[0., 0.], [1., 0.], [1., 1.], [0., 1.]]);
 }
+
+fn half_circle() -> Curve2 {
+    let w = std::f64::consts::FRAC_1_SQRT_2;
+    let c = BSplineCurve::new(
+        2,
+        vec![0., 0., 0., 0.5, 0.5, 1., 1., 1.],
+        2,
+        vec![1., 0., 1., 1., 0., 1., -1., 1., -1., 0.],
+        Some(vec![1., w, 1., w, 1.]),
+    )
+    .unwrap();
+    Curve2::spline(c).unwrap()
+}
+
+#[test]
+fn projection_finds_the_nearest_point_of_a_circle() {
+    let c = half_circle();
+    for k in 0..40 {
+        let ang = 0.02 + 3.1 * k as f64 / 39.0;
+        for r in [0.05, 0.3, 0.9, 1.0, 1.7, 4.0] {
+            let p = [r * ang.cos(), r * ang.sin()];
+            let q = c.closest_point(p);
+            let exact = [ang.cos(), ang.sin()];
+            assert!(
+                distance(q.point, exact) < 1e-9,
+                "angle {ang} r {r}: {:?}",
+                q.point
+            );
+            assert!((q.distance - (r - 1.0).abs()).abs() < 1e-9);
+            assert!(distance(c.eval(q.t), q.point) < 1e-14);
+            // The reversed curve finds the same point at 1 - t.
+            let qr = c.clone().reversed().closest_point(p);
+            assert!((qr.t - (1.0 - q.t)).abs() < 1e-8 && distance(qr.point, q.point) < 1e-9);
+        }
+    }
+    // Below the diameter the nearest point is an end point.
+    let q = c.closest_point([2.0, -1.0]);
+    assert!(q.t == 0.0 && distance(q.point, [1.0, 0.0]) < 1e-15);
+}
+
+#[test]
+fn projection_on_a_wiggly_spline_beats_dense_sampling() {
+    let curves = read_gismo_curves(data("puzzle3_bdry.xml")).unwrap();
+    let c = Curve2::spline(curves[1].clone()).unwrap();
+    let dense: Vec<Point2> = (0..=20000).map(|i| c.eval(i as f64 / 20000.0)).collect();
+    for k in 0..25 {
+        let p = [0.3 + 0.02 * (k % 5) as f64, -0.05 + 0.1 * (k / 5) as f64];
+        let q = c.closest_point(p);
+        let best = dense
+            .iter()
+            .map(|&x| distance(x, p))
+            .fold(f64::INFINITY, f64::min);
+        assert!(q.distance <= best + 1e-12, "{p:?}: {} > {best}", q.distance);
+        assert!(best - q.distance < 1e-4);
+    }
+}
+
+#[test]
+fn projection_on_a_polyline_is_exact() {
+    let c = Curve2::polyline(vec![[0., 0.], [2., 0.], [2., 2.]]).unwrap();
+    let q = c.closest_point([1.5, -1.0]);
+    assert_eq!(q.point, [1.5, 0.0]);
+    assert!((q.t - 0.375).abs() < 1e-15 && (q.distance - 1.0).abs() < 1e-15);
+    let q = c.clone().reversed().closest_point([3.0, 1.0]);
+    assert_eq!(q.point, [2.0, 1.0]);
+    assert!((q.t - 0.25).abs() < 1e-15);
+    let (p, d) = c.clone().reversed().eval_deriv(0.5);
+    assert_eq!(p, [2.0, 0.0]);
+    assert_eq!(d, [-4.0, 0.0]); // at the vertex: the next segment in the direction of travel
+}
