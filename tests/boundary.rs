@@ -451,3 +451,75 @@ fn projection_on_a_polyline_is_exact() {
     assert_eq!(p, [2.0, 0.0]);
     assert_eq!(d, [-4.0, 0.0]); // at the vertex: the next segment in the direction of travel
 }
+
+const FACES: [&str; 6] = ["xmin", "xmax", "ymin", "ymax", "zmin", "zmax"];
+
+#[test]
+fn floater_maps_every_duck_face_one_to_one() {
+    let meshes: Vec<TriMesh> = FACES
+        .iter()
+        .map(|f| TriMesh::read_obj(data(&format!("duck_faces/{f}.obj"))).unwrap())
+        .collect();
+    for (k, m) in meshes.iter().enumerate() {
+        assert_eq!(m.vertices.len(), 625);
+        let lp = m.boundary_loop().unwrap();
+        assert_eq!(lp.len(), 96, "{}", FACES[k]);
+        // Corners: boundary vertices found in two other faces.
+        let corners: Vec<usize> = lp
+            .iter()
+            .copied()
+            .filter(|&v| {
+                let p = m.vertices[v];
+                meshes
+                    .iter()
+                    .enumerate()
+                    .filter(|&(o, om)| o != k && om.vertices.contains(&p))
+                    .count()
+                    == 2
+            })
+            .collect();
+        assert_eq!(corners.len(), 4, "{}", FACES[k]);
+        let uv = floater_parameterize(m, [corners[0], corners[1], corners[2], corners[3]]).unwrap();
+        let areas = signed_areas(m, &uv);
+        let min = areas.iter().copied().fold(f64::INFINITY, f64::min);
+        assert!(
+            min > 0.0,
+            "{}: an image triangle has signed area {min}",
+            FACES[k]
+        );
+        let total: f64 = areas.iter().sum::<f64>() / 2.0;
+        assert!(
+            (total - 1.0).abs() < 1e-12,
+            "{}: image area {total}",
+            FACES[k]
+        );
+        for &v in &lp {
+            let [u, w] = uv[v];
+            let on_edge = u.abs() < 1e-15
+                || (u - 1.0).abs() < 1e-15
+                || w.abs() < 1e-15
+                || (w - 1.0).abs() < 1e-15;
+            assert!(on_edge, "boundary vertex {v} maps inside: {:?}", uv[v]);
+        }
+        assert_eq!(uv[corners[2]], [1.0, 1.0]);
+    }
+}
+
+#[test]
+fn obj_reader_handles_slash_forms_and_reports_errors() {
+    let m = TriMesh::parse_obj("# square\nv 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0.5 0.5 0\nf 1/1/1 2/2/2 5/5/5\nf 2//1 3//1 5//1\nf 3 4 5\nf -2 -5 -1\n").unwrap();
+    assert_eq!(m.triangles.len(), 4);
+    assert_eq!(m.triangles[3], [3, 0, 4]);
+    assert_eq!(m.boundary_loop().unwrap(), vec![0, 1, 2, 3]);
+    let uv = floater_parameterize(&m, [0, 1, 2, 3]).unwrap();
+    assert!((uv[4][0] - 0.5).abs() < 1e-12 && (uv[4][1] - 0.5).abs() < 1e-12);
+    let e = floater_parameterize(&m, [0, 2, 1, 3]).unwrap_err();
+    assert!(e.message.contains("order"), "{}", e.message);
+    let e = TriMesh::parse_obj("v 0 0 0\nv 1 0 0\nf 1 2 3\n").unwrap_err();
+    assert_eq!(e.kind, ErrorKind::InvalidMesh);
+    let e = TriMesh::parse_obj("v 0 nan 0\n").unwrap_err();
+    assert_eq!(e.kind, ErrorKind::NotFinite);
+    let e = TriMesh::parse_obj("v 0 0\n").unwrap_err();
+    assert_eq!(e.kind, ErrorKind::Io);
+    assert!(e.message.contains("line 1"), "{}", e.message);
+}

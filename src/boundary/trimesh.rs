@@ -1,0 +1,306 @@
+//! Triangulated surfaces read from OBJ files, their boundary loop, and Floater's mean-value
+//! parameterization of a disk-like triangulation onto the unit square.
+
+use std::collections::HashMap;
+use std::path::Path;
+
+use super::bspline::Vec3;
+use super::curve::Point2;
+use crate::error::{Error, ErrorKind, Result};
+
+/// A triangle mesh: vertex positions and 0-based vertex triples.
+#[derive(Clone, Debug, PartialEq)]
+pub struct TriMesh {
+    /// Vertex positions.
+    pub vertices: Vec<Vec3>,
+    /// Triangles as 0-based vertex indices.
+    pub triangles: Vec<[usize; 3]>,
+}
+
+fn sub3(a: Vec3, b: Vec3) -> Vec3 {
+    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
+}
+
+fn norm3(a: Vec3) -> f64 {
+    (a[0] * a[0] + a[1] * a[1] + a[2] * a[2]).sqrt()
+}
+
+fn dot3(a: Vec3, b: Vec3) -> f64 {
+    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+}
+
+impl TriMesh {
+    /// Validates a mesh: finite coordinates, indices in range, no triangle repeating a vertex.
+    pub fn new(vertices: Vec<Vec3>, triangles: Vec<[usize; 3]>) -> Result<Self> {
+        for (i, v) in vertices.iter().enumerate() {
+            if v.iter().any(|x| !x.is_finite()) {
+                return Err(Error::new(
+                    ErrorKind::NotFinite,
+                    format!("vertex {i} is {v:?}, coordinates must be finite"),
+                ));
+            }
+        }
+        for (t, tri) in triangles.iter().enumerate() {
+            if let Some(&i) = tri.iter().find(|&&i| i >= vertices.len()) {
+                return Err(Error::mesh(format!(
+                    "triangle {t} uses vertex {i}, but there are {} vertices",
+                    vertices.len()
+                )));
+            }
+            if tri[0] == tri[1] || tri[1] == tri[2] || tri[0] == tri[2] {
+                return Err(Error::mesh(format!(
+                    "triangle {t} repeats a vertex: {tri:?}"
+                )));
+            }
+        }
+        Ok(TriMesh {
+            vertices,
+            triangles,
+        })
+    }
+
+    /// Parses OBJ text: `v x y z` vertex lines and `f a b c` triangle lines (1-based, negative
+    /// indices relative to the end; `a/b/c` and `a//c` forms accepted, only the vertex index is
+    /// used); other lines are ignored. Faces with more than three vertices are fanned into
+    /// triangles.
+    pub fn parse_obj(text: &str) -> Result<Self> {
+        let mut vertices: Vec<Vec3> = Vec::new();
+        let mut triangles = Vec::new();
+        for (ln, line) in text.lines().enumerate() {
+            let ln = ln + 1;
+            let mut toks = line.split_whitespace();
+            match toks.next() {
+                Some("v") => {
+                    let vals: Vec<f64> = toks
+                        .take(3)
+                        .map(|t| t.parse::<f64>())
+                        .collect::<std::result::Result<_, _>>()
+                        .map_err(|_| Error::io(format!("line {ln}: bad vertex '{line}'")))?;
+                    if vals.len() != 3 {
+                        return Err(Error::io(format!(
+                            "line {ln}: a vertex needs 3 coordinates: '{line}'"
+                        )));
+                    }
+                    vertices.push([vals[0], vals[1], vals[2]]);
+                }
+                Some("f") => {
+                    let mut idx = Vec::new();
+                    for t in toks {
+                        let first = t.split('/').next().unwrap_or("");
+                        let i: i64 = first
+                            .parse()
+                            .map_err(|_| Error::io(format!("line {ln}: bad face index '{t}'")))?;
+                        let n = vertices.len() as i64;
+                        let i0 = if i > 0 { i - 1 } else { n + i };
+                        if i == 0 || i0 < 0 {
+                            return Err(Error::io(format!(
+                                "line {ln}: face index {i} is out of range"
+                            )));
+                        }
+                        idx.push(i0 as usize);
+                    }
+                    if idx.len() < 3 {
+                        return Err(Error::io(format!(
+                            "line {ln}: a face needs at least 3 vertices"
+                        )));
+                    }
+                    for k in 1..idx.len() - 1 {
+                        triangles.push([idx[0], idx[k], idx[k + 1]]);
+                    }
+                }
+                _ => {}
+            }
+        }
+        Self::new(vertices, triangles)
+    }
+
+    /// Reads an OBJ file (see [`parse_obj`](Self::parse_obj)).
+    pub fn read_obj(path: impl AsRef<Path>) -> Result<Self> {
+        let path = path.as_ref();
+        let text = std::fs::read_to_string(path)
+            .map_err(|e| Error::io(format!("cannot read {}: {e}", path.display())))?;
+        Self::parse_obj(&text)
+            .map_err(|e| Error::new(e.kind, format!("{}: {}", path.display(), e.message)))
+    }
+
+    /// The boundary of a disk-like mesh as one closed vertex loop, in the direction of the
+    /// triangles' edges (the interior on the left when the triangles are counter-clockwise).
+    /// An error if the boundary is empty, not a single loop, or an edge is used by more than two
+    /// triangles or twice in the same direction.
+    pub fn boundary_loop(&self) -> Result<Vec<usize>> {
+        let mut directed: HashMap<(usize, usize), usize> = HashMap::new();
+        for tri in &self.triangles {
+            for k in 0..3 {
+                let e = (tri[k], tri[(k + 1) % 3]);
+                let c = directed.entry(e).or_insert(0);
+                *c += 1;
+                if *c > 1 {
+                    return Err(Error::mesh(format!(
+                        "edge {}-{} is used twice in the same direction (inconsistent orientation or non-manifold)",
+                        e.0, e.1
+                    )));
+                }
+            }
+        }
+        let mut next: HashMap<usize, usize> = HashMap::new();
+        for &(a, b) in directed.keys() {
+            if !directed.contains_key(&(b, a)) && next.insert(a, b).is_some() {
+                return Err(Error::mesh(format!(
+                    "vertex {a} starts two boundary edges (the boundary is not a simple loop)"
+                )));
+            }
+        }
+        let Some(&start) = next.keys().min() else {
+            return Err(Error::mesh("the mesh has no boundary (closed surface)"));
+        };
+        let mut lp = vec![start];
+        let mut v = next[&start];
+        while v != start {
+            lp.push(v);
+            v = *next.get(&v).ok_or_else(|| {
+                Error::mesh(format!("boundary ends at vertex {v} without closing"))
+            })?;
+            if lp.len() > next.len() {
+                return Err(Error::mesh("boundary does not close"));
+            }
+        }
+        if lp.len() != next.len() {
+            return Err(Error::mesh(format!(
+                "the boundary has several loops ({} of its {} edges in the first); the mesh is not a disk",
+                lp.len(),
+                next.len()
+            )));
+        }
+        Ok(lp)
+    }
+}
+
+/// Floater's mean-value parameterization of a disk-like triangulation onto the unit square.
+///
+/// `corners` are the vertices sent to (0,0), (1,0), (1,1), (0,1); they must lie on the boundary
+/// loop in that cyclic order along [`TriMesh::boundary_loop`] (then counter-clockwise triangles
+/// keep a positive orientation). The boundary vertices between two corners are placed on the
+/// square's side by chord length; every interior vertex is the weighted mean of its neighbours
+/// with w_ij = (tan(α/2) + tan(β/2)) / |v_j − v_i|, α and β the angles at v_i of the two
+/// triangles sharing edge ij. The linear system is solved by Gauss–Seidel iteration (the
+/// matrix is an irreducibly diagonally dominant M-matrix). Returns the (u, v) of every vertex.
+pub fn floater_parameterize(mesh: &TriMesh, corners: [usize; 4]) -> Result<Vec<Point2>> {
+    let lp = mesh.boundary_loop()?;
+    let pos: HashMap<usize, usize> = lp.iter().enumerate().map(|(k, &v)| (v, k)).collect();
+    let mut cpos = [0usize; 4];
+    for k in 0..4 {
+        cpos[k] = *pos.get(&corners[k]).ok_or_else(|| {
+            Error::invalid(format!(
+                "corner vertex {} is not on the boundary loop",
+                corners[k]
+            ))
+        })?;
+    }
+    let n = lp.len();
+    let rel = cpos.map(|c| (c + n - cpos[0]) % n);
+    if !(rel[0] < rel[1] && rel[1] < rel[2] && rel[2] < rel[3]) {
+        return Err(Error::invalid(format!(
+            "corners {corners:?} are not distinct and in order along the boundary loop"
+        )));
+    }
+    let square = [[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]];
+    let nv = mesh.vertices.len();
+    let mut uv = vec![[0.5, 0.5]; nv];
+    let mut fixed = vec![false; nv];
+    for s in 0..4 {
+        let (a, b) = (cpos[s], cpos[(s + 1) % 4]);
+        let len = (b + n - a) % n;
+        let run: Vec<usize> = (0..=len).map(|k| lp[(a + k) % n]).collect();
+        let mut acc = vec![0.0];
+        for w in run.windows(2) {
+            let d = norm3(sub3(mesh.vertices[w[1]], mesh.vertices[w[0]]));
+            acc.push(acc.last().unwrap() + d);
+        }
+        let total = *acc.last().unwrap();
+        if total <= 0.0 {
+            return Err(Error::invalid(format!(
+                "side {s} of the boundary has zero length"
+            )));
+        }
+        let (p, q) = (square[s], square[(s + 1) % 4]);
+        for (k, &v) in run.iter().enumerate() {
+            let r = acc[k] / total;
+            uv[v] = [p[0] + r * (q[0] - p[0]), p[1] + r * (q[1] - p[1])];
+            fixed[v] = true;
+        }
+    }
+    // Mean-value weights.
+    let mut weights: Vec<HashMap<usize, f64>> = vec![HashMap::new(); nv];
+    for tri in &mesh.triangles {
+        for k in 0..3 {
+            let (i, j, l) = (tri[k], tri[(k + 1) % 3], tri[(k + 2) % 3]);
+            if fixed[i] {
+                continue;
+            }
+            let (ej, el) = (
+                sub3(mesh.vertices[j], mesh.vertices[i]),
+                sub3(mesh.vertices[l], mesh.vertices[i]),
+            );
+            let (nj, nl) = (norm3(ej), norm3(el));
+            if nj == 0.0 || nl == 0.0 {
+                return Err(Error::mesh(format!(
+                    "triangle {tri:?} has a zero-length edge"
+                )));
+            }
+            let cos = (dot3(ej, el) / (nj * nl)).clamp(-1.0, 1.0);
+            let half_tan = ((1.0 - cos) / (1.0 + cos)).max(0.0).sqrt();
+            *weights[i].entry(j).or_insert(0.0) += half_tan / nj;
+            *weights[i].entry(l).or_insert(0.0) += half_tan / nl;
+        }
+    }
+    // (vertex, its weighted neighbours, the sum of the weights)
+    type Row = (usize, Vec<(usize, f64)>, f64);
+    let rows: Vec<Row> = (0..nv)
+        .filter(|&i| !fixed[i] && !weights[i].is_empty())
+        .map(|i| {
+            let r: Vec<(usize, f64)> = weights[i].iter().map(|(&j, &w)| (j, w)).collect();
+            let sum = r.iter().map(|e| e.1).sum();
+            (i, r, sum)
+        })
+        .collect();
+    if let Some((i, _, _)) = rows.iter().find(|r| !(r.2 > 0.0 && r.2.is_finite())) {
+        return Err(Error::mesh(format!(
+            "vertex {i} has degenerate neighbouring triangles"
+        )));
+    }
+    let max_sweeps = 200_000;
+    for sweep in 0..=max_sweeps {
+        let mut change: f64 = 0.0;
+        for (i, r, sum) in &rows {
+            let mut acc = [0.0; 2];
+            for &(j, w) in r {
+                acc[0] += w * uv[j][0];
+                acc[1] += w * uv[j][1];
+            }
+            let new = [acc[0] / sum, acc[1] / sum];
+            change = change.max((new[0] - uv[*i][0]).abs().max((new[1] - uv[*i][1]).abs()));
+            uv[*i] = new;
+        }
+        if change < 1e-13 {
+            break;
+        }
+        if sweep == max_sweeps {
+            return Err(Error::invalid(format!(
+                "mean-value parameterization did not converge in {max_sweeps} sweeps (last change {change:.2e})"
+            )));
+        }
+    }
+    Ok(uv)
+}
+
+/// Twice the signed area of the image of every triangle under `uv` (positive when
+/// counter-clockwise).
+pub fn signed_areas(mesh: &TriMesh, uv: &[Point2]) -> Vec<f64> {
+    mesh.triangles
+        .iter()
+        .map(|t| {
+            let (a, b, c) = (uv[t[0]], uv[t[1]], uv[t[2]]);
+            (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0])
+        })
+        .collect()
+}
