@@ -523,3 +523,29 @@ fn obj_reader_handles_slash_forms_and_reports_errors() {
     assert_eq!(e.kind, ErrorKind::Io);
     assert!(e.message.contains("line 1"), "{}", e.message);
 }
+
+#[test]
+fn curve2_derivatives_match_finite_differences_both_ways() {
+    let curves = read_gismo_curves(data("rotor_bdry.xml")).unwrap();
+    for c in curves {
+        let fwd = Curve2::spline(c).unwrap();
+        for cur in [fwd.clone(), fwd.reversed()] {
+            let h = 1e-6;
+            for i in 1..50 {
+                let t = i as f64 / 50.0 + 0.003;
+                let [_, d1, d2] = cur.derivs2(t);
+                let (a, b) = (cur.derivs2(t - h), cur.derivs2(t + h));
+                for k in 0..2 {
+                    let fd1 = (b[0][k] - a[0][k]) / (2.0 * h);
+                    let fd2 = (b[1][k] - a[1][k]) / (2.0 * h);
+                    assert!((fd1 - d1[k]).abs() < 1e-5 * (1.0 + d1[k].abs()), "t={t}");
+                    assert!(
+                        (fd2 - d2[k]).abs() < 1e-3 * (1.0 + d2[k].abs()),
+                        "t={t}: {fd2} vs {}",
+                        d2[k]
+                    );
+                }
+            }
+        }
+    }
+}

@@ -1,4 +1,4 @@
-//! Planar boundary curves parameterized on [0,1]: polylines (by chord length) and B-spline
+//! Planar boundary curves parameterized on \[0,1\]: polylines (by chord length) and B-spline
 //! curves (linearly reparameterized), with evaluation, derivatives, reversal and closest-point
 //! projection.
 
@@ -21,7 +21,7 @@ pub fn distance(a: Point2, b: Point2) -> f64 {
     (a[0] - b[0]).hypot(a[1] - b[1])
 }
 
-/// A planar polyline parameterized by chord length on [0,1].
+/// A planar polyline parameterized by chord length on \[0,1\].
 #[derive(Clone, Debug, PartialEq)]
 pub struct Polyline {
     points: Vec<Point2>,
@@ -87,7 +87,7 @@ impl Polyline {
         self.points.windows(2).map(|w| distance(w[0], w[1])).sum()
     }
 
-    /// The segment `i` (from vertex i to i+1) holding parameter `t` (clamped to [0,1]).
+    /// The segment `i` (from vertex i to i+1) holding parameter `t` (clamped to \[0,1\]).
     fn segment(&self, t: f64) -> usize {
         let t = t.clamp(0.0, 1.0);
         let i = self.params.partition_point(|&s| s <= t);
@@ -122,7 +122,7 @@ impl Polyline {
     }
 }
 
-/// A planar spline curve linearly reparameterized from its knot domain to [0,1].
+/// A planar spline curve linearly reparameterized from its knot domain to \[0,1\].
 #[derive(Clone, Debug, PartialEq)]
 pub struct SplineCurve2 {
     curve: BSplineCurve,
@@ -145,7 +145,7 @@ impl SplineCurve2 {
         &self.curve
     }
 
-    /// Point and derivatives with respect to t ∈ [0,1] up to order 2.
+    /// Point and derivatives with respect to t ∈ \[0,1\] up to order 2.
     fn derivs2(&self, t: f64) -> [Point2; 3] {
         let (a, b) = self.curve.domain();
         let h = b - a;
@@ -170,7 +170,7 @@ pub enum CurveKind {
 /// The result of a closest-point projection.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Projection {
-    /// The parameter in [0,1] of the nearest point found.
+    /// The parameter in \[0,1\] of the nearest point found.
     pub t: f64,
     /// The nearest point found.
     pub point: Point2,
@@ -178,7 +178,7 @@ pub struct Projection {
     pub distance: f64,
 }
 
-/// A planar boundary curve on the parameter interval [0,1], possibly traversed backwards.
+/// A planar boundary curve on the parameter interval \[0,1\], possibly traversed backwards.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Curve2 {
     kind: CurveKind,
@@ -194,7 +194,7 @@ impl Curve2 {
         })
     }
 
-    /// A 2D B-spline curve, its knot domain mapped linearly to [0,1].
+    /// A 2D B-spline curve, its knot domain mapped linearly to \[0,1\].
     pub fn spline(curve: BSplineCurve) -> Result<Self> {
         Ok(Curve2 {
             kind: CurveKind::Spline(SplineCurve2::new(curve)?),
@@ -218,7 +218,7 @@ impl Curve2 {
         self
     }
 
-    /// Point and derivatives up to order 2 at t ∈ [0,1] (clamped); polylines have zero second
+    /// Point and derivatives up to order 2 at t ∈ \[0,1\] (clamped); polylines have zero second
     /// derivative.
     pub fn derivs2(&self, t: f64) -> [Point2; 3] {
         let t = t.clamp(0.0, 1.0);
@@ -237,12 +237,12 @@ impl Curve2 {
         d
     }
 
-    /// The point at t ∈ [0,1].
+    /// The point at t ∈ \[0,1\].
     pub fn eval(&self, t: f64) -> Point2 {
         self.derivs2(t)[0]
     }
 
-    /// The point and the first derivative at t ∈ [0,1].
+    /// The point and the first derivative at t ∈ \[0,1\].
     pub fn eval_deriv(&self, t: f64) -> (Point2, Point2) {
         let d = self.derivs2(t);
         (d[0], d[1])

@@ -243,7 +243,7 @@ impl BoundaryLoop2 {
         &self.sides[side.index()]
     }
 
-    /// The boundary map: the point of side `side` at parameter t ∈ [0,1].
+    /// The boundary map: the point of side `side` at parameter t ∈ \[0,1\].
     pub fn eval(&self, side: Side, t: f64) -> Point2 {
         self.sides[side.index()].eval(t)
     }
