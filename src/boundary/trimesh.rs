@@ -1,6 +1,9 @@
 //! Triangulated surfaces read from OBJ files, their boundary loop, and Floater's mean-value
 //! parameterization of a disk-like triangulation onto the unit square.
 
+// Index loops over coordinates and vertices read best in this numerical code.
+#![allow(clippy::needless_range_loop)]
+
 use std::collections::HashMap;
 use std::path::Path;
 
@@ -253,8 +256,6 @@ pub fn floater_parameterize(mesh: &TriMesh, corners: [usize; 4]) -> Result<Vec<P
             *weights[i].entry(l).or_insert(0.0) += half_tan / nl;
         }
     }
-    // (vertex, its weighted neighbours, the sum of the weights)
-    type Row = (usize, Vec<(usize, f64)>, f64);
     let rows: Vec<Row> = (0..nv)
         .filter(|&i| !fixed[i] && !weights[i].is_empty())
         .map(|i| {
@@ -268,6 +269,9 @@ pub fn floater_parameterize(mesh: &TriMesh, corners: [usize; 4]) -> Result<Vec<P
             "vertex {i} has degenerate neighbouring triangles"
         )));
     }
+    // Krylov solve first (fast on large meshes), then Gauss–Seidel sweeps polish the result and
+    // guarantee convergence if the Krylov method stalls.
+    bicgstab_solve(&rows, &fixed, &mut uv);
     let max_sweeps = 200_000;
     for sweep in 0..=max_sweeps {
         let mut change: f64 = 0.0;
@@ -291,6 +295,94 @@ pub fn floater_parameterize(mesh: &TriMesh, corners: [usize; 4]) -> Result<Vec<P
         }
     }
     Ok(uv)
+}
+
+/// A row of the mean-value system: the vertex, its weighted neighbours, the sum of the weights.
+type Row = (usize, Vec<(usize, f64)>, f64);
+
+/// Solves the mean-value system for the free vertices by BiCGSTAB (the matrix, scaled by its
+/// diagonal, is I − P with P row-stochastic on the free vertices), each coordinate separately.
+/// Leaves `uv` unchanged for a coordinate whose iterate is not finite.
+fn bicgstab_solve(rows: &[Row], fixed: &[bool], uv: &mut [Point2]) {
+    let m = rows.len();
+    if m == 0 {
+        return;
+    }
+    let mut local = vec![usize::MAX; uv.len()];
+    for (k, r) in rows.iter().enumerate() {
+        local[r.0] = k;
+    }
+    let apply = |x: &[f64], y: &mut [f64]| {
+        for (k, (_, r, sum)) in rows.iter().enumerate() {
+            let mut acc = x[k];
+            for &(j, w) in r {
+                if !fixed[j] && local[j] != usize::MAX {
+                    acc -= w / sum * x[local[j]];
+                }
+            }
+            y[k] = acc;
+        }
+    };
+    let dot = |a: &[f64], b: &[f64]| a.iter().zip(b).map(|(x, y)| x * y).sum::<f64>();
+    for c in 0..2 {
+        let b: Vec<f64> = rows
+            .iter()
+            .map(|(_, r, sum)| {
+                r.iter()
+                    .filter(|&&(j, _)| fixed[j])
+                    .map(|&(j, w)| w / sum * uv[j][c])
+                    .sum()
+            })
+            .collect();
+        let mut x: Vec<f64> = rows.iter().map(|r| uv[r.0][c]).collect();
+        let mut r = vec![0.0; m];
+        apply(&x, &mut r);
+        for k in 0..m {
+            r[k] = b[k] - r[k];
+        }
+        let r0 = r.clone();
+        let bnorm = dot(&b, &b).sqrt().max(1e-300);
+        let (mut rho, mut alpha, mut omega) = (1.0f64, 1.0f64, 1.0f64);
+        let mut v = vec![0.0; m];
+        let mut p = vec![0.0; m];
+        let mut s = vec![0.0; m];
+        let mut t = vec![0.0; m];
+        for _ in 0..(10 * m).max(1000) {
+            if dot(&r, &r).sqrt() <= 1e-15 * bnorm {
+                break;
+            }
+            let rho_new = dot(&r0, &r);
+            if rho_new.abs() < 1e-300 || omega.abs() < 1e-300 {
+                break;
+            }
+            let beta = (rho_new / rho) * (alpha / omega);
+            rho = rho_new;
+            for k in 0..m {
+                p[k] = r[k] + beta * (p[k] - omega * v[k]);
+            }
+            apply(&p, &mut v);
+            let r0v = dot(&r0, &v);
+            if r0v.abs() < 1e-300 {
+                break;
+            }
+            alpha = rho / r0v;
+            for k in 0..m {
+                s[k] = r[k] - alpha * v[k];
+            }
+            apply(&s, &mut t);
+            let tt = dot(&t, &t);
+            omega = if tt > 0.0 { dot(&t, &s) / tt } else { 0.0 };
+            for k in 0..m {
+                x[k] += alpha * p[k] + omega * s[k];
+                r[k] = s[k] - omega * t[k];
+            }
+        }
+        if x.iter().all(|v| v.is_finite()) {
+            for (k, row) in rows.iter().enumerate() {
+                uv[row.0][c] = x[k];
+            }
+        }
+    }
 }
 
 /// Twice the signed area of the image of every triangle under `uv` (positive when
