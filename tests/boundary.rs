@@ -549,3 +549,50 @@ fn curve2_derivatives_match_finite_differences_both_ways() {
         }
     }
 }
+
+#[test]
+fn duck_faces_map_consistently_into_the_cube() {
+    let cube = CubeFaces::read_dir(data("duck_faces")).unwrap();
+    let params = cube.parameterize().unwrap();
+    // The same point gets the same cube coordinates from every face holding it.
+    let mut seen: std::collections::HashMap<[u64; 3], [f64; 3]> = Default::default();
+    let mut shared = 0;
+    for (f, m) in cube.faces.iter().enumerate() {
+        let axis = f / 2;
+        for (v, p) in m.vertices.iter().enumerate() {
+            let x = params[f][v];
+            assert_eq!(x[axis], (f % 2) as f64);
+            assert!(x.iter().all(|&c| (-1e-15..=1.0 + 1e-15).contains(&c)));
+            if let Some(y) = seen.insert(p.map(f64::to_bits), x) {
+                shared += 1;
+                for d in 0..3 {
+                    assert!(
+                        (x[d] - y[d]).abs() < 1e-12,
+                        "{}: {x:?} vs {y:?}",
+                        CUBE_FACE_NAMES[f]
+                    );
+                }
+            }
+        }
+        // One-to-one on the face: the image triangles all have the same orientation.
+        let (a, b) = [(1, 2), (0, 2), (0, 1)][axis];
+        let uv: Vec<Point2> = params[f].iter().map(|x| [x[a], x[b]]).collect();
+        let areas = signed_areas(m, &uv);
+        let pos = areas.iter().filter(|&&s| s > 0.0).count();
+        let neg = areas.iter().filter(|&&s| s < 0.0).count();
+        assert!(
+            pos == areas.len() || neg == areas.len(),
+            "{}: {pos} +, {neg} -",
+            CUBE_FACE_NAMES[f]
+        );
+    }
+    // 12 edges of 25 vertices: 8 corners seen 3 times, 12 × 23 edge vertices seen twice.
+    assert_eq!(shared, 8 * 2 + 12 * 23);
+    // The corner shared by xmin, ymin and zmin is (0,0,0).
+    let m = &cube.faces[0];
+    let origin = (0..m.vertices.len())
+        .find(|&v| params[0][v] == [0.0, 0.0, 0.0])
+        .unwrap();
+    let p = m.vertices[origin];
+    assert!(cube.faces[2].vertices.contains(&p) && cube.faces[4].vertices.contains(&p));
+}

@@ -14,4 +14,4 @@ pub use gismo_xml::{
     parse_gismo_xml, read_gismo_curves, read_gismo_surfaces, read_gismo_xml, GismoGeometry,
 };
 pub use loop2d::{BoundaryLoop2, Coastline, LoopOptions, Side};
-pub use trimesh::{floater_parameterize, signed_areas, TriMesh};
+pub use trimesh::{floater_parameterize, signed_areas, CubeFaces, TriMesh, CUBE_FACE_NAMES};

@@ -396,3 +396,131 @@ pub fn signed_areas(mesh: &TriMesh, uv: &[Point2]) -> Vec<f64> {
         })
         .collect()
 }
+
+/// The names of the six faces of the parametric cube, in the order of [`CubeFaces`]: the face
+/// `xmin` is x = 0, and so on.
+pub const CUBE_FACE_NAMES: [&str; 6] = ["xmin", "xmax", "ymin", "ymax", "zmin", "zmax"];
+
+/// The six triangulated faces of a solid bounded like the cube \[0,1\]^3, in the order of
+/// [`CUBE_FACE_NAMES`]; faces that touch share their edge vertices with identical coordinates.
+#[derive(Clone, Debug)]
+pub struct CubeFaces {
+    /// The faces.
+    pub faces: [TriMesh; 6],
+}
+
+fn key(p: Vec3) -> [u64; 3] {
+    // +0.0 and -0.0 are the same point.
+    p.map(|x| if x == 0.0 { 0 } else { x.to_bits() })
+}
+
+impl CubeFaces {
+    /// Reads `xmin.obj`, `xmax.obj`, ..., `zmax.obj` from a folder.
+    pub fn read_dir(dir: impl AsRef<Path>) -> Result<Self> {
+        let dir = dir.as_ref();
+        let mut faces = Vec::with_capacity(6);
+        for name in CUBE_FACE_NAMES {
+            faces.push(TriMesh::read_obj(dir.join(format!("{name}.obj")))?);
+        }
+        Ok(CubeFaces {
+            faces: faces.try_into().expect("six faces"),
+        })
+    }
+
+    /// Maps every vertex of every face into the cube \[0,1\]^3: the face's own coordinate is 0 or
+    /// 1, the other two come from [`floater_parameterize`] onto the unit square (in increasing
+    /// axis order, e.g. (y, z) on `xmin`), with the face's corners — its vertices shared with two
+    /// other faces — sent to the cube corners those faces meet at. Errors when a face does not
+    /// have exactly four such corners, or a corner is not where the faces it touches say.
+    pub fn parameterize(&self) -> Result<[Vec<Vec3>; 6]> {
+        // Which faces hold each point.
+        let mut owners: HashMap<[u64; 3], u8> = HashMap::new();
+        for (f, m) in self.faces.iter().enumerate() {
+            for &v in &m.vertices {
+                *owners.entry(key(v)).or_insert(0) |= 1 << f;
+            }
+        }
+        let mut out: Vec<Vec<Vec3>> = Vec::with_capacity(6);
+        for (f, m) in self.faces.iter().enumerate() {
+            let name = CUBE_FACE_NAMES[f];
+            let axis = f / 2;
+            let (a, b) = match axis {
+                0 => (1, 2),
+                1 => (0, 2),
+                _ => (0, 1),
+            };
+            let lp = m.boundary_loop()?;
+            // Corners with their square coordinates in the face's (a, b) axes.
+            let mut corners: Vec<(usize, [usize; 2])> = Vec::new();
+            for &v in &lp {
+                let mask = owners[&key(m.vertices[v])];
+                if (mask & !(1 << f)).count_ones() != 2 {
+                    continue;
+                }
+                let mut sq = [usize::MAX; 2];
+                for g in 0..6 {
+                    if mask & (1 << g) != 0 && g != f {
+                        let gaxis = g / 2;
+                        let k = if gaxis == a {
+                            0
+                        } else if gaxis == b {
+                            1
+                        } else {
+                            usize::MAX
+                        };
+                        if k == usize::MAX || sq[k] != usize::MAX {
+                            return Err(Error::mesh(format!(
+                                "face {name}: vertex {v} is shared with faces that do not meet at a cube corner"
+                            )));
+                        }
+                        sq[k] = g % 2;
+                    }
+                }
+                corners.push((v, sq));
+            }
+            if corners.len() != 4 {
+                return Err(Error::mesh(format!(
+                    "face {name} has {} vertices shared with two other faces, expected 4 corners",
+                    corners.len()
+                )));
+            }
+            let find = |s: [usize; 2]| -> Result<usize> {
+                corners
+                    .iter()
+                    .find(|c| c.1 == s)
+                    .map(|c| c.0)
+                    .ok_or_else(|| {
+                        Error::mesh(format!(
+                            "face {name} has no corner at square position {s:?}"
+                        ))
+                    })
+            };
+            let (c00, c10, c11, c01) = (find([0, 0])?, find([1, 0])?, find([1, 1])?, find([0, 1])?);
+            // Along the loop after c00 comes c10 (counter-clockwise) or c01 (then swap axes).
+            let pos = |v: usize| lp.iter().position(|&x| x == v).unwrap();
+            let n = lp.len();
+            let d = |v: usize| (pos(v) + n - pos(c00)) % n;
+            let swap = d(c01) < d(c10);
+            let uv = if swap {
+                floater_parameterize(m, [c00, c01, c11, c10])?
+                    .into_iter()
+                    .map(|p| [p[1], p[0]])
+                    .collect::<Vec<_>>()
+            } else {
+                floater_parameterize(m, [c00, c10, c11, c01])?
+            };
+            out.push(
+                uv.into_iter()
+                    .map(|p| {
+                        let mut x = [0.0; 3];
+                        x[axis] = (f % 2) as f64;
+                        x[a] = p[0];
+                        x[b] = p[1];
+                        x
+                    })
+                    .collect(),
+            );
+        }
+        Ok(out.try_into().expect("six faces"))
+    }
+}
