@@ -179,9 +179,9 @@ fn gismo_duck3d_surfaces_share_their_edges() {
 
 #[test]
 fn gismo_reader_rejects_unknown_types_and_missing_parts() {
-    let e = parse_gismo_xml("<xml><Geometry type=\"Nurbs\"></Geometry></xml>").unwrap_err();
+    let e = parse_gismo_xml("<xml><Geometry type=\"THBSpline2\"></Geometry></xml>").unwrap_err();
     assert_eq!(e.kind, ErrorKind::Io);
-    assert!(e.message.contains("Nurbs"), "{}", e.message);
+    assert!(e.message.contains("THBSpline2"), "{}", e.message);
     let e = parse_gismo_xml(
         "<xml>\n<Geometry type=\"BSpline\">\n<KnotVector degree=\"1\">0 0 1 1</KnotVector>\n</Geometry></xml>",
     )
@@ -595,4 +595,36 @@ fn duck_faces_map_consistently_into_the_cube() {
         .unwrap();
     let p = m.vertices[origin];
     assert!(cube.faces[2].vertices.contains(&p) && cube.faces[4].vertices.contains(&p));
+}
+
+#[test]
+fn gismo_reader_reads_a_nurbs_circle() {
+    let xml = r#"<?xml version="1.0"?>
+<xml>
+ <Geometry type="Nurbs" id="7">
+  <Basis type="NurbsBasis">
+   <Basis type="BSplineBasis">
+    <KnotVector degree="2">0 0 0 1 1 1</KnotVector>
+   </Basis>
+   <weights>1
+     0.7071067811865476 1</weights>
+  </Basis>
+  <coefs geoDim="2">1 0
+   1 1
+   0 1</coefs>
+ </Geometry>
+</xml>"#;
+    let g = parse_gismo_xml(xml).unwrap();
+    let GismoGeometry::Curve(c) = &g[0] else {
+        panic!("expected a curve")
+    };
+    assert!(c.weights().is_some());
+    let p = c.eval(0.37);
+    assert!((p[0].hypot(p[1]) - 1.0).abs() < 1e-15);
+    let e = parse_gismo_xml(
+        &xml.replace("<weights>1", "<nothing>1")
+            .replace("</weights>", "</nothing>"),
+    )
+    .unwrap_err();
+    assert!(e.message.contains("weights"), "{}", e.message);
 }

@@ -1,5 +1,5 @@
-//! Reader for the B-spline geometries of G+Smo XML files (`<Geometry type="BSpline">` curves and
-//! `<Geometry type="TensorBSpline2">` surfaces), by a small tag scanner: the format is regular
+//! Reader for the B-spline geometries of G+Smo XML files (`<Geometry type="BSpline">` or `"Nurbs"`
+//! curves and `<Geometry type="TensorBSpline2">` or `"TensorNurbs2"` surfaces), by a small tag scanner: the format is regular
 //! enough that no XML library is needed.
 
 use std::path::Path;
@@ -162,7 +162,34 @@ fn parse_coefs(text: &str, from: usize, to: usize, what: &str) -> Result<(usize,
     Ok((dim, values))
 }
 
-/// Reads every B-spline curve and tensor-product surface of a G+Smo XML document, in file order.
+/// The `<weights>` of a rational geometry (required when `rational`, refused otherwise).
+fn parse_weights(
+    text: &str,
+    from: usize,
+    to: usize,
+    rational: bool,
+    line: usize,
+) -> Result<Option<Vec<f64>>> {
+    match (find_element(text, "weights", from, to)?, rational) {
+        (Some(w), true) => Ok(Some(parse_numbers(
+            w.content,
+            "weights",
+            line_of(text, w.start),
+        )?)),
+        (None, true) => Err(Error::io(format!(
+            "line {line}: rational geometry has no <weights> element"
+        ))),
+        (Some(w), false) => Err(Error::io(format!(
+            "line {}: <weights> in a non-rational geometry",
+            line_of(text, w.start)
+        ))),
+        (None, false) => Ok(None),
+    }
+}
+
+/// Reads every B-spline or NURBS curve (`BSpline`, `Nurbs`) and tensor-product surface
+/// (`TensorBSpline2`, `TensorNurbs2`, with `<weights>` in the rational basis) of a G+Smo XML
+/// document, in file order.
 /// Other geometry types are an [`ErrorKind::Io`](crate::ErrorKind::Io) error naming the type and
 /// line; invalid splines keep the kind of their validation error, with the line prepended.
 pub fn parse_gismo_xml(text: &str) -> Result<Vec<GismoGeometry>> {
@@ -176,17 +203,18 @@ pub fn parse_gismo_xml(text: &str) -> Result<Vec<GismoGeometry>> {
         let context =
             |e: Error| Error::new(e.kind, format!("line {line}: Geometry: {}", e.message));
         match ty {
-            "BSpline" => {
+            "BSpline" | "Nurbs" => {
                 let kv = find_element(text, "KnotVector", from, to)?.ok_or_else(|| {
                     Error::io(format!("line {line}: BSpline geometry has no <KnotVector>"))
                 })?;
                 let (degree, knots) = parse_knot_vector(text, &kv)?;
                 let (dim, coefs) = parse_coefs(text, from, to, "BSpline geometry")?;
+                let weights = parse_weights(text, from, to, ty == "Nurbs", line)?;
                 out.push(GismoGeometry::Curve(
-                    BSplineCurve::new(degree, knots, dim, coefs, None).map_err(context)?,
+                    BSplineCurve::new(degree, knots, dim, coefs, weights).map_err(context)?,
                 ));
             }
-            "TensorBSpline2" => {
+            "TensorBSpline2" | "TensorNurbs2" => {
                 let k1 = find_element(text, "KnotVector", from, to)?;
                 let k2 = match &k1 {
                     Some(k) => find_element(text, "KnotVector", k.end, to)?,
@@ -200,13 +228,14 @@ pub fn parse_gismo_xml(text: &str) -> Result<Vec<GismoGeometry>> {
                 let ku = parse_knot_vector(text, &k1)?;
                 let kv = parse_knot_vector(text, &k2)?;
                 let (dim, coefs) = parse_coefs(text, from, to, "TensorBSpline2 geometry")?;
+                let weights = parse_weights(text, from, to, ty == "TensorNurbs2", line)?;
                 out.push(GismoGeometry::Surface(
-                    BSplineSurface::new(ku, kv, dim, coefs, None).map_err(context)?,
+                    BSplineSurface::new(ku, kv, dim, coefs, weights).map_err(context)?,
                 ));
             }
             other => {
                 return Err(Error::io(format!(
-                    "line {line}: Geometry type '{other}' is not supported (only BSpline and TensorBSpline2)"
+                    "line {line}: Geometry type '{other}' is not supported (only BSpline, Nurbs, TensorBSpline2 and TensorNurbs2)"
                 )))
             }
         }
