@@ -628,3 +628,18 @@ fn gismo_reader_reads_a_nurbs_circle() {
     .unwrap_err();
     assert!(e.message.contains("weights"), "{}", e.message);
 }
+
+#[test]
+fn boundary_map_at_unit_square_points() {
+    let l = BoundaryLoop2::from_gismo_file(data("duck2d_BRep.xml")).unwrap();
+    assert_eq!(l.eval_at([0.0, 0.3]).unwrap(), l.eval(Side::U0, 0.3));
+    assert_eq!(l.eval_at([0.7, 1.0]).unwrap(), l.eval(Side::V1, 0.7));
+    assert_eq!(l.eval_at([1.0, 1.0]).unwrap(), l.corners()[2]);
+    let e = l.eval_at([0.5, 0.5]).unwrap_err();
+    assert_eq!(e.kind, ErrorKind::InvalidArgument);
+    assert!(e.message.contains("not on the boundary"), "{}", e.message);
+    assert_eq!(
+        l.eval_at([f64::NAN, 0.0]).unwrap_err().kind,
+        ErrorKind::NotFinite
+    );
+}

@@ -253,6 +253,38 @@ impl BoundaryLoop2 {
         self.sides[side.index()].eval_deriv(t)
     }
 
+    /// The boundary map at a point `(u, v)` of the unit square's boundary (one coordinate 0 or 1
+    /// within `1e-12`, the other in \[0,1\]); an error for any other point.
+    pub fn eval_at(&self, uv: Point2) -> Result<Point2> {
+        let [u, v] = uv;
+        let eps = 1e-12;
+        let inside = |x: f64| (-eps..=1.0 + eps).contains(&x);
+        if !(u.is_finite() && v.is_finite()) {
+            return Err(Error::new(
+                ErrorKind::NotFinite,
+                format!("({u}, {v}) is not a finite point"),
+            ));
+        }
+        let side = if u.abs() <= eps && inside(v) {
+            Side::U0
+        } else if (u - 1.0).abs() <= eps && inside(v) {
+            Side::U1
+        } else if v.abs() <= eps && inside(u) {
+            Side::V0
+        } else if (v - 1.0).abs() <= eps && inside(u) {
+            Side::V1
+        } else {
+            return Err(Error::invalid(format!(
+                "({u}, {v}) is not on the boundary of the unit square"
+            )));
+        };
+        let t = match side {
+            Side::U0 | Side::U1 => v,
+            Side::V0 | Side::V1 => u,
+        };
+        Ok(self.eval(side, t.clamp(0.0, 1.0)))
+    }
+
     /// The images of the corners (0,0), (1,0), (1,1), (0,1).
     pub fn corners(&self) -> [Point2; 4] {
         [
