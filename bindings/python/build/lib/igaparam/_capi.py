@@ -1,0 +1,200 @@
+"""Low-level ctypes declarations of the C API in ``include/igaparam.h``.
+
+The structures mirror the C structs field by field (same order and types); the functions get
+their ``argtypes``/``restype`` from the header's prototypes. Use :mod:`igaparam` rather than
+this module.
+"""
+
+import ctypes
+import ctypes.util
+import enum
+import os
+import sys
+
+__all__ = [
+    "Status",
+    "Stage",
+    "CellType",
+    "RelocateOptions",
+    "RelocateReport",
+    "PROGRESS_FN",
+    "load_library",
+    "library",
+]
+
+
+class Status(enum.IntEnum):
+    """``igaparam_status``: 0 is success, every other value comes with a message."""
+
+    OK = 0
+    NULL_ARGUMENT = 1
+    INVALID_ARGUMENT = 2
+    NOT_FINITE = 3
+    INVALID_MESH = 4
+    BUFFER_TOO_SMALL = 5
+    CANCELLED = 6
+    IO = 7
+    INTERNAL = 8
+
+
+class Stage(enum.IntEnum):
+    """``igaparam_stage``: a stage of long work, passed to the progress callback."""
+
+    PLACEMENT = 0
+    OPTIMIZATION = 1
+
+
+class CellType(enum.IntEnum):
+    """``IGAPARAM_CELL_*``: the supported cell types (VTK cell type codes)."""
+
+    Q4 = 9
+    Q8 = 23
+    Q9 = 28
+    H8 = 12
+    H20 = 25
+    H27 = 29
+
+
+TARGET_INITIAL = 0
+TARGET_MASTER = 1
+PLACEMENT_LAPLACIAN = 0
+PLACEMENT_CURRENT = 1
+
+# int (*igaparam_progress_fn)(void *user, igaparam_stage stage, size_t done, size_t total)
+PROGRESS_FN = ctypes.CFUNCTYPE(ctypes.c_int, ctypes.c_void_p, ctypes.c_int, ctypes.c_size_t, ctypes.c_size_t)
+
+
+class RelocateOptions(ctypes.Structure):
+    """``igaparam_relocate_options``."""
+
+    _fields_ = [
+        ("target", ctypes.c_int),  # igaparam_target
+        ("placement", ctypes.c_int),  # igaparam_placement
+        ("optimize", ctypes.c_int),
+        ("max_sweeps", ctypes.c_uint32),
+        ("move_tolerance", ctypes.c_double),
+        ("gradient_tolerance", ctypes.c_double),
+        ("max_newton_iterations", ctypes.c_uint32),
+        ("relaxation", ctypes.c_double),
+        ("threads", ctypes.c_uint32),
+        ("progress", PROGRESS_FN),
+        ("progress_user", ctypes.c_void_p),
+    ]
+
+
+class RelocateReport(ctypes.Structure):
+    """``igaparam_relocate_report``."""
+
+    _fields_ = [
+        ("cells", ctypes.c_size_t),
+        ("nodes", ctypes.c_size_t),
+        ("free_nodes", ctypes.c_size_t),
+        ("invalid_before", ctypes.c_size_t),
+        ("invalid_after_placement", ctypes.c_size_t),
+        ("invalid_after", ctypes.c_size_t),
+        ("min_quality", ctypes.c_double),
+        ("mean_quality", ctypes.c_double),
+        ("sweeps", ctypes.c_uint32),
+        ("steps", ctypes.c_uint32),
+        ("converged", ctypes.c_int),
+        ("seconds", ctypes.c_double),
+    ]
+
+
+_mesh_p = ctypes.c_void_p  # igaparam_mesh * (opaque)
+_status = ctypes.c_int
+_size_p = ctypes.POINTER(ctypes.c_size_t)
+_double_p = ctypes.POINTER(ctypes.c_double)
+_int64_p = ctypes.POINTER(ctypes.c_int64)
+_uint8_p = ctypes.POINTER(ctypes.c_uint8)
+
+# name: (restype, argtypes)
+_PROTOTYPES = {
+    "igaparam_last_error_message": (ctypes.c_size_t, [ctypes.c_char_p, ctypes.c_size_t]),
+    "igaparam_version": (ctypes.c_char_p, []),
+    "igaparam_relocate_options_default": (RelocateOptions, []),
+    "igaparam_mesh_new": (
+        _status,
+        [ctypes.c_int, ctypes.c_size_t, _double_p, ctypes.c_size_t, _int64_p, ctypes.POINTER(_mesh_p)],
+    ),
+    "igaparam_mesh_free": (None, [_mesh_p]),
+    "igaparam_mesh_node_count": (_status, [_mesh_p, _size_p]),
+    "igaparam_mesh_cell_count": (_status, [_mesh_p, _size_p]),
+    "igaparam_mesh_dimension": (_status, [_mesh_p, ctypes.POINTER(ctypes.c_int)]),
+    "igaparam_mesh_set_fixed": (_status, [_mesh_p, ctypes.c_size_t, _uint8_p]),
+    "igaparam_mesh_move_nodes": (_status, [_mesh_p, ctypes.c_size_t, _int64_p, _double_p]),
+    "igaparam_mesh_reset_reference": (_status, [_mesh_p]),
+    "igaparam_mesh_relocate": (
+        _status,
+        [_mesh_p, ctypes.POINTER(RelocateOptions), ctypes.POINTER(RelocateReport)],
+    ),
+    "igaparam_mesh_copy_positions": (_status, [_mesh_p, _double_p, ctypes.c_size_t]),
+    "igaparam_mesh_copy_cell_quality": (_status, [_mesh_p, ctypes.c_int, _double_p, ctypes.c_size_t]),
+    "igaparam_mesh_copy_reference": (_status, [_mesh_p, _double_p, ctypes.c_size_t]),
+    "igaparam_mesh_copy_fixed": (_status, [_mesh_p, _uint8_p, ctypes.c_size_t]),
+    "igaparam_cell_type_node_count": (_status, [ctypes.c_int, _size_p]),
+    "igaparam_mesh_invalid_cell_count": (_status, [_mesh_p, _size_p]),
+}
+
+
+def _library_file_names():
+    if sys.platform == "win32":
+        return ["igaparam.dll"]
+    if sys.platform == "darwin":
+        return ["libigaparam.dylib"]
+    return ["libigaparam.so", "libigaparam.so.0"]
+
+
+def _candidates():
+    """Paths or names to try, in order."""
+    env = os.environ.get("IGAPARAM_LIBRARY")
+    if env:
+        # An explicit choice: no fallback, so that a wrong path is reported, not papered over.
+        return [env], True
+    here = os.path.dirname(os.path.abspath(__file__))
+    candidates = [os.path.join(here, name) for name in _library_file_names()]
+    candidates = [path for path in candidates if os.path.exists(path)]
+    found = ctypes.util.find_library("igaparam")
+    if found:
+        candidates.append(found)
+    return candidates, False
+
+
+def load_library():
+    """Loads the shared library and declares its functions.
+
+    Looks up, in order: the path in the environment variable ``IGAPARAM_LIBRARY``; a library
+    file next to this package; ``ctypes.util.find_library("igaparam")``. Raises ``OSError`` if
+    none loads.
+    """
+    candidates, explicit = _candidates()
+    errors = []
+    for candidate in candidates:
+        try:
+            lib = ctypes.CDLL(candidate)
+        except OSError as error:
+            errors.append(f"{candidate}: {error}")
+            continue
+        for name, (restype, argtypes) in _PROTOTYPES.items():
+            function = getattr(lib, name)
+            function.restype = restype
+            function.argtypes = argtypes
+        return lib
+    if explicit:
+        raise OSError(f"igaparam: cannot load IGAPARAM_LIBRARY: {'; '.join(errors)}")
+    tried = "; ".join(errors) if errors else "no candidate found"
+    raise OSError(
+        "igaparam: the shared library libigaparam was not found (set IGAPARAM_LIBRARY to its path, "
+        f"or put it next to the igaparam package or on the loader's path): {tried}"
+    )
+
+
+_library = None
+
+
+def library():
+    """The loaded library (loaded on first use)."""
+    global _library
+    if _library is None:
+        _library = load_library()
+    return _library

@@ -1,0 +1,32 @@
+"""igaparam: relocation of the free nodes of quadrilateral/hexahedral finite-element meshes
+after their boundary moves (ctypes bindings of the C API, with numpy arrays).
+
+Example::
+
+    import numpy as np, igaparam
+    with igaparam.Mesh("Q9", points, cells) as mesh:   # points (n, 3), cells (m, 9)
+        mesh.set_fixed(mask)                           # (n,) uint8: bit 0 x, 1 y, 2 z
+        mesh.move_nodes(new_xyz, indices=boundary)     # (k, 3), (k,)
+        report = mesh.relocate()
+        xyz = mesh.positions                           # (n, 3)
+
+The shared library is found through the environment variable ``IGAPARAM_LIBRARY`` (its path),
+else next to this package, else with ``ctypes.util.find_library("igaparam")``.
+"""
+
+from ._capi import CellType, Stage, Status
+from ._mesh import IgaparamError, Mesh, RelocateReport, cell_type_code, nodes_per_cell, version
+
+__version__ = "0.1.0"
+
+__all__ = [
+    "CellType",
+    "IgaparamError",
+    "Mesh",
+    "RelocateReport",
+    "Stage",
+    "Status",
+    "cell_type_code",
+    "nodes_per_cell",
+    "version",
+]

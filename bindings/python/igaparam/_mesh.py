@@ -1,0 +1,425 @@
+"""The :class:`Mesh` class, its relocation report and errors."""
+
+import ctypes
+import dataclasses
+
+import numpy as np
+
+from . import _capi
+from ._capi import CellType, Stage, Status
+
+__all__ = ["IgaparamError", "Mesh", "RelocateReport", "version", "nodes_per_cell", "cell_type_code"]
+
+
+class IgaparamError(Exception):
+    """A failed call of the library.
+
+    Attributes:
+        status: the :class:`Status` the C function returned.
+        message: the library's message.
+    """
+
+    def __init__(self, status, message):
+        try:
+            status = Status(status)
+        except ValueError:
+            pass
+        self.status = status
+        self.message = message
+        name = status.name if isinstance(status, Status) else str(status)
+        super().__init__(f"{message} (status {int(status)}, {name})")
+
+
+def _last_error_message():
+    lib = _capi.library()
+    size = lib.igaparam_last_error_message(None, 0)
+    buf = ctypes.create_string_buffer(size)
+    lib.igaparam_last_error_message(buf, size)
+    return buf.value.decode("utf-8", errors="replace")
+
+
+def _check(status):
+    if status != Status.OK:
+        raise IgaparamError(status, _last_error_message())
+
+
+def version():
+    """The library version, e.g. ``"0.1.0"``."""
+    return _capi.library().igaparam_version().decode()
+
+
+_CELL_NAMES = {name: int(code) for name, code in CellType.__members__.items()}
+_TARGETS = {"initial": _capi.TARGET_INITIAL, "master": _capi.TARGET_MASTER}
+_PLACEMENTS = {"laplacian": _capi.PLACEMENT_LAPLACIAN, "current": _capi.PLACEMENT_CURRENT}
+
+
+def cell_type_code(cell_type):
+    """The VTK code of a cell type given as a code (e.g. 28) or a name ('Q4', 'Q8', 'Q9', 'H8',
+    'H20', 'H27')."""
+    if isinstance(cell_type, str):
+        try:
+            return _CELL_NAMES[cell_type.upper()]
+        except KeyError:
+            raise ValueError(f"unknown cell type {cell_type!r}: expected one of {sorted(_CELL_NAMES)}") from None
+    if isinstance(cell_type, (bool, np.bool_)) or not isinstance(cell_type, (int, np.integer)):
+        raise TypeError(f"cell_type must be an int (VTK code) or a name, not {type(cell_type).__name__}")
+    return int(cell_type)
+
+
+def nodes_per_cell(cell_type):
+    """Nodes of one cell of ``cell_type`` (a VTK code or a name), e.g. 9 for 'Q9'."""
+    out = ctypes.c_size_t()
+    _check(_capi.library().igaparam_cell_type_node_count(cell_type_code(cell_type), ctypes.byref(out)))
+    return out.value
+
+
+def _option_code(value, codes, what):
+    if isinstance(value, str):
+        try:
+            return codes[value.lower()]
+        except KeyError:
+            raise ValueError(f"unknown {what} {value!r}: expected one of {sorted(codes)}") from None
+    if isinstance(value, (int, np.integer)) and int(value) in codes.values():
+        return int(value)
+    raise ValueError(f"unknown {what} {value!r}: expected one of {sorted(codes)}")
+
+
+def _ptr(array, ctype):
+    return array.ctypes.data_as(ctypes.POINTER(ctype))
+
+
+def _as_xyz(values, name):
+    """``values`` as a C-contiguous float64 array of shape (n, 3); (n, 2) gets z = 0."""
+    array = np.asarray(values)
+    if array.dtype.kind not in "fiub":
+        raise ValueError(f"{name} must be numeric, not {array.dtype}")
+    if array.ndim != 2 or array.shape[1] not in (2, 3):
+        raise ValueError(f"{name} must have shape (n, 3) (or (n, 2)), not {array.shape}")
+    array = np.asarray(array, dtype=np.float64)
+    if array.shape[1] == 2:
+        array = np.hstack([array, np.zeros((array.shape[0], 1))])
+    return np.ascontiguousarray(array)
+
+
+def _as_int64(values, name, ndim):
+    array = np.asarray(values)
+    if array.size == 0 and array.dtype.kind == "f":
+        array = array.astype(np.int64)
+    if array.dtype.kind not in "iu":
+        raise ValueError(f"{name} must be an integer array, not {array.dtype}")
+    if array.ndim != ndim:
+        raise ValueError(f"{name} must have {ndim} dimension(s), not shape {array.shape}")
+    if array.dtype.kind == "u" and array.size and array.max() > np.iinfo(np.int64).max:
+        raise ValueError(f"{name} has values out of the int64 range")
+    return np.ascontiguousarray(array, dtype=np.int64)
+
+
+@dataclasses.dataclass(frozen=True)
+class RelocateReport:
+    """What :meth:`Mesh.relocate` did (``igaparam_relocate_report``). Quality is the inverse mean
+    distortion of a cell against its target: 1 is the target shape, 0 an inverted cell."""
+
+    cells: int
+    nodes: int
+    free_nodes: int
+    invalid_before: int
+    invalid_after_placement: int
+    invalid_after: int
+    min_quality: float
+    mean_quality: float
+    sweeps: int
+    steps: int
+    converged: bool
+    seconds: float
+
+    @classmethod
+    def _from_c(cls, report):
+        values = {field.name: getattr(report, field.name) for field in dataclasses.fields(cls)}
+        values["converged"] = bool(values["converged"])
+        return cls(**values)
+
+    def as_dict(self):
+        """The report as a dict."""
+        return dataclasses.asdict(self)
+
+
+class Mesh:
+    """A quadrilateral or hexahedral finite-element mesh of one cell type, owning an
+    ``igaparam_mesh`` handle.
+
+    Args:
+        cell_type: VTK cell type code (9, 23, 28, 12, 25, 29) or name ('Q4', 'Q8', 'Q9', 'H8',
+            'H20', 'H27').
+        points: node coordinates, shape (n, 3) (or (n, 2): z = 0), converted to float64. They
+            are the reference shape of the targets. For quadrilaterals z is carried unchanged.
+        cells: connectivity, shape (m, k) with k the nodes per cell of ``cell_type``, in VTK's
+            node order, converted to int64.
+
+    All nodes start free (see :meth:`set_fixed`). The arrays are copied. Release the handle
+    with :meth:`close` or a ``with`` block (it is also released when the object is collected).
+
+    Raises:
+        ValueError: arrays of the wrong shape or type, or an unknown cell type name.
+        IgaparamError: rejected by the library, e.g. ``Status.NOT_FINITE`` for NaN coordinates,
+            ``Status.INVALID_MESH`` for a node index out of range.
+    """
+
+    def __init__(self, cell_type, points, cells):
+        self._handle = None
+        self._lib = _capi.library()
+        code = cell_type_code(cell_type)
+        k = nodes_per_cell(code)
+        xyz = _as_xyz(points, "points")
+        connectivity = _as_int64(cells, "cells", 2)
+        if connectivity.shape[1] != k and connectivity.size > 0:
+            raise ValueError(
+                f"cells must have shape (m, {k}) for cell type {code} ({k} nodes per cell), "
+                f"not {connectivity.shape}"
+            )
+        handle = _capi.ctypes.c_void_p()
+        _check(
+            self._lib.igaparam_mesh_new(
+                code,
+                xyz.shape[0],
+                _ptr(xyz, ctypes.c_double),
+                connectivity.shape[0],
+                _ptr(connectivity, ctypes.c_int64),
+                ctypes.byref(handle),
+            )
+        )
+        self._handle = handle
+        self._cell_type = code
+
+    # Lifetime.
+
+    def close(self):
+        """Releases the handle; the mesh is unusable afterwards. Calling it again does nothing."""
+        handle, self._handle = getattr(self, "_handle", None), None
+        if handle is not None:
+            self._lib.igaparam_mesh_free(handle)
+
+    def __enter__(self):
+        return self
+
+    def __exit__(self, *exc):
+        self.close()
+        return False
+
+    def __del__(self):
+        try:
+            self.close()
+        except Exception:
+            pass
+
+    @property
+    def closed(self):
+        """True after :meth:`close`."""
+        return self._handle is None
+
+    def _h(self):
+        if self._handle is None:
+            raise ValueError("the mesh is closed")
+        return self._handle
+
+    def __repr__(self):
+        if self.closed:
+            return "<igaparam.Mesh (closed)>"
+        return f"<igaparam.Mesh {self.cell_count} cells of type {self._cell_type}, {self.node_count} nodes>"
+
+    # Sizes.
+
+    def _size(self, function):
+        out = ctypes.c_size_t()
+        _check(function(self._h(), ctypes.byref(out)))
+        return out.value
+
+    @property
+    def node_count(self):
+        """Number of nodes n."""
+        return self._size(self._lib.igaparam_mesh_node_count)
+
+    @property
+    def cell_count(self):
+        """Number of cells m."""
+        return self._size(self._lib.igaparam_mesh_cell_count)
+
+    @property
+    def dimension(self):
+        """Spatial dimension of the cells: 2 (quadrilaterals) or 3 (hexahedra)."""
+        out = ctypes.c_int()
+        _check(self._lib.igaparam_mesh_dimension(self._h(), ctypes.byref(out)))
+        return out.value
+
+    @property
+    def cell_type(self):
+        """The VTK code of the cell type."""
+        return self._cell_type
+
+    @property
+    def invalid_cell_count(self):
+        """Number of cells with det J <= 0 at some Gauss–Lobatto point."""
+        return self._size(self._lib.igaparam_mesh_invalid_cell_count)
+
+    # Constraints and motion.
+
+    def set_fixed(self, mask):
+        """Sets the constraint of every node.
+
+        Args:
+            mask: shape (n,), integers in 0..7 (or booleans: True fixes every coordinate of
+                the mesh's dimension): bit 0 keeps x, bit 1 y, bit 2 z (0 free, 3 fixed in 2D,
+                7 fixed in 3D, 4 sliding in its plane z = const).
+        """
+        array = np.asarray(mask)
+        if array.dtype.kind == "b":
+            array = np.where(array, 3 if self.dimension == 2 else 7, 0)
+        if array.dtype.kind not in "iu":
+            raise ValueError(f"mask must be an integer (or boolean) array, not {array.dtype}")
+        if array.ndim != 1:
+            raise ValueError(f"mask must have shape (n,), not {array.shape}")
+        if array.size and (array.min() < 0 or array.max() > 255):
+            raise ValueError("mask values must be in 0..7")
+        array = np.ascontiguousarray(array, dtype=np.uint8)
+        _check(self._lib.igaparam_mesh_set_fixed(self._h(), array.shape[0], _ptr(array, ctypes.c_uint8)))
+
+    def move_nodes(self, xyz, indices=None):
+        """Sets the positions of some nodes (typically the boundary's, before :meth:`relocate`);
+        the reference shape is not changed.
+
+        Args:
+            xyz: new positions, shape (k, 3) (or (k, 2): z = 0).
+            indices: the nodes moved, shape (k,); None means nodes 0..k-1.
+        """
+        positions = _as_xyz(xyz, "xyz")
+        if indices is None:
+            index_ptr = None
+        else:
+            index_array = _as_int64(indices, "indices", 1)
+            if index_array.shape[0] != positions.shape[0]:
+                raise ValueError(
+                    f"indices has {index_array.shape[0]} entries but xyz has {positions.shape[0]} rows"
+                )
+            index_ptr = _ptr(index_array, ctypes.c_int64)
+        _check(
+            self._lib.igaparam_mesh_move_nodes(
+                self._h(), positions.shape[0], index_ptr, _ptr(positions, ctypes.c_double)
+            )
+        )
+
+    def reset_reference(self):
+        """Makes the current positions the reference shape of the targets."""
+        _check(self._lib.igaparam_mesh_reset_reference(self._h()))
+
+    # Relocation.
+
+    def relocate(
+        self,
+        threads=0,
+        target="initial",
+        laplacian_only=False,
+        max_sweeps=None,
+        progress=None,
+        placement="laplacian",
+        move_tolerance=None,
+        gradient_tolerance=None,
+        max_newton_iterations=None,
+        relaxation=None,
+    ):
+        """Relocates the free coordinates of the nodes so that every cell is valid and close to
+        its target shape. On any error the mesh is unchanged.
+
+        Args:
+            threads: worker threads; 0 uses one per core (the result does not depend on it).
+            target: 'initial' (the cells' reference shapes) or 'master' (square/cube).
+            laplacian_only: stop after the first placement (no optimization).
+            max_sweeps: largest number of Gauss–Seidel sweeps (library default: 100 per step).
+            progress: None, or a callable ``progress(stage, done, total)`` (stage a
+                :class:`Stage`) called on this thread; return False to cancel (the call then
+                raises IgaparamError with ``Status.CANCELLED``). An exception raised by it
+                cancels the call and is re-raised.
+            placement: 'laplacian' (harmonic extension of the prescribed motion) or 'current'.
+            move_tolerance, gradient_tolerance, max_newton_iterations, relaxation: see
+                ``igaparam_relocate_options`` in igaparam.h; None keeps the library's default.
+
+        Returns:
+            RelocateReport.
+        """
+        options = self._lib.igaparam_relocate_options_default()
+        options.target = _option_code(target, _TARGETS, "target")
+        options.placement = _option_code(placement, _PLACEMENTS, "placement")
+        options.optimize = 0 if laplacian_only else 1
+        if int(threads) < 0:
+            raise ValueError("threads must be >= 0")
+        options.threads = int(threads)
+        for name, value in (
+            ("max_sweeps", max_sweeps),
+            ("max_newton_iterations", max_newton_iterations),
+        ):
+            if value is not None:
+                if int(value) < 0:
+                    raise ValueError(f"{name} must be >= 0")
+                setattr(options, name, int(value))
+        for name, value in (
+            ("move_tolerance", move_tolerance),
+            ("gradient_tolerance", gradient_tolerance),
+            ("relaxation", relaxation),
+        ):
+            if value is not None:
+                setattr(options, name, float(value))
+
+        raised = []
+        callback = None
+        if progress is not None:
+
+            def trampoline(_user, stage, done, total):
+                try:
+                    try:
+                        stage = Stage(stage)
+                    except ValueError:
+                        pass
+                    return 1 if progress(stage, done, total) is False else 0
+                except BaseException as error:  # cancel, re-raise after the call
+                    raised.append(error)
+                    return 1
+
+            callback = _capi.PROGRESS_FN(trampoline)
+            options.progress = callback
+
+        report = _capi.RelocateReport()
+        status = self._lib.igaparam_mesh_relocate(self._h(), ctypes.byref(options), ctypes.byref(report))
+        if raised:
+            raise raised[0]
+        _check(status)
+        return RelocateReport._from_c(report)
+
+    # Arrays copied out.
+
+    def _copy_xyz(self, function):
+        out = np.empty((self.node_count, 3), dtype=np.float64)
+        _check(function(self._h(), _ptr(out, ctypes.c_double), out.size))
+        return out
+
+    @property
+    def positions(self):
+        """Current node positions, a new float64 array of shape (n, 3)."""
+        return self._copy_xyz(self._lib.igaparam_mesh_copy_positions)
+
+    @property
+    def reference(self):
+        """Reference positions (the shape the targets are taken from), shape (n, 3)."""
+        return self._copy_xyz(self._lib.igaparam_mesh_copy_reference)
+
+    @property
+    def fixed(self):
+        """Constraint mask of every node (see :meth:`set_fixed`), a new uint8 array of shape (n,)."""
+        out = np.empty(self.node_count, dtype=np.uint8)
+        _check(self._lib.igaparam_mesh_copy_fixed(self._h(), _ptr(out, ctypes.c_uint8), out.size))
+        return out
+
+    def cell_quality(self, target="initial"):
+        """Quality of every cell against ``target`` ('initial' or 'master'): float64 array of
+        shape (m,), in (0, 1], 0 for a cell with det J <= 0 somewhere."""
+        code = _option_code(target, _TARGETS, "target")
+        out = np.empty(self.cell_count, dtype=np.float64)
+        _check(self._lib.igaparam_mesh_copy_cell_quality(self._h(), code, _ptr(out, ctypes.c_double), out.size))
+        return out
