@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Builds everything and runs all tests: the Rust tests (cargo test --release), then the C/C++
-# tests and example runs (ctest). Runs every suite, and exits non-zero if any test failed.
+# tests and example runs (ctest), then the Python bindings' tests (pytest, in the virtual
+# environment build/venv). Runs every suite, and exits non-zero if any test failed.
 set -euo pipefail
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
 
@@ -12,4 +13,23 @@ echo "+ cargo test --release --no-fail-fast"
 cargo test --release --no-fail-fast || { status=1; echo "test.sh: cargo test failed" >&2; }
 echo "+ ctest --test-dir build --output-on-failure"
 ctest --test-dir build --output-on-failure || { status=1; echo "test.sh: ctest failed" >&2; }
+
+# Python bindings: bindings/python installed into build/venv, tested against the library just built.
+python_tests() {
+  local venv=build/venv
+  if [[ ! -x "$venv/bin/python" ]]; then
+    echo "+ python3 -m venv $venv"
+    python3 -m venv "$venv" || return 1
+  fi
+  echo "+ $venv/bin/python -m pip install -q pytest numpy; pip install -q bindings/python"
+  "$venv/bin/python" -m pip install -q pytest numpy || return 1
+  # meshio is optional: the tests read the VTU file themselves without it.
+  "$venv/bin/python" -m pip install -q meshio ||
+    echo "test.sh: meshio not installed (optional); going on without it" >&2
+  "$venv/bin/python" -m pip install -q --force-reinstall --no-deps bindings/python || return 1
+  echo "+ IGAPARAM_LIBRARY=build/cargo/release/libigaparam.so python -m pytest -q tests/python"
+  IGAPARAM_LIBRARY="$PWD/build/cargo/release/libigaparam.so" IGAPARAM_BUILD_DIR="$PWD/build" \
+    "$venv/bin/python" -m pytest -q -p no:cacheprovider tests/python
+}
+python_tests || { status=1; echo "test.sh: Python tests failed" >&2; }
 exit "$status"
