@@ -269,7 +269,7 @@ fn coastlines_load_with_four_sides() {
             [c[0], c[1], c[2], c[3]].map(|i| coast.points[i])
         );
         // The four polylines hold every point once, plus the four shared corners.
-        let total: usize = Side::ALL
+        let total: usize = Side::all()
             .iter()
             .map(|&s| match l.side(s).kind() {
                 CurveKind::Polyline(p) => p.points().len(),

@@ -22,9 +22,12 @@ pub enum Side {
 
 impl Side {
     /// The four sides in the order U0, U1, V0, V1 (G+Smo's west, east, south, north).
-    pub const ALL: [Side; 4] = [Side::U0, Side::U1, Side::V0, Side::V1];
+    // A function rather than an associated constant, which cbindgen would put in the C header.
+    pub fn all() -> [Side; 4] {
+        [Side::U0, Side::U1, Side::V0, Side::V1]
+    }
 
-    /// The index in [`Side::ALL`].
+    /// The index in [`Side::all`].
     pub fn index(self) -> usize {
         self as usize
     }
