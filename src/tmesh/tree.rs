@@ -148,14 +148,18 @@ impl<const D: usize> Tree<D> {
             if cell.first_child.is_some() {
                 continue;
             }
-            for coarse in self.too_coarse_neighbours(c) {
-                if self.cells[coarse].first_child.is_none() {
-                    self.refine(coarse)?;
-                    refinements += 1;
-                    let first = self.cells[coarse].first_child.unwrap_or_default() as usize;
-                    queue.extend(first..first + (1 << D));
-                }
+            let coarse = self.too_coarse_neighbours(c);
+            if coarse.is_empty() {
+                continue;
             }
+            for n in coarse {
+                self.refine(n)?;
+                refinements += 1;
+                let first = self.cells[n].first_child.unwrap_or_default() as usize;
+                queue.extend(first..first + (1 << D));
+            }
+            // The new children may still be too coarse for this cell: look again.
+            queue.push(c);
         }
         Ok(refinements)
     }
@@ -206,11 +210,14 @@ mod tests {
     }
 
     #[test]
-    fn refining_a_corner_deeply_is_balanced_by_refining_its_neighbours() {
+    fn refining_next_to_the_centre_is_balanced_by_refining_the_neighbours() {
+        // Cells shrinking towards the centre from one quadrant end up next to the other
+        // quadrants' level-1 cells.
         let mut t = Tree::<2>::new();
+        let near_centre = (UNIT / 2 - 1) as i64;
         for _ in 0..5 {
-            let corner = t.leaf_at(&[0, 0]).unwrap();
-            t.refine(corner).unwrap();
+            let leaf = t.leaf_at(&[near_centre, near_centre]).unwrap();
+            t.refine(leaf).unwrap();
         }
         assert!(!t.is_balanced());
         assert!(t.balance().unwrap() > 0);
