@@ -6,6 +6,7 @@
 
 pub mod boundary;
 pub mod capi;
+pub mod domain;
 pub mod error;
 pub mod homesh;
 pub mod io;

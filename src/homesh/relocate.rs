@@ -5,8 +5,8 @@ use std::time::Instant;
 use super::{project, Mesh};
 use crate::error::{Error, ErrorKind, Result};
 use crate::optimize::{
-    invalid_cells, laplace::MeshGraph, optimize, small::Vector, NodeSolverOptions, Problem,
-    SweepOptions, TargetKind,
+    invalid_cells, laplace::MeshGraph, motion, small::Vector, NodeSolverOptions, SweepOptions,
+    TargetKind,
 };
 
 /// Where the free nodes start before the optimizer runs.
@@ -196,52 +196,25 @@ impl Mesh {
                     relaxation: options.relaxation,
                 },
             };
-            let mut run = |x: &mut Vec<Vector<D>>, sweeps_done: u32, last: bool| {
-                let mut step_options = sweep_options;
-                if !last {
-                    step_options.move_tolerance *= INTERMEDIATE_TOLERANCE_FACTOR;
-                }
-                let stats = optimize(pool, &problem, x, &step_options, &mut |done, _| {
-                    progress(Stage::Optimization, sweeps_done as usize + done, 0)
-                })?;
-                Ok::<_, Error>((stats, invalid_cells(pool, &problem, x).is_empty()))
-            };
-            if options.placement == Placement::Current {
-                let (stats, _) = run(&mut x, 0, true)?;
-                report.sweeps = stats.sweeps;
-                report.converged = stats.converged;
+            let mut on_sweep = |done: usize| progress(Stage::Optimization, done, 0);
+            let stats = if options.placement == Placement::Current {
+                motion::optimize_in_place(pool, &problem, &mut x, &sweep_options, &mut on_sweep)?
             } else {
-                // Large motions are applied in steps, each placed harmonically from the previous
-                // optimized state and optimized; a step that leaves invalid cells is halved.
-                let mut done_t = 0.0;
-                let mut state = reference.clone();
-                let first_dt = 1.0 / initial_steps(&problem, &reference, &goal) as f64;
-                let mut dt = first_dt;
-                while done_t < 1.0 {
-                    let t = (done_t + dt).min(1.0);
-                    let mut trial = state.clone();
-                    set_fixed_at(&problem, &reference, &goal, t, &mut trial);
-                    place(&state, &mut trial);
-                    let (stats, valid) = run(&mut trial, report.sweeps, t >= 1.0)?;
-                    report.sweeps += stats.sweeps;
-                    if !valid && dt > MIN_STEP {
-                        dt *= 0.5;
-                        continue;
-                    }
-                    report.converged = stats.converged;
-                    report.steps += 1;
-                    done_t = t;
-                    state = trial;
-                    // After a success the step grows back; a failure even at the smallest step
-                    // will not be repaired by more small steps, so the rest comes in one.
-                    dt = if valid {
-                        (2.0 * dt).min(first_dt)
-                    } else {
-                        1.0 - done_t
-                    };
-                }
-                x = state;
-            }
+                let (moved, stats) = motion::follow_motion(
+                    pool,
+                    &problem,
+                    &graph,
+                    &reference,
+                    &goal,
+                    &sweep_options,
+                    &mut on_sweep,
+                )?;
+                x = moved;
+                stats
+            };
+            report.sweeps = stats.sweeps;
+            report.steps = stats.steps;
+            report.converged = stats.converged;
         }
         let quality: Vec<f64> = (0..problem.cell_count())
             .map(|c| problem.cell_quality(c, &x))
@@ -257,64 +230,6 @@ impl Mesh {
     }
 }
 
-/// Smallest fraction of the motion applied in one step.
-const MIN_STEP: f64 = 1.0 / 256.0;
-
-/// Intermediate steps stop at a looser move tolerance: only the last one needs to be smooth.
-const INTERMEDIATE_TOLERANCE_FACTOR: f64 = 10.0;
-
-/// Largest prescribed move, in local cell sizes, applied in one step.
-const CELLS_PER_STEP: f64 = 4.0;
-
 fn cancelled() -> Error {
     Error::new(ErrorKind::Cancelled, "cancelled by the progress callback")
-}
-
-/// Number of steps so that no prescribed node moves more than [`CELLS_PER_STEP`] times the size
-/// of its cells in one step.
-fn initial_steps<const D: usize>(
-    problem: &Problem<D>,
-    reference: &[Vector<D>],
-    goal: &[Vector<D>],
-) -> usize {
-    let mut terms = Vec::new();
-    let mut ratio = 0.0f64;
-    for v in 0..reference.len() {
-        if problem.free_mask(v) == (1 << D) - 1 {
-            continue;
-        }
-        let moved = (0..D)
-            .map(|k| (goal[v][k] - reference[v][k]).powi(2))
-            .sum::<f64>()
-            .sqrt();
-        if moved == 0.0 {
-            continue;
-        }
-        let (_, length) = problem.node_terms(v, reference, &mut terms);
-        if length > 0.0 {
-            ratio = ratio.max(moved / (2.0 * length));
-        }
-    }
-    ((ratio / CELLS_PER_STEP).ceil() as usize).clamp(1, (1.0 / MIN_STEP) as usize)
-}
-
-/// Puts the constrained components at `reference + t·(goal − reference)`.
-fn set_fixed_at<const D: usize>(
-    problem: &Problem<D>,
-    reference: &[Vector<D>],
-    goal: &[Vector<D>],
-    t: f64,
-    x: &mut [Vector<D>],
-) {
-    for (v, p) in x.iter_mut().enumerate() {
-        for k in 0..D {
-            if problem.free_mask(v) & (1 << k) == 0 {
-                p[k] = if t >= 1.0 {
-                    goal[v][k]
-                } else {
-                    reference[v][k] + t * (goal[v][k] - reference[v][k])
-                };
-            }
-        }
-    }
 }

@@ -8,6 +8,7 @@ pub mod colour;
 pub mod laplace;
 pub mod lattice;
 pub mod metric;
+pub mod motion;
 pub mod node;
 pub mod pattern;
 pub mod problem;
