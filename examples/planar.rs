@@ -1,5 +1,6 @@
-//! Builds the optimized T-mesh of a planar domain: `planar FILE [tolerance] [min_level] [sweeps]`
-//! (G+Smo XML B-rep or coastline .txt).
+//! Builds the optimized T-mesh of a planar domain and writes it as `.vtu`:
+//! `planar FILE OUT.vtu [tolerance] [min_level] [sweeps]` (FILE a G+Smo XML B-rep or a coastline
+//! `.txt`).
 
 use igaparam::boundary::{BoundaryLoop2, Coastline};
 use igaparam::domain::{PlanarDomain, PlanarOptions};
@@ -13,16 +14,17 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         BoundaryLoop2::from_gismo_file(path)?
     };
     let mut options = PlanarOptions::default();
-    if let Some(t) = args.get(2) {
+    if let Some(t) = args.get(3) {
         options.tolerance = t.parse()?;
     }
-    if let Some(l) = args.get(3) {
+    if let Some(l) = args.get(4) {
         options.min_level = l.parse()?;
     }
-    if let Some(s) = args.get(4) {
+    if let Some(s) = args.get(5) {
         options.max_sweeps = s.parse()?;
     }
-    let (_, report) = PlanarDomain::build(boundary, &options, &mut |_, _| true)?;
+    let (domain, report) = PlanarDomain::build(boundary, &options, &mut |_, _| true)?;
+    igaparam::io::vtu::write(std::path::Path::new(&args[2]), &domain.to_grid())?;
     println!("{report:?}");
     Ok(())
 }

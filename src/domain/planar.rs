@@ -4,10 +4,14 @@ use std::time::Instant;
 
 use crate::boundary::{BoundaryLoop2, Point2, Side};
 use crate::error::{Error, Result};
+use crate::io::vtu::{DataArray, UnstructuredGrid};
 use crate::optimize::laplace::MeshGraph;
 use crate::optimize::motion::{follow_motion, optimize_in_place};
 use crate::optimize::{invalid_cells, NodeSolverOptions, Problem, SweepOptions};
 use crate::tmesh::{TMesh, Tree, UNIT};
+
+/// VTK's polygon cell type.
+const VTK_POLYGON: u8 = 7;
 
 /// Options of [`PlanarDomain::build`].
 #[derive(Clone, Copy, Debug)]
@@ -314,5 +318,54 @@ impl PlanarDomain {
     /// Quality of every cell.
     pub fn quality(&self) -> &[f64] {
         &self.quality
+    }
+
+    /// The physical T-mesh as an unstructured grid: one polygon per cell through its corners and
+    /// hanging vertices, counter-clockwise; point data `parametric` (u, v, 0), cell data
+    /// `quality` and `level`.
+    pub fn to_grid(&self) -> UnstructuredGrid {
+        // Lattice points of a cell's boundary, counter-clockwise from (0, 0).
+        const RING: [usize; 8] = [0, 1, 2, 5, 8, 7, 6, 3];
+        let mut grid = UnstructuredGrid {
+            points: self
+                .positions
+                .iter()
+                .flat_map(|p| [p[0], p[1], 0.0])
+                .collect(),
+            ..Default::default()
+        };
+        for c in 0..self.mesh.cell_count() {
+            let (lattice, vertices) = self.mesh.cell_vertices(c);
+            for l in RING {
+                if let Some(i) = lattice.iter().position(|&x| x == l) {
+                    grid.connectivity.push(vertices[i] as i64);
+                }
+            }
+            grid.offsets.push(grid.connectivity.len() as i64);
+            grid.types.push(VTK_POLYGON);
+        }
+        grid.point_data.push(DataArray {
+            name: "parametric".into(),
+            components: 3,
+            values: self
+                .mesh
+                .parametric()
+                .iter()
+                .flat_map(|p| [p[0], p[1], 0.0])
+                .collect(),
+        });
+        grid.cell_data.push(DataArray {
+            name: "quality".into(),
+            components: 1,
+            values: self.quality.clone(),
+        });
+        grid.cell_data.push(DataArray {
+            name: "level".into(),
+            components: 1,
+            values: (0..self.mesh.cell_count())
+                .map(|c| self.mesh.cell_level(c) as f64)
+                .collect(),
+        });
+        grid
     }
 }
