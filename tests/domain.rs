@@ -89,3 +89,68 @@ fn shared_domains_give_valid_t_meshes_within_the_boundary_tolerance() {
         );
     }
 }
+
+/// A solid given by a map of the unit cube (only its boundary values are used).
+struct MappedCube<F>(F);
+
+impl<F: Fn([f64; 3]) -> [f64; 3]> igaparam::domain::CubeMap<3> for MappedCube<F> {
+    fn boundary_point(&self, p: [f64; 3]) -> [f64; 3] {
+        (self.0)(p)
+    }
+}
+
+#[test]
+fn the_unit_cube_gives_the_identity() {
+    let options = igaparam::domain::DomainOptions {
+        min_level: 2,
+        max_level: 3,
+        ..Default::default()
+    };
+    let (domain, report) =
+        igaparam::domain::Domain::build(MappedCube(|p: [f64; 3]| p), &options, &mut |_, _| true)
+            .unwrap();
+    assert_eq!(report.invalid_cells, 0);
+    let worst = domain
+        .mesh()
+        .parametric()
+        .iter()
+        .zip(domain.positions())
+        .map(|(a, b)| (0..3).map(|k| (a[k] - b[k]).abs()).fold(0.0, f64::max))
+        .fold(0.0, f64::max);
+    assert!(worst < 1e-12, "moved by {worst}");
+}
+
+#[test]
+fn a_curved_solid_gets_a_valid_adapted_octree() {
+    use std::f64::consts::PI;
+    // A box whose top bulges and whose sides are sheared and waved.
+    let map = |[x, y, z]: [f64; 3]| {
+        [
+            2.0 * x + 0.3 * z + 0.1 * (PI * y).sin(),
+            y + 0.15 * (2.0 * PI * x).sin() * z,
+            z * (1.0 + 0.4 * (PI * x).sin() * (PI * y).sin()),
+        ]
+    };
+    let options = igaparam::domain::DomainOptions {
+        tolerance: 1e-4,
+        max_level: 5,
+        ..Default::default()
+    };
+    let (domain, report) =
+        igaparam::domain::Domain::build(MappedCube(map), &options, &mut |_, _| true).unwrap();
+    println!("{report:?}");
+    assert_eq!(report.invalid_cells, 0, "{report:?}");
+    assert!(report.boundary_error <= options.tolerance || report.max_level == options.max_level);
+    assert!(
+        report.max_level > options.min_level,
+        "the curved boundary refined nothing"
+    );
+    assert!(domain.mesh().tree().is_balanced());
+    // Boundary vertices lie on the boundary.
+    for (v, p) in domain.mesh().parametric().iter().enumerate() {
+        if domain.mesh().on_boundary(v) {
+            let exact = map(*p);
+            assert!((0..3).all(|k| (exact[k] - domain.positions()[v][k]).abs() < 1e-12));
+        }
+    }
+}

@@ -1,7 +1,10 @@
 //! From a boundary to an optimized T-mesh parameterization of the interior (stages 2–3 of the
-//! method): adapt a balanced quadtree to the boundary, place the vertices (boundary ones on the
-//! curves, inner ones by the Coons patch), then untangle and smooth with the optimizer.
+//! method): adapt a balanced quadtree/octree to the boundary, place the vertices (boundary ones on
+//! the boundary, inner ones by transfinite interpolation), then untangle and smooth with the
+//! optimizer.
 
+mod build;
 mod planar;
 
+pub use build::{transfinite, CubeMap, Domain, DomainOptions, DomainReport};
 pub use planar::{PlanarDomain, PlanarOptions, PlanarReport};

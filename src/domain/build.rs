@@ -1,0 +1,433 @@
+//! The pipeline shared by planar and solid domains, written once for d = 2 and 3: adapt a
+//! balanced tree to the boundary, place the vertices (boundary ones on the boundary, inner ones by
+//! transfinite interpolation), then untangle and smooth with the optimizer.
+
+use std::time::Instant;
+
+use crate::error::{Error, Result};
+use crate::io::vtu::{DataArray, UnstructuredGrid};
+use crate::optimize::laplace::MeshGraph;
+use crate::optimize::motion::{follow_motion, optimize_in_place};
+use crate::optimize::small::{det, Matrix};
+use crate::optimize::{invalid_cells, lattice, NodeSolverOptions, SweepOptions};
+use crate::tmesh::{TMesh, Tree, UNIT};
+
+/// A map from the boundary of the unit square (d = 2) or cube (d = 3) onto the boundary of a
+/// domain.
+pub trait CubeMap<const D: usize> {
+    /// The image of `p`, a point of the boundary of [0,1]^d (some coordinate is exactly 0 or 1).
+    fn boundary_point(&self, p: [f64; D]) -> [f64; D];
+}
+
+/// Options of [`Domain::build`].
+#[derive(Clone, Copy, Debug)]
+pub struct DomainOptions {
+    /// Boundary tolerance, relative to the bounding-box diagonal `L`: a boundary facet of a cell
+    /// is refined while the triangle (2D: its end images and the image of its midpoint) or the
+    /// four tetrahedra (3D: consecutive corner images and the image of the face centre) measure
+    /// more than `tolerance × L^d`.
+    pub tolerance: f64,
+    /// Level of the initial uniform refinement.
+    pub min_level: u8,
+    /// Deepest level of the adaptation.
+    pub max_level: u8,
+    /// Largest number of optimization sweeps.
+    pub max_sweeps: u32,
+    /// Worker threads; 0 uses one per core.
+    pub threads: usize,
+}
+
+impl Default for DomainOptions {
+    fn default() -> Self {
+        DomainOptions {
+            tolerance: 1e-5,
+            min_level: 2,
+            max_level: 9,
+            max_sweeps: 200,
+            threads: 0,
+        }
+    }
+}
+
+/// What [`Domain::build`] did.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct DomainReport {
+    /// Cells of the T-mesh.
+    pub cells: usize,
+    /// Vertices of the T-mesh, hanging ones included.
+    pub vertices: usize,
+    /// Deepest level.
+    pub max_level: u8,
+    /// Largest boundary error, relative (see [`DomainOptions::tolerance`]).
+    pub boundary_error: f64,
+    /// Invalid cells after the transfinite placement.
+    pub invalid_after_placement: usize,
+    /// Invalid cells after the optimization.
+    pub invalid_cells: usize,
+    /// Smallest cell quality (1/mean distortion against the parametric cell).
+    pub min_quality: f64,
+    /// Mean cell quality.
+    pub mean_quality: f64,
+    /// Optimization sweeps (with those of the fallback growth from the bounding box).
+    pub sweeps: u32,
+    /// Wall-clock seconds.
+    pub seconds: f64,
+}
+
+/// A domain with its optimized T-mesh: parametric vertices in [0,1]^d, physical ones in the
+/// domain.
+#[derive(Clone, Debug)]
+pub struct Domain<const D: usize, B> {
+    boundary: B,
+    mesh: TMesh<D>,
+    positions: Vec<[f64; D]>,
+    quality: Vec<f64>,
+}
+
+/// The transfinite interpolation of the boundary at `p` (Coons patch in 2D, Boolean sum of the
+/// six faces minus the twelve edges plus the eight corners in 3D): with `P_k` the linear
+/// interpolation between the two boundary values along coordinate `k`, the Boolean sum
+/// `Σ_{∅≠S} (−1)^{|S|+1} Π_{k∈S} P_k`. Reproduces the boundary on the boundary.
+pub fn transfinite<const D: usize>(boundary: &impl CubeMap<D>, p: [f64; D]) -> [f64; D] {
+    let mut x = [0.0; D];
+    for subset in 1..1usize << D {
+        let dims: Vec<usize> = (0..D).filter(|&k| subset >> k & 1 == 1).collect();
+        let sign = if dims.len() % 2 == 1 { 1.0 } else { -1.0 };
+        for choice in 0..1usize << dims.len() {
+            let mut q = p;
+            let mut weight = sign;
+            for (i, &k) in dims.iter().enumerate() {
+                let one = choice >> i & 1 == 1;
+                weight *= if one { p[k] } else { 1.0 - p[k] };
+                q[k] = if one { 1.0 } else { 0.0 };
+            }
+            if weight != 0.0 {
+                let b = boundary.boundary_point(q);
+                for k in 0..D {
+                    x[k] += weight * b[k];
+                }
+            }
+        }
+    }
+    x
+}
+
+/// Measure of the boundary error of one boundary facet, given the images of its corners in cyclic
+/// order (2 in 2D, 4 in 3D) and of its centre.
+fn facet_error<const D: usize>(corners: &[[f64; D]], centre: [f64; D]) -> f64 {
+    let simplex = |points: &[[f64; D]]| -> f64 {
+        let m: Matrix<D> =
+            std::array::from_fn(|i| std::array::from_fn(|k| points[i + 1][k] - points[0][k]));
+        det(&m).abs()
+    };
+    match D {
+        2 => 0.5 * simplex(&[corners[0], corners[1], centre]),
+        _ => {
+            (0..4)
+                .map(|i| {
+                    simplex(&[
+                        corners[i],
+                        corners[(i + 1) % 4],
+                        corners[(i + 2) % 4],
+                        centre,
+                    ])
+                })
+                .sum::<f64>()
+                / 6.0
+        }
+    }
+}
+
+/// Largest boundary error over the facets of leaf `c` that lie on the boundary of [0,1]^d.
+fn cell_boundary_error<const D: usize>(
+    tree: &Tree<D>,
+    c: usize,
+    boundary: &impl CubeMap<D>,
+) -> f64 {
+    let cell = tree.cells()[c];
+    let lo = cell.lower.map(|v| v as f64 / UNIT as f64);
+    let h = cell.side() as f64 / UNIT as f64;
+    let point =
+        |l: [usize; D]| -> [f64; D] { std::array::from_fn(|k| lo[k] + 0.5 * h * l[k] as f64) };
+    let mut worst = 0.0f64;
+    for k in 0..D {
+        for end in [0usize, 2] {
+            let at = if end == 0 { lo[k] } else { lo[k] + h };
+            if at != 0.0 && at != 1.0 {
+                continue;
+            }
+            // The facet's lattice points: coordinate k fixed, the others cycling round.
+            let others: Vec<usize> = (0..D).filter(|&j| j != k).collect();
+            let ring: &[[usize; 2]] = if D == 2 {
+                &[[0, 0], [2, 0]]
+            } else {
+                &[[0, 0], [2, 0], [2, 2], [0, 2]]
+            };
+            let lattice_at = |a: usize, b: usize| -> [usize; D] {
+                let mut l = [0; D];
+                l[k] = end;
+                l[others[0]] = a;
+                if D == 3 {
+                    l[others[1]] = b;
+                }
+                l
+            };
+            let corners: Vec<[f64; D]> = ring
+                .iter()
+                .map(|&[a, b]| boundary.boundary_point(point(lattice_at(a, b))))
+                .collect();
+            let centre = boundary.boundary_point(point(lattice_at(1, 1)));
+            worst = worst.max(facet_error(&corners, centre));
+        }
+    }
+    worst
+}
+
+/// Corners of the box around the points.
+fn bounding_box<const D: usize>(points: &[[f64; D]]) -> ([f64; D], [f64; D]) {
+    points.iter().fold(
+        ([f64::INFINITY; D], [f64::NEG_INFINITY; D]),
+        |(lo, hi), p| {
+            (
+                std::array::from_fn(|k| lo[k].min(p[k])),
+                std::array::from_fn(|k| hi[k].max(p[k])),
+            )
+        },
+    )
+}
+
+/// Centre and diagonal of the box around the boundary images of a grid of boundary points.
+fn extent<const D: usize>(boundary: &impl CubeMap<D>) -> ([f64; D], f64) {
+    const N: usize = 16;
+    let mut samples = Vec::new();
+    for i in 0..(N + 1).pow(D as u32) {
+        let p: [f64; D] =
+            std::array::from_fn(|k| (i / (N + 1).pow(k as u32) % (N + 1)) as f64 / N as f64);
+        if p.iter().any(|&v| v == 0.0 || v == 1.0) {
+            samples.push(boundary.boundary_point(p));
+        }
+    }
+    let (lo, hi) = bounding_box(&samples);
+    let centre = std::array::from_fn(|k| 0.5 * (lo[k] + hi[k]));
+    let diagonal = (0..D).map(|k| (hi[k] - lo[k]).powi(2)).sum::<f64>().sqrt();
+    (centre, diagonal)
+}
+
+impl<const D: usize, B: CubeMap<D>> Domain<D, B> {
+    /// Adapts a T-mesh to the boundary, places its vertices and optimizes them.
+    /// `progress(sweeps, 0)` is called after every sweep; returning false cancels.
+    pub fn build(
+        boundary: B,
+        options: &DomainOptions,
+        progress: &mut dyn FnMut(usize, usize) -> bool,
+    ) -> Result<(Self, DomainReport)> {
+        let start = Instant::now();
+        if !(options.tolerance.is_finite() && options.tolerance > 0.0) {
+            return Err(Error::invalid(format!(
+                "tolerance = {} must be positive",
+                options.tolerance
+            )));
+        }
+        if options.min_level > options.max_level || options.max_level > 16 {
+            return Err(Error::invalid(
+                "levels must satisfy min_level <= max_level <= 16",
+            ));
+        }
+        let (centre, diagonal) = extent(&boundary);
+        if !(diagonal.is_finite() && diagonal > 0.0) {
+            return Err(Error::invalid("the boundary has no extent"));
+        }
+        let scale = diagonal.powi(D as i32);
+        let mut tree = Tree::<D>::new();
+        tree.refine_uniformly(options.min_level)?;
+        loop {
+            let marked: Vec<usize> = tree
+                .leaves()
+                .into_iter()
+                .filter(|&c| {
+                    tree.cells()[c].level < options.max_level
+                        && cell_boundary_error(&tree, c, &boundary) > options.tolerance * scale
+                })
+                .collect();
+            if marked.is_empty() {
+                break;
+            }
+            for c in marked {
+                tree.refine(c)?;
+            }
+            tree.balance()?;
+        }
+        let mesh = TMesh::new(tree)?;
+        let boundary_error = mesh
+            .tree()
+            .leaves()
+            .into_iter()
+            .map(|c| cell_boundary_error(mesh.tree(), c, &boundary))
+            .fold(0.0, f64::max)
+            / scale;
+        // Optimize in coordinates normalised by the bounding box, so tolerances are dimensionless.
+        let normalise =
+            |p: [f64; D]| -> [f64; D] { std::array::from_fn(|k| (p[k] - centre[k]) / diagonal) };
+        let mut x: Vec<[f64; D]> = mesh
+            .parametric()
+            .into_iter()
+            .enumerate()
+            .map(|(v, p)| {
+                normalise(if mesh.on_boundary(v) {
+                    boundary.boundary_point(p)
+                } else {
+                    transfinite(&boundary, p)
+                })
+            })
+            .collect();
+        let problem = mesh.problem()?;
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(options.threads)
+            .build()
+            .map_err(|e| Error::invalid(format!("cannot start threads: {e}")))?;
+        let invalid_after_placement = invalid_cells(&pool, &problem, &x).len();
+        let sweep_options = SweepOptions {
+            max_sweeps: options.max_sweeps,
+            move_tolerance: 1e-3,
+            node: NodeSolverOptions {
+                gradient_tolerance: 1e-3,
+                max_iterations: 150,
+                relaxation: 1.8,
+            },
+        };
+        let mut stats = optimize_in_place(&pool, &problem, &mut x, &sweep_options, &mut |d| {
+            progress(d, 0)
+        })?;
+        if !invalid_cells(&pool, &problem, &x).is_empty() {
+            // The transfinite start folds too much (deep necks): grow the domain instead from its
+            // bounding box, where the parametric grid is valid, following the boundary in steps.
+            let (lo, hi) = bounding_box(&x);
+            let start: Vec<[f64; D]> = mesh
+                .parametric()
+                .into_iter()
+                .map(|p| std::array::from_fn(|k| lo[k] + p[k] * (hi[k] - lo[k])))
+                .collect();
+            let graph = MeshGraph::new(&problem);
+            let done = stats.sweeps as usize;
+            let (grown, grown_stats) = follow_motion(
+                &pool,
+                &problem,
+                &graph,
+                &start,
+                &x,
+                &sweep_options,
+                &mut |d| progress(done + d, 0),
+            )?;
+            stats.sweeps += grown_stats.sweeps;
+            if invalid_cells(&pool, &problem, &grown).len()
+                < invalid_cells(&pool, &problem, &x).len()
+            {
+                x = grown;
+            }
+        }
+        let quality: Vec<f64> = (0..problem.cell_count())
+            .map(|c| problem.cell_quality(c, &x))
+            .collect();
+        let report = DomainReport {
+            cells: mesh.cell_count(),
+            vertices: mesh.vertex_count(),
+            max_level: (0..mesh.cell_count())
+                .map(|c| mesh.cell_level(c))
+                .max()
+                .unwrap_or(0),
+            boundary_error,
+            invalid_after_placement,
+            invalid_cells: invalid_cells(&pool, &problem, &x).len(),
+            min_quality: quality.iter().copied().fold(f64::INFINITY, f64::min),
+            mean_quality: quality.iter().sum::<f64>() / quality.len() as f64,
+            sweeps: stats.sweeps,
+            seconds: start.elapsed().as_secs_f64(),
+        };
+        let positions = x
+            .into_iter()
+            .map(|p| std::array::from_fn(|k| p[k] * diagonal + centre[k]))
+            .collect();
+        Ok((
+            Domain {
+                boundary,
+                mesh,
+                positions,
+                quality,
+            },
+            report,
+        ))
+    }
+
+    /// The boundary.
+    pub fn boundary(&self) -> &B {
+        &self.boundary
+    }
+
+    /// The T-mesh (parametric).
+    pub fn mesh(&self) -> &TMesh<D> {
+        &self.mesh
+    }
+
+    /// Physical position of every vertex.
+    pub fn positions(&self) -> &[[f64; D]] {
+        &self.positions
+    }
+
+    /// Quality of every cell.
+    pub fn quality(&self) -> &[f64] {
+        &self.quality
+    }
+
+    /// The physical T-mesh as an unstructured grid: in 2D one polygon per cell through its corners
+    /// and hanging vertices, counter-clockwise; in 3D one hexahedron per cell through its corners.
+    /// Point data `parametric`, cell data `quality` and `level`.
+    pub fn to_grid(&self) -> UnstructuredGrid {
+        // 2D: the lattice points of a cell's boundary, counter-clockwise; 3D: the corners in VTK's
+        // hexahedron order.
+        let (ring, cell_type): (&[usize], u8) = if D == 2 {
+            (&[0, 1, 2, 5, 8, 7, 6, 3], VTK_POLYGON)
+        } else {
+            (&[0, 2, 8, 6, 18, 20, 26, 24], VTK_HEXAHEDRON)
+        };
+        let pad =
+            |p: &[f64; D]| -> [f64; 3] { std::array::from_fn(|k| if k < D { p[k] } else { 0.0 }) };
+        let mut grid = UnstructuredGrid {
+            points: self.positions.iter().flat_map(pad).collect(),
+            ..Default::default()
+        };
+        for c in 0..self.mesh.cell_count() {
+            let (lattice_points, vertices) = self.mesh.cell_vertices(c);
+            for &l in ring {
+                if let Some(i) = lattice_points.iter().position(|&x| x == l) {
+                    grid.connectivity.push(vertices[i] as i64);
+                }
+            }
+            grid.offsets.push(grid.connectivity.len() as i64);
+            grid.types.push(cell_type);
+        }
+        debug_assert!(ring.iter().all(|&l| l < lattice::count(D)));
+        grid.point_data.push(DataArray {
+            name: "parametric".into(),
+            components: 3,
+            values: self.mesh.parametric().iter().flat_map(pad).collect(),
+        });
+        grid.cell_data.push(DataArray {
+            name: "quality".into(),
+            components: 1,
+            values: self.quality.clone(),
+        });
+        grid.cell_data.push(DataArray {
+            name: "level".into(),
+            components: 1,
+            values: (0..self.mesh.cell_count())
+                .map(|c| self.mesh.cell_level(c) as f64)
+                .collect(),
+        });
+        grid
+    }
+}
+
+/// VTK's polygon cell type.
+const VTK_POLYGON: u8 = 7;
+/// VTK's hexahedron cell type.
+const VTK_HEXAHEDRON: u8 = 12;
