@@ -6,6 +6,7 @@ pub mod bspline;
 pub mod curve;
 pub mod gismo_xml;
 pub mod loop2d;
+mod solid;
 pub mod trimesh;
 
 pub use bspline::{BSplineCurve, BSplineSurface, KnotVector, Vec3};
@@ -14,4 +15,5 @@ pub use gismo_xml::{
     parse_gismo_xml, read_gismo_curves, read_gismo_surfaces, read_gismo_xml, GismoGeometry,
 };
 pub use loop2d::{BoundaryLoop2, Coastline, LoopOptions, Side};
+pub use solid::SolidBoundary;
 pub use trimesh::{floater_parameterize, signed_areas, CubeFaces, TriMesh, CUBE_FACE_NAMES};

@@ -1,0 +1,649 @@
+//! The boundary of a solid mapped onto the boundary of the unit cube \[0,1\]^3: six B-spline
+//! surfaces of a G+Smo B-rep, or six triangulated faces with a mean-value parameterization each.
+//!
+//! Every cube face has two in-plane coordinates `(a, b)`, the two coordinates other than the
+//! face's own in increasing axis order (`(y, z)` on `x = 0` and `x = 1`, `(x, z)` on `y = 0`
+//! and `y = 1`, `(x, y)` on `z = 0` and `z = 1`), as in [`CubeFaces::parameterize`]. Faces are
+//! numbered in the order of [`CUBE_FACE_NAMES`]: 0 is x = 0, 1 is x = 1, ..., 5 is z = 1.
+
+// Index loops over coordinates and corners read best in this numerical code.
+#![allow(clippy::needless_range_loop)]
+
+use std::path::Path;
+
+use super::bspline::{BSplineSurface, Vec3};
+use super::gismo_xml::read_gismo_surfaces;
+use super::trimesh::{signed_areas, CubeFaces, CUBE_FACE_NAMES};
+use crate::error::{Error, ErrorKind, Result};
+
+/// How a face's in-plane coordinates `(a, b)` become the surface's unit parameters `(s, t)`:
+/// `(x, y) = swap ? (b, a) : (a, b)`, then `s = flip_s ? 1 − x : x`, `t = flip_t ? 1 − y : y`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+struct Orientation {
+    swap: bool,
+    flip_s: bool,
+    flip_t: bool,
+}
+
+impl Orientation {
+    fn all() -> impl Iterator<Item = Orientation> {
+        (0..8).map(|k| Orientation {
+            swap: k & 1 != 0,
+            flip_s: k & 2 != 0,
+            flip_t: k & 4 != 0,
+        })
+    }
+
+    fn apply(self, a: f64, b: f64) -> (f64, f64) {
+        let (x, y) = if self.swap { (b, a) } else { (a, b) };
+        (
+            if self.flip_s { 1.0 - x } else { x },
+            if self.flip_t { 1.0 - y } else { y },
+        )
+    }
+}
+
+/// A face given by a B-spline surface whose knot domain is rescaled to \[0,1\]^2.
+#[derive(Clone, Debug)]
+struct SplineFace {
+    surface: BSplineSurface,
+    orientation: Orientation,
+}
+
+impl SplineFace {
+    fn eval(&self, a: f64, b: f64) -> Vec3 {
+        let (s, t) = self.orientation.apply(a, b);
+        let ((u0, u1), (v0, v1)) = self.surface.domain();
+        // (1 − s)·u0 + s·u1 is exact at both ends of the domain.
+        self.surface
+            .eval((1.0 - s) * u0 + s * u1, (1.0 - t) * v0 + t * v1)
+    }
+}
+
+/// A face given by a triangulation with a parameter point `(a, b)` for every vertex and a
+/// uniform bucket grid over \[0,1\]^2 to locate the triangle holding a parameter point.
+#[derive(Clone, Debug)]
+struct MeshFace {
+    uv: Vec<[f64; 2]>,
+    points: Vec<Vec3>,
+    triangles: Vec<[usize; 3]>,
+    grid_n: usize,
+    buckets: Vec<Vec<u32>>,
+}
+
+fn cross2(a: [f64; 2], b: [f64; 2]) -> f64 {
+    a[0] * b[1] - a[1] * b[0]
+}
+
+fn sub2(a: [f64; 2], b: [f64; 2]) -> [f64; 2] {
+    [a[0] - b[0], a[1] - b[1]]
+}
+
+impl MeshFace {
+    fn new(uv: Vec<[f64; 2]>, points: Vec<Vec3>, triangles: Vec<[usize; 3]>) -> Self {
+        let grid_n = ((triangles.len() as f64 / 2.0).sqrt().ceil() as usize).clamp(1, 1024);
+        let mut buckets: Vec<Vec<u32>> = vec![Vec::new(); grid_n * grid_n];
+        let cell = |x: f64| ((x * grid_n as f64).floor().max(0.0) as usize).min(grid_n - 1);
+        for (k, t) in triangles.iter().enumerate() {
+            let p = t.map(|i| uv[i]);
+            let lo = [0, 1].map(|d| p.iter().map(|q| q[d]).fold(f64::INFINITY, f64::min));
+            let hi = [0, 1].map(|d| p.iter().map(|q| q[d]).fold(f64::NEG_INFINITY, f64::max));
+            for j in cell(lo[1])..=cell(hi[1]) {
+                for i in cell(lo[0])..=cell(hi[0]) {
+                    buckets[i + j * grid_n].push(k as u32);
+                }
+            }
+        }
+        MeshFace {
+            uv,
+            points,
+            triangles,
+            grid_n,
+            buckets,
+        }
+    }
+
+    /// Barycentric coordinates of `q` in triangle `k` (exactly a unit vector at a vertex).
+    fn barycentric(&self, k: usize, q: [f64; 2]) -> [f64; 3] {
+        let t = self.triangles[k];
+        let (p0, p1, p2) = (self.uv[t[0]], self.uv[t[1]], self.uv[t[2]]);
+        let e1 = sub2(p1, p0);
+        let e2 = sub2(p2, p0);
+        let d = sub2(q, p0);
+        let det = cross2(e1, e2);
+        let l1 = cross2(d, e2) / det;
+        let l2 = cross2(e1, d) / det;
+        [1.0 - l1 - l2, l1, l2]
+    }
+
+    /// The triangle among `cands` whose smallest barycentric coordinate of `q` is largest; a
+    /// triangle with `q` as a vertex wins at once, with that vertex's unit coordinates.
+    fn best(&self, cands: impl Iterator<Item = usize>, q: [f64; 2]) -> Option<(usize, [f64; 3])> {
+        let mut best: Option<(usize, [f64; 3], f64)> = None;
+        for k in cands {
+            if let Some(v) = self.triangles[k].iter().position(|&i| self.uv[i] == q) {
+                let mut l = [0.0; 3];
+                l[v] = 1.0;
+                return Some((k, l));
+            }
+            let l = self.barycentric(k, q);
+            let m = l[0].min(l[1]).min(l[2]);
+            if best.map_or(true, |b| m > b.2) {
+                best = Some((k, l, m));
+            }
+        }
+        best.map(|b| (b.0, b.1))
+    }
+
+    fn eval(&self, a: f64, b: f64) -> Vec3 {
+        let q = [a, b];
+        let n = self.grid_n;
+        let i = ((a * n as f64).floor().max(0.0) as usize).min(n - 1);
+        let j = ((b * n as f64).floor().max(0.0) as usize).min(n - 1);
+        let mut found = self.best(self.buckets[i + j * n].iter().map(|&k| k as usize), q);
+        if found.map_or(true, |(_, l)| l[0].min(l[1]).min(l[2]) < -1e-12) {
+            // Outside every triangle of the bucket (only by round-off on the square's boundary):
+            // the triangle nearest in the barycentric sense over the whole face.
+            found = self.best(0..self.triangles.len(), q);
+        }
+        let (k, l) = found.expect("a face has at least one triangle");
+        let mut l = l.map(|x| x.max(0.0));
+        let sum = l[0] + l[1] + l[2];
+        if sum != 1.0 {
+            l = l.map(|x| x / sum);
+        }
+        let t = self.triangles[k];
+        let mut out = [0.0; 3];
+        for d in 0..3 {
+            out[d] = l[0] * self.points[t[0]][d]
+                + l[1] * self.points[t[1]][d]
+                + l[2] * self.points[t[2]][d];
+        }
+        out
+    }
+}
+
+#[derive(Clone, Debug)]
+enum Face {
+    Spline(SplineFace),
+    Mesh(MeshFace),
+}
+
+impl Face {
+    fn eval(&self, a: f64, b: f64) -> Vec3 {
+        match self {
+            Face::Spline(f) => f.eval(a, b),
+            Face::Mesh(f) => f.eval(a, b),
+        }
+    }
+}
+
+/// The boundary of a solid as a map from the boundary of the unit cube \[0,1\]^3: six faces,
+/// each mapping its cube face onto one side of the solid, agreeing on the cube's edges.
+#[derive(Clone, Debug)]
+pub struct SolidBoundary {
+    faces: [Face; 6],
+    corners: [Vec3; 8],
+    bbox: (Vec3, Vec3),
+}
+
+/// The face's own axis and its two in-plane axes `(a, b)`.
+fn face_axes(face: usize) -> (usize, usize, usize) {
+    match face / 2 {
+        0 => (0, 1, 2),
+        1 => (1, 0, 2),
+        _ => (2, 0, 1),
+    }
+}
+
+/// The point of the cube on `face` with in-plane coordinates `(a, b)`.
+fn cube_point(face: usize, a: f64, b: f64) -> Vec3 {
+    let (ax, ia, ib) = face_axes(face);
+    let mut p = [0.0; 3];
+    p[ax] = (face % 2) as f64;
+    p[ia] = a;
+    p[ib] = b;
+    p
+}
+
+fn dist3(a: Vec3, b: Vec3) -> f64 {
+    ((a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2) + (a[2] - b[2]).powi(2)).sqrt()
+}
+
+fn box_of(points: impl Iterator<Item = Vec3>) -> (Vec3, Vec3) {
+    let mut lo = [f64::INFINITY; 3];
+    let mut hi = [f64::NEG_INFINITY; 3];
+    for p in points {
+        for d in 0..3 {
+            lo[d] = lo[d].min(p[d]);
+            hi[d] = hi[d].max(p[d]);
+        }
+    }
+    (lo, hi)
+}
+
+/// The number of samples per cube edge used by the constructors' shared-edge check.
+const EDGE_SAMPLES: usize = 21;
+
+/// The relative tolerance (to the bounding-box diagonal) of the constructors' checks.
+const REL_TOL: f64 = 1e-9;
+
+impl SolidBoundary {
+    /// Reads a G+Smo XML B-rep of exactly six 3D `TensorBSpline2` surfaces bounding a solid.
+    ///
+    /// The surfaces' corner points are matched (within 1e-9 of the control points' bounding-box
+    /// diagonal); they must form the 8 corners of a topological cube, each shared by three
+    /// surfaces. When the file's surfaces are in G+Smo side order (west, east, south, north,
+    /// front, back: opposite surfaces share no corner) they become the faces x = 0, x = 1,
+    /// y = 0, y = 1, z = 0, z = 1; otherwise the first surface is x = 0, its opposite x = 1, the
+    /// first remaining surface y = 0, and so on. The cube corner (i, j, k) is the point shared
+    /// by the faces x = i, y = j, z = k, and each surface's parameters (with its knot domain
+    /// rescaled to \[0,1\]^2) are oriented so that its corners land on those cube corners.
+    /// Errors: I/O and parse errors, not six surfaces, not 3D, corners that do not form a cube,
+    /// and surfaces that do not agree on their shared edges (checked at 21 points an edge,
+    /// within 1e-9 of the bounding-box diagonal).
+    pub fn from_gismo_file(path: impl AsRef<Path>) -> Result<Self> {
+        let path = path.as_ref();
+        let surfaces = read_gismo_surfaces(path)?;
+        Self::from_surfaces(surfaces)
+            .map_err(|e| Error::new(e.kind, format!("{}: {}", path.display(), e.message)))
+    }
+
+    /// Builds the map from six B-spline surfaces, as [`SolidBoundary::from_gismo_file`] does.
+    pub fn from_surfaces(surfaces: Vec<BSplineSurface>) -> Result<Self> {
+        if surfaces.len() != 6 {
+            return Err(Error::invalid(format!(
+                "a solid boundary needs 6 surfaces, got {}",
+                surfaces.len()
+            )));
+        }
+        for (i, s) in surfaces.iter().enumerate() {
+            if s.dim() != 3 {
+                return Err(Error::invalid(format!(
+                    "surface {i} is {}D, a solid boundary needs 3D surfaces",
+                    s.dim()
+                )));
+            }
+        }
+        let cps = surfaces.iter().flat_map(|s| {
+            let (nu, nv) = s.num_control_points();
+            (0..nv).flat_map(move |j| (0..nu).map(move |i| s.control_point(i, j)))
+        });
+        let bbox = box_of(cps);
+        let tol = REL_TOL * dist3(bbox.0, bbox.1);
+        // Corner points (s, t) ∈ {0,1}^2 at index s + 2t, and their clusters.
+        let unit = |s: &BSplineSurface, a: f64, b: f64| {
+            SplineFace {
+                surface: s.clone(),
+                orientation: Orientation {
+                    swap: false,
+                    flip_s: false,
+                    flip_t: false,
+                },
+            }
+            .eval(a, b)
+        };
+        let mut reps: Vec<Vec3> = Vec::new();
+        let mut cid = [[0usize; 4]; 6];
+        for (f, s) in surfaces.iter().enumerate() {
+            for c in 0..4 {
+                let p = unit(s, (c & 1) as f64, (c >> 1) as f64);
+                if p.iter().any(|x| !x.is_finite()) {
+                    return Err(Error::new(
+                        ErrorKind::NotFinite,
+                        format!("surface {f}: corner {c} evaluates to {p:?}"),
+                    ));
+                }
+                cid[f][c] = match reps.iter().position(|&q| dist3(p, q) <= tol) {
+                    Some(k) => k,
+                    None => {
+                        reps.push(p);
+                        reps.len() - 1
+                    }
+                };
+            }
+        }
+        if reps.len() != 8 {
+            return Err(Error::mesh(format!(
+                "the surfaces' corners form {} distinct points, a cube has 8: the surfaces do not share edges",
+                reps.len()
+            )));
+        }
+        let shared = |f: usize, g: usize| cid[f].iter().filter(|c| cid[g].contains(c)).count();
+        let mut opposite = [usize::MAX; 6];
+        for f in 0..6 {
+            for g in 0..6 {
+                if g == f {
+                    continue;
+                }
+                match shared(f, g) {
+                    0 if opposite[f] == usize::MAX => opposite[f] = g,
+                    2 => {}
+                    n => {
+                        return Err(Error::mesh(format!(
+                            "surfaces {f} and {g} share {n} corners; faces of a cube share 2 (adjacent) or 0 (opposite, one each)"
+                        )))
+                    }
+                }
+            }
+            if opposite[f] == usize::MAX {
+                return Err(Error::mesh(format!(
+                    "surface {f} touches all the others: the surfaces do not bound a cube"
+                )));
+            }
+        }
+        // order[face] = surface.
+        let order: [usize; 6] = if opposite[0] == 1 && opposite[2] == 3 && opposite[4] == 5 {
+            [0, 1, 2, 3, 4, 5]
+        } else {
+            let mut order = [0usize; 6];
+            let mut used = [false; 6];
+            for axis in 0..3 {
+                let f = (0..6).find(|&f| !used[f]).expect("a free surface");
+                order[2 * axis] = f;
+                order[2 * axis + 1] = opposite[f];
+                used[f] = true;
+                used[opposite[f]] = true;
+            }
+            order
+        };
+        // Cube corner (i, j, k) = the cluster shared by the faces x = i, y = j, z = k.
+        let mut corner_cluster = [0usize; 8];
+        for c in 0..8 {
+            let fs = [order[c & 1], order[2 + ((c >> 1) & 1)], order[4 + (c >> 2)]];
+            let common: Vec<usize> = (0..8)
+                .filter(|k| fs.iter().all(|&f| cid[f].contains(k)))
+                .collect();
+            if common.len() != 1 {
+                return Err(Error::mesh(format!(
+                    "surfaces {fs:?} share {} corners, expected exactly one",
+                    common.len()
+                )));
+            }
+            corner_cluster[c] = common[0];
+        }
+        let mut faces: Vec<Face> = Vec::with_capacity(6);
+        for face in 0..6 {
+            let sidx = order[face];
+            let orientation = Orientation::all().find(|o| {
+                (0..4).all(|c| {
+                    let (a, b) = ((c & 1) as f64, (c >> 1) as f64);
+                    let p = cube_point(face, a, b);
+                    let cube = p[0] as usize + 2 * p[1] as usize + 4 * p[2] as usize;
+                    let (s, t) = o.apply(a, b);
+                    cid[sidx][s as usize + 2 * t as usize] == corner_cluster[cube]
+                })
+            });
+            let orientation = orientation.ok_or_else(|| {
+                Error::mesh(format!(
+                    "surface {sidx}: its corners are not those of cube face {}",
+                    CUBE_FACE_NAMES[face]
+                ))
+            })?;
+            faces.push(Face::Spline(SplineFace {
+                surface: surfaces[sidx].clone(),
+                orientation,
+            }));
+        }
+        let corners = corner_cluster.map(|k| reps[k]);
+        Self::finish(faces, corners, bbox)
+    }
+
+    /// Reads the six triangulated faces `xmin.obj`, ..., `zmax.obj` of a folder (see
+    /// [`CubeFaces::read_dir`]) and parameterizes each onto its cube face with
+    /// [`CubeFaces::parameterize`]. When that fails (as for solids so much thinner in one axis
+    /// than another that triangle angles round to 0 or π), the faces are parameterized again
+    /// in coordinates normalized to the bounding box, each axis scaled to \[0,1\]; the
+    /// parameter points used are [`SolidBoundary::vertex_parameters`]. A point of a face evaluates to the barycentric interpolation
+    /// of the vertex positions over the triangle of the face's parameter-space triangulation
+    /// holding it (found with a uniform bucket grid; a point outside every triangle by round-off
+    /// takes the nearest one). Evaluation at a vertex's parameter point returns the vertex
+    /// exactly. Errors: I/O and parse errors, a missing face, faces that do not meet at cube
+    /// corners, a degenerate or folded parameterization, and faces that do not agree on their
+    /// shared edges (checked at 21 points an edge, within 1e-9 of the bounding-box diagonal).
+    pub fn from_obj_dir(dir: impl AsRef<Path>) -> Result<Self> {
+        let dir = dir.as_ref();
+        let wrap = |e: Error| Error::new(e.kind, format!("{}: {}", dir.display(), e.message));
+        let cube = CubeFaces::read_dir(dir)?;
+        let bbox = box_of(cube.faces.iter().flat_map(|m| m.vertices.iter().copied()));
+        let params = match cube.parameterize() {
+            Ok(p) => p,
+            Err(first) => {
+                // Retry in coordinates normalized to the unit box: shared vertices stay
+                // identical, and a solid far flatter in one axis than the others no longer
+                // has triangles whose angles round to 0 or π.
+                let mut scaled = cube.clone();
+                for m in scaled.faces.iter_mut() {
+                    for v in m.vertices.iter_mut() {
+                        for d in 0..3 {
+                            let w = bbox.1[d] - bbox.0[d];
+                            if w > 0.0 {
+                                v[d] = (v[d] - bbox.0[d]) / w;
+                            }
+                        }
+                    }
+                }
+                scaled.parameterize().map_err(|e| {
+                    wrap(Error::new(
+                        e.kind,
+                        format!(
+                            "{} (and in coordinates normalized to the bounding box: {})",
+                            first.message, e.message
+                        ),
+                    ))
+                })?
+            }
+        };
+        let mut faces: Vec<Face> = Vec::with_capacity(6);
+        for (face, (mesh, par)) in cube.faces.iter().zip(params.iter()).enumerate() {
+            let name = CUBE_FACE_NAMES[face];
+            let (_, ia, ib) = face_axes(face);
+            let uv: Vec<[f64; 2]> = par.iter().map(|p| [p[ia], p[ib]]).collect();
+            if let Some(i) = uv.iter().position(|p| p.iter().any(|x| !x.is_finite())) {
+                return Err(Error::new(
+                    ErrorKind::NotFinite,
+                    format!(
+                        "{}: face {name}: vertex {i} has parameter {:?}",
+                        dir.display(),
+                        uv[i]
+                    ),
+                ));
+            }
+            let areas = signed_areas(mesh, &uv);
+            let pos = areas.iter().filter(|&&a| a > 0.0).count();
+            let neg = areas.iter().filter(|&&a| a < 0.0).count();
+            if (pos != 0 && neg != 0) || pos + neg != areas.len() || areas.is_empty() {
+                return Err(wrap(Error::mesh(format!(
+                    "face {name}: the parameterization has {} degenerate and {} folded triangles",
+                    areas.len() - pos - neg,
+                    pos.min(neg)
+                ))));
+            }
+            faces.push(Face::Mesh(MeshFace::new(
+                uv,
+                mesh.vertices.clone(),
+                mesh.triangles.clone(),
+            )));
+        }
+        let mut corners = [[0.0; 3]; 8];
+        for c in 0..8 {
+            let face = c & 1; // x = 0 or x = 1: in-plane (y, z)
+            corners[c] = faces[face].eval(((c >> 1) & 1) as f64, (c >> 2) as f64);
+        }
+        Self::finish(faces, corners, bbox).map_err(wrap)
+    }
+
+    /// Checks that the faces agree on the cube's edges and corners, and assembles the map.
+    fn finish(faces: Vec<Face>, corners: [Vec3; 8], bbox: (Vec3, Vec3)) -> Result<Self> {
+        let faces: [Face; 6] = match faces.try_into() {
+            Ok(f) => f,
+            Err(_) => return Err(Error::invalid("a solid boundary needs 6 faces")),
+        };
+        let solid = SolidBoundary {
+            faces,
+            corners,
+            bbox,
+        };
+        let tol = REL_TOL * solid.diagonal();
+        for (edge, (f, g)) in cube_edges().into_iter().enumerate() {
+            for k in 0..EDGE_SAMPLES {
+                let s = k as f64 / (EDGE_SAMPLES - 1) as f64;
+                let p = edge_point(edge, s);
+                let x = solid.eval_on_face(f, p);
+                let y = solid.eval_on_face(g, p);
+                if x.iter().chain(y.iter()).any(|v| !v.is_finite()) {
+                    return Err(Error::new(
+                        ErrorKind::NotFinite,
+                        format!("the point {p:?} of the cube evaluates to {x:?} / {y:?}"),
+                    ));
+                }
+                let d = dist3(x, y);
+                if d > tol {
+                    return Err(Error::mesh(format!(
+                        "faces {} and {} do not share their edge: at the cube point {p:?} they give {x:?} and {y:?}, {d:.3e} apart (tolerance {tol:.3e})",
+                        CUBE_FACE_NAMES[f], CUBE_FACE_NAMES[g]
+                    )));
+                }
+            }
+        }
+        for c in 0..8 {
+            let p = [(c & 1) as f64, ((c >> 1) & 1) as f64, (c >> 2) as f64];
+            for f in 0..6 {
+                if p[f / 2] == (f % 2) as f64 && dist3(solid.eval_on_face(f, p), corners[c]) > tol {
+                    return Err(Error::mesh(format!(
+                        "face {} does not reach the solid's corner {c} at the cube corner {p:?}",
+                        CUBE_FACE_NAMES[f]
+                    )));
+                }
+            }
+        }
+        Ok(solid)
+    }
+
+    /// The physical point of a point `p` of the cube's boundary.
+    ///
+    /// Contract: `p` is on the boundary of \[0,1\]^3 when at least one coordinate is exactly 0
+    /// or 1 and the others are in \[0,1\]. The face used is the first, in the order x = 0,
+    /// x = 1, y = 0, y = 1, z = 0, z = 1, whose coordinate equals its value; on the cube's
+    /// edges and corners all faces containing the point agree to within round-off (see the
+    /// constructors). A point not on the boundary is first clamped to \[0,1\]^3, then projected
+    /// onto the nearest face (the first of the order above on ties); this never fails. A NaN
+    /// coordinate gives NaN in every coordinate.
+    pub fn eval(&self, p: [f64; 3]) -> [f64; 3] {
+        if p.iter().any(|x| x.is_nan()) {
+            return [f64::NAN; 3];
+        }
+        let face = (0..6).find(|&f| p[f / 2] == (f % 2) as f64);
+        match face {
+            Some(f) => self.eval_on_face(f, p),
+            None => {
+                let q = p.map(|x| x.clamp(0.0, 1.0));
+                let mut best = 0;
+                let mut dbest = f64::INFINITY;
+                for f in 0..6 {
+                    let d = (q[f / 2] - (f % 2) as f64).abs();
+                    if d < dbest {
+                        dbest = d;
+                        best = f;
+                    }
+                }
+                self.eval_on_face(best, q)
+            }
+        }
+    }
+
+    /// The physical point of face `face` (0 to 5, in the order of [`CUBE_FACE_NAMES`]) at its
+    /// in-plane coordinates `(a, b)` (clamped to \[0,1\]; see the module documentation for which
+    /// cube coordinates they are). Panics when `face` > 5.
+    pub fn eval_face(&self, face: usize, a: f64, b: f64) -> [f64; 3] {
+        self.faces[face].eval(a.clamp(0.0, 1.0), b.clamp(0.0, 1.0))
+    }
+
+    /// Evaluates face `f` at the in-plane coordinates of the cube point `p`.
+    fn eval_on_face(&self, f: usize, p: Vec3) -> Vec3 {
+        let (_, ia, ib) = face_axes(f);
+        self.eval_face(f, p[ia], p[ib])
+    }
+
+    /// For a solid read with [`SolidBoundary::from_obj_dir`], the in-plane parameter points
+    /// `(a, b)` of the vertices of face `face` (in the face's OBJ vertex order), at which
+    /// [`SolidBoundary::eval_face`] returns the vertices exactly; `None` for B-spline faces.
+    /// Panics when `face` > 5.
+    pub fn vertex_parameters(&self, face: usize) -> Option<&[[f64; 2]]> {
+        match &self.faces[face] {
+            Face::Mesh(m) => Some(&m.uv),
+            Face::Spline(_) => None,
+        }
+    }
+
+    /// The solid's corners: cube corner (i, j, k) at index i + 2j + 4k.
+    pub fn corners(&self) -> [[f64; 3]; 8] {
+        self.corners
+    }
+
+    /// A box `(min, max)` containing the boundary: the vertices' box for triangulated faces, the
+    /// control points' box for B-spline surfaces (which holds the surfaces by the convex hull
+    /// property).
+    pub fn bounding_box(&self) -> ([f64; 3], [f64; 3]) {
+        self.bbox
+    }
+
+    /// The length of the diagonal of [`SolidBoundary::bounding_box`], the length scale of the
+    /// constructors' tolerances.
+    pub fn diagonal(&self) -> f64 {
+        dist3(self.bbox.0, self.bbox.1)
+    }
+}
+
+/// The 12 edges of the cube as the pairs of faces meeting there.
+fn cube_edges() -> [(usize, usize); 12] {
+    let mut out = [(0, 0); 12];
+    let mut n = 0;
+    for f in 0..6 {
+        for g in f + 1..6 {
+            if f / 2 != g / 2 {
+                out[n] = (f, g);
+                n += 1;
+            }
+        }
+    }
+    out
+}
+
+/// The point at parameter `s` ∈ \[0,1\] along edge number `edge` of [`cube_edges`].
+fn edge_point(edge: usize, s: f64) -> Vec3 {
+    let (f, g) = cube_edges()[edge];
+    let free = 3 - f / 2 - g / 2;
+    let mut p = [0.0; 3];
+    p[f / 2] = (f % 2) as f64;
+    p[g / 2] = (g % 2) as f64;
+    p[free] = s;
+    p
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn edges_of_the_cube() {
+        let e = cube_edges();
+        assert_eq!(e.len(), 12);
+        for k in 0..12 {
+            let p = edge_point(k, 0.25);
+            assert_eq!(p.iter().filter(|&&x| x == 0.25).count(), 1);
+        }
+    }
+
+    #[test]
+    fn orientations_are_the_square_symmetries() {
+        let imgs: Vec<_> = Orientation::all()
+            .map(|o| [o.apply(0.0, 0.0), o.apply(1.0, 0.0), o.apply(0.0, 1.0)])
+            .collect();
+        for i in 0..8 {
+            for j in 0..i {
+                assert_ne!(imgs[i], imgs[j]);
+            }
+        }
+    }
+}

@@ -1,0 +1,271 @@
+//! The boundary of a solid on the boundary of the unit cube: G+Smo B-rep and triangulated faces.
+
+use std::collections::HashMap;
+
+use igaparam::boundary::*;
+use igaparam::ErrorKind;
+
+fn data(name: &str) -> String {
+    format!("{}/tests/data/boundary/{name}", env!("CARGO_MANIFEST_DIR"))
+}
+
+fn dist(a: [f64; 3], b: [f64; 3]) -> f64 {
+    ((a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2) + (a[2] - b[2]).powi(2)).sqrt()
+}
+
+/// The in-plane coordinates of a cube point on face `f` (increasing axis order).
+fn in_plane(f: usize, p: [f64; 3]) -> (f64, f64) {
+    match f / 2 {
+        0 => (p[1], p[2]),
+        1 => (p[0], p[2]),
+        _ => (p[0], p[1]),
+    }
+}
+
+/// The largest distance, relative to the bounding-box diagonal, between the evaluations of a
+/// cube edge or corner point from the faces containing it (and from `eval`), over 20 points
+/// per edge.
+fn edge_mismatch(s: &SolidBoundary) -> f64 {
+    let mut worst: f64 = 0.0;
+    for axis in 0..3 {
+        for other in 0..4 {
+            for k in 0..20 {
+                let mut p = [0.0; 3];
+                p[axis] = k as f64 / 19.0;
+                let (o1, o2) = ((axis + 1) % 3, (axis + 2) % 3);
+                p[o1] = (other & 1) as f64;
+                p[o2] = (other >> 1) as f64;
+                let faces: Vec<usize> = (0..6).filter(|&f| p[f / 2] == (f % 2) as f64).collect();
+                assert!(faces.len() >= 2);
+                let reference = s.eval(p);
+                for &f in &faces {
+                    let (a, b) = in_plane(f, p);
+                    let x = s.eval_face(f, a, b);
+                    assert!(x.iter().all(|v| v.is_finite()));
+                    worst = worst.max(dist(x, reference));
+                }
+            }
+        }
+    }
+    worst / s.diagonal()
+}
+
+/// Every face is finite on a 30 × 30 grid and stays near the bounding box.
+fn check_grid(s: &SolidBoundary) {
+    let (lo, hi) = s.bounding_box();
+    let slack = 1e-9 * s.diagonal();
+    for f in 0..6 {
+        for j in 0..30 {
+            for i in 0..30 {
+                let (a, b) = (i as f64 / 29.0, j as f64 / 29.0);
+                let x = s.eval_face(f, a, b);
+                for d in 0..3 {
+                    assert!(x[d].is_finite(), "face {f} at ({a}, {b}) gives {x:?}");
+                    assert!(x[d] >= lo[d] - slack && x[d] <= hi[d] + slack);
+                }
+            }
+        }
+    }
+}
+
+/// The surfaces' corner points, `[surface][s + 2t]`.
+fn surface_corners(surfaces: &[BSplineSurface]) -> Vec<[[f64; 3]; 4]> {
+    surfaces
+        .iter()
+        .map(|s| {
+            let ((u0, u1), (v0, v1)) = s.domain();
+            [
+                s.eval(u0, v0),
+                s.eval(u1, v0),
+                s.eval(u0, v1),
+                s.eval(u1, v1),
+            ]
+        })
+        .collect()
+}
+
+#[test]
+fn duck_brep_edges_and_corners() {
+    let path = data("duck3d_BRep.xml");
+    let s = SolidBoundary::from_gismo_file(&path).unwrap();
+    assert!(s.vertex_parameters(0).is_none());
+    let mismatch = edge_mismatch(&s);
+    eprintln!("duck B-rep: largest edge mismatch {mismatch:.3e} of the diagonal");
+    assert!(mismatch <= 1e-9, "{mismatch}");
+    // The file is in G+Smo side order: cube corner (i, j, k) is the corner shared by surfaces
+    // i (west/east), 2 + j (south/north) and 4 + k (front/back).
+    let surfaces = read_gismo_surfaces(&path).unwrap();
+    let sc = surface_corners(&surfaces);
+    let tol = 1e-9 * s.diagonal();
+    let corners = s.corners();
+    for c in 0..8 {
+        let (i, j, k) = (c & 1, (c >> 1) & 1, c >> 2);
+        for surf in [i, 2 + j, 4 + k] {
+            assert!(
+                sc[surf].iter().any(|&q| dist(q, corners[c]) <= tol),
+                "corner {c} is not a corner of surface {surf}"
+            );
+        }
+        let p = [i as f64, j as f64, k as f64];
+        assert!(dist(s.eval(p), corners[c]) <= tol);
+        for d in 0..c {
+            assert!(dist(corners[c], corners[d]) > 1e-3 * s.diagonal());
+        }
+    }
+    check_grid(&s);
+}
+
+/// The OBJ checks: shared edges, corners (the vertex shared by faces x_i, y_j, z_k), and every
+/// vertex returned at its cube-face coordinates. Returns the relative edge mismatch.
+fn check_obj_solid(dir: &str) -> f64 {
+    let s = SolidBoundary::from_obj_dir(dir).unwrap();
+    let mismatch = edge_mismatch(&s);
+    let cube = CubeFaces::read_dir(dir).unwrap();
+    let key = |p: [f64; 3]| p.map(|x| if x == 0.0 { 0 } else { x.to_bits() });
+    let mut owners: HashMap<[u64; 3], (u8, [f64; 3])> = HashMap::new();
+    for (f, m) in cube.faces.iter().enumerate() {
+        for &v in &m.vertices {
+            owners.entry(key(v)).or_insert((0, v)).0 |= 1 << f;
+        }
+    }
+    for (c, &corner) in s.corners().iter().enumerate() {
+        let mask = (1u8 << (c & 1)) | (1 << (2 + ((c >> 1) & 1))) | (1 << (4 + (c >> 2)));
+        let found: Vec<[f64; 3]> = owners
+            .values()
+            .filter(|o| o.0 & mask == mask)
+            .map(|o| o.1)
+            .collect();
+        assert_eq!(found.len(), 1, "corner {c}");
+        assert_eq!(corner, found[0], "corner {c}");
+        let p = [(c & 1) as f64, ((c >> 1) & 1) as f64, (c >> 2) as f64];
+        assert_eq!(s.eval(p), found[0]);
+    }
+    let diag = s.diagonal();
+    let mut worst: f64 = 0.0;
+    for (f, m) in cube.faces.iter().enumerate() {
+        let par = s.vertex_parameters(f).unwrap();
+        assert_eq!(par.len(), m.vertices.len());
+        for (v, &[a, b]) in m.vertices.iter().zip(par.iter()) {
+            worst = worst.max(dist(s.eval_face(f, a, b), *v));
+            // Through `eval`, a vertex on an edge may be evaluated from another face.
+            let mut p = [(f % 2) as f64; 3];
+            let others: Vec<usize> = (0..3).filter(|&d| d != f / 2).collect();
+            p[others[0]] = a;
+            p[others[1]] = b;
+            assert!(dist(s.eval(p), *v) <= 1e-9 * diag);
+        }
+    }
+    eprintln!(
+        "{dir}: largest edge mismatch {mismatch:.3e}, largest vertex error {:.3e} of the diagonal",
+        worst / diag
+    );
+    assert!(worst <= 1e-12 * diag, "{}", worst / diag);
+    check_grid(&s);
+    mismatch
+}
+
+#[test]
+fn duck_obj_edges_corners_vertices() {
+    let dir = data("duck_faces");
+    let mismatch = check_obj_solid(&dir);
+    assert!(mismatch <= 1e-9, "{mismatch}");
+    // A well-proportioned solid keeps the parameterization of `CubeFaces::parameterize` (up to
+    // round-off: its iterative solve sums in hash-map order, which varies between runs).
+    let s = SolidBoundary::from_obj_dir(&dir).unwrap();
+    let params = CubeFaces::read_dir(&dir).unwrap().parameterize().unwrap();
+    for (f, par) in params.iter().enumerate() {
+        let got = s.vertex_parameters(f).unwrap();
+        for (p, q) in par.iter().zip(got.iter()) {
+            let (a, b) = in_plane(f, *p);
+            assert!((a - q[0]).abs() <= 1e-12 && (b - q[1]).abs() <= 1e-12);
+        }
+    }
+}
+
+#[test]
+fn jacksboro_obj_edges_corners_vertices() {
+    let mismatch = check_obj_solid(&data("jacksboro_faces"));
+    assert!(mismatch <= 1e-9, "{mismatch}");
+}
+
+#[test]
+fn eval_off_the_boundary_is_clamped_and_projected() {
+    let s = SolidBoundary::from_obj_dir(data("duck_faces")).unwrap();
+    // Nearest face of (0.3, 0.5, 0.5) is x = 0.
+    assert_eq!(s.eval([0.3, 0.5, 0.5]), s.eval([0.0, 0.5, 0.5]));
+    assert_eq!(s.eval([0.5, 1.7, 0.4]), s.eval([0.5, 1.0, 0.4]));
+    assert!(s.eval([f64::NAN, 0.0, 0.0]).iter().all(|x| x.is_nan()));
+}
+
+#[test]
+fn errors_are_clear() {
+    // Too few surfaces.
+    let mut surfaces = read_gismo_surfaces(data("duck3d_BRep.xml")).unwrap();
+    let last = surfaces.pop().unwrap();
+    let e = SolidBoundary::from_surfaces(surfaces.clone()).unwrap_err();
+    assert_eq!(e.kind, ErrorKind::InvalidArgument);
+    // A surface moved away: its corners are no longer shared.
+    let (nu, nv) = last.num_control_points();
+    let mut coefs = Vec::new();
+    for j in 0..nv {
+        for i in 0..nu {
+            let p = last.control_point(i, j);
+            coefs.extend_from_slice(&[p[0] + 0.01, p[1], p[2]]);
+        }
+    }
+    let ku = last.knot_vector_u();
+    let kv = last.knot_vector_v();
+    let moved = BSplineSurface::new(
+        (ku.degree(), ku.knots().to_vec()),
+        (kv.degree(), kv.knots().to_vec()),
+        3,
+        coefs,
+        None,
+    )
+    .unwrap();
+    surfaces.push(moved);
+    let e = SolidBoundary::from_surfaces(surfaces).unwrap_err();
+    assert_eq!(e.kind, ErrorKind::InvalidMesh);
+    assert!(e.message.contains("share"), "{}", e.message);
+
+    // A missing face and a NaN vertex.
+    let dir = std::env::temp_dir().join(format!("igaparam_solid_{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    for name in CUBE_FACE_NAMES {
+        std::fs::copy(
+            data(&format!("duck_faces/{name}.obj")),
+            dir.join(format!("{name}.obj")),
+        )
+        .unwrap();
+    }
+    std::fs::remove_file(dir.join("zmax.obj")).unwrap();
+    let e = SolidBoundary::from_obj_dir(&dir).unwrap_err();
+    assert_eq!(e.kind, ErrorKind::Io);
+    assert!(e.message.contains("zmax"), "{}", e.message);
+    let text = std::fs::read_to_string(data("duck_faces/zmax.obj")).unwrap();
+    let first_v = text.find("\nv ").unwrap() + 1;
+    let end = first_v + text[first_v..].find('\n').unwrap();
+    let bad = format!("{}v nan 0 0{}", &text[..first_v], &text[end..]);
+    std::fs::write(dir.join("zmax.obj"), bad).unwrap();
+    let e = SolidBoundary::from_obj_dir(&dir).unwrap_err();
+    assert_eq!(e.kind, ErrorKind::NotFinite, "{}", e.message);
+    // Faces that do not share edges: zmax shifted.
+    let shifted: String = text
+        .lines()
+        .map(|l| {
+            if let Some(rest) = l.strip_prefix("v ") {
+                let x: Vec<f64> = rest
+                    .split_whitespace()
+                    .map(|t| t.parse().unwrap())
+                    .collect();
+                format!("v {} {} {}\n", x[0] + 0.01, x[1], x[2])
+            } else {
+                format!("{l}\n")
+            }
+        })
+        .collect();
+    std::fs::write(dir.join("zmax.obj"), shifted).unwrap();
+    let e = SolidBoundary::from_obj_dir(&dir).unwrap_err();
+    assert_eq!(e.kind, ErrorKind::InvalidMesh, "{}", e.message);
+    std::fs::remove_dir_all(&dir).unwrap();
+}
