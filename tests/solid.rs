@@ -269,3 +269,76 @@ fn errors_are_clear() {
     assert_eq!(e.kind, ErrorKind::InvalidMesh, "{}", e.message);
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+/// The surface with its two parameters exchanged.
+fn transposed(s: &BSplineSurface) -> BSplineSurface {
+    let (nu, nv) = s.num_control_points();
+    let mut coefs = Vec::new();
+    for i in 0..nu {
+        for j in 0..nv {
+            coefs.extend_from_slice(&s.control_point(i, j));
+        }
+    }
+    let (ku, kv) = (s.knot_vector_u(), s.knot_vector_v());
+    BSplineSurface::new(
+        (kv.degree(), kv.knots().to_vec()),
+        (ku.degree(), ku.knots().to_vec()),
+        3,
+        coefs,
+        None,
+    )
+    .unwrap()
+}
+
+#[test]
+fn brep_faces_found_from_adjacency_and_orientation_from_corners() {
+    let surfaces = read_gismo_surfaces(data("duck3d_BRep.xml")).unwrap();
+    let reference = SolidBoundary::from_surfaces(surfaces.clone()).unwrap();
+    let tol = 1e-12 * reference.diagonal();
+
+    // A transposed surface: same faces, its parameters reoriented.
+    let mut t = surfaces.clone();
+    t[2] = transposed(&t[2]);
+    let s = SolidBoundary::from_surfaces(t).unwrap();
+    assert!(edge_mismatch(&s) <= 1e-9);
+    assert_eq!(s.corners(), reference.corners());
+    for f in 0..6 {
+        for k in 0..=10 {
+            let (a, b) = (k as f64 / 10.0, (k * 7 % 11) as f64 / 10.0);
+            assert!(dist(s.eval_face(f, a, b), reference.eval_face(f, a, b)) <= tol);
+        }
+    }
+
+    // Surfaces out of G+Smo side order: faces come from adjacency, and the map is still a
+    // consistent map of the cube's boundary onto the same solid.
+    let perm = [3, 0, 5, 1, 4, 2];
+    let shuffled: Vec<BSplineSurface> = perm.iter().map(|&k| surfaces[k].clone()).collect();
+    let s = SolidBoundary::from_surfaces(shuffled).unwrap();
+    let mismatch = edge_mismatch(&s);
+    assert!(mismatch <= 1e-9, "{mismatch}");
+    let mut got: Vec<[f64; 3]> = s.corners().to_vec();
+    let mut want: Vec<[f64; 3]> = reference.corners().to_vec();
+    got.sort_by(|a, b| a.partial_cmp(b).unwrap());
+    want.sort_by(|a, b| a.partial_cmp(b).unwrap());
+    assert_eq!(got, want);
+    // Face 0 (x = 0) is the first surface given, face 1 its opposite.
+    for k in 0..=10 {
+        let (a, b) = (k as f64 / 10.0, (k * 3 % 11) as f64 / 10.0);
+        let x = s.eval_face(0, a, b);
+        let ((u0, u1), (v0, v1)) = surfaces[3].domain();
+        // The point lies on surface 3 at some parameter; check it is one of its reorientations.
+        let cands = [
+            (a, b),
+            (b, a),
+            (1.0 - a, b),
+            (a, 1.0 - b),
+            (1.0 - a, 1.0 - b),
+        ]
+        .into_iter()
+        .chain([(1.0 - b, a), (b, 1.0 - a), (1.0 - b, 1.0 - a)]);
+        let close = cands
+            .map(|(p, q)| surfaces[3].eval(u0 + p * (u1 - u0), v0 + q * (v1 - v0)))
+            .any(|y| dist(x, y) <= 1e-9 * s.diagonal());
+        assert!(close, "face 0 at ({a}, {b}) is not on surface 3");
+    }
+}
