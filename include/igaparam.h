@@ -93,10 +93,108 @@ typedef enum {
 } igaparam_status;
 
 /**
+ * A planar domain bounded by four curves, and once built its T-mesh parameterization (opaque).
+ * Create with `igaparam_domain_new_from_file` or `igaparam_domain_new_from_polylines`, build with
+ * `igaparam_domain_build`, release with `igaparam_domain_free`.
+ */
+typedef struct igaparam_domain igaparam_domain;
+
+/**
  * A quadrilateral or hexahedral finite-element mesh with node constraints (opaque).
  * Create with `igaparam_mesh_new`, release with `igaparam_mesh_free`.
  */
 typedef struct igaparam_mesh igaparam_mesh;
+
+/**
+ * Progress callback: `user` is the options' `progress_user`; `done` of `total` steps of `stage`
+ * are complete. Return 0 to go on, non-zero to cancel (the call then returns
+ * `IGAPARAM_STATUS_CANCELLED` and leaves the mesh unchanged). Called on the calling thread.
+ */
+typedef int (*igaparam_progress_fn)(void *user, igaparam_stage stage, size_t done, size_t total);
+
+/**
+ * Options of `igaparam_domain_build`; get the defaults from `igaparam_domain_options_default`.
+ */
+typedef struct {
+  /**
+   * Boundary tolerance, positive: a boundary cell edge is refined while the triangle formed by
+   * its end images and the image of its parametric midpoint has an area above
+   * `tolerance × (bounding-box diagonal)²` (default 1e-5).
+   */
+  double tolerance;
+  /**
+   * Level of the initial uniform refinement (default 2).
+   */
+  uint32_t min_level;
+  /**
+   * Deepest level of the adaptation, at least `min_level` and at most 16 (default 9).
+   */
+  uint32_t max_level;
+  /**
+   * Largest number of optimization sweeps (default 200).
+   */
+  uint32_t max_sweeps;
+  /**
+   * Worker threads, at most 4096; 0 (default) uses one per core.
+   */
+  uint32_t threads;
+  /**
+   * Progress callback, or NULL (default). Called with `IGAPARAM_STAGE_OPTIMIZATION`, `done`
+   * sweeps so far and `total` 0; returning non-zero cancels the build.
+   */
+  igaparam_progress_fn progress;
+  /**
+   * Passed to `progress` as its first argument.
+   */
+  void *progress_user;
+} igaparam_domain_options;
+
+/**
+ * What `igaparam_domain_build` did. Quality is the inverse mean distortion of a cell against its
+ * parametric (square) cell: 1 is a square, 0 an inverted cell.
+ */
+typedef struct {
+  /**
+   * Cells of the T-mesh.
+   */
+  size_t cells;
+  /**
+   * Vertices of the T-mesh, hanging ones included.
+   */
+  size_t vertices;
+  /**
+   * Deepest level of a cell.
+   */
+  uint32_t max_level;
+  /**
+   * Largest boundary error (triangle area over the squared bounding-box diagonal).
+   */
+  double boundary_error;
+  /**
+   * Invalid cells (det J <= 0 somewhere) after the Coons placement.
+   */
+  size_t invalid_after_placement;
+  /**
+   * Invalid cells after the optimization; 0 for a usable parameterization.
+   */
+  size_t invalid_cells;
+  /**
+   * Smallest cell quality.
+   */
+  double min_quality;
+  /**
+   * Mean cell quality.
+   */
+  double mean_quality;
+  /**
+   * Optimization sweeps performed.
+   */
+  uint32_t sweeps;
+  /**
+   * Wall-clock seconds of the call.
+   */
+  double seconds;
+} igaparam_domain_report;
 
 /**
  * The ideal shape of a cell: one of the `IGAPARAM_TARGET_*` values.
@@ -107,13 +205,6 @@ typedef int igaparam_target;
  * Where free nodes start: one of the `IGAPARAM_PLACEMENT_*` values.
  */
 typedef int igaparam_placement;
-
-/**
- * Progress callback: `user` is the options' `progress_user`; `done` of `total` steps of `stage`
- * are complete. Return 0 to go on, non-zero to cancel (the call then returns
- * `IGAPARAM_STATUS_CANCELLED` and leaves the mesh unchanged). Called on the calling thread.
- */
-typedef int (*igaparam_progress_fn)(void *user, igaparam_stage stage, size_t done, size_t total);
 
 /**
  * Options of `igaparam_mesh_relocate`; get the defaults from `igaparam_relocate_options_default`.
@@ -303,6 +394,122 @@ size_t igaparam_last_error_message(char *buf,
  * freed.
  */
 const char *igaparam_version(void);
+
+/**
+ * The default domain options.
+ */
+igaparam_domain_options igaparam_domain_options_default(void);
+
+/**
+ * Creates a domain from a boundary file, chosen by its extension (case-insensitive):
+ *
+ * - `.xml`: a G+Smo XML B-rep of four B-spline curves;
+ * - `.txt`: a coastline (points with four marked corners).
+ *
+ * `path` is a NUL-terminated UTF-8 path. `out` receives the new handle, to be released with
+ * `igaparam_domain_free`. Errors: `IGAPARAM_STATUS_IO` when the file cannot be read or parsed
+ * (the message says why), `IGAPARAM_STATUS_INVALID_ARGUMENT` for another extension or when the
+ * curves do not make a closed loop with convex corners.
+ */
+igaparam_status igaparam_domain_new_from_file(const char *path, igaparam_domain **out);
+
+/**
+ * Creates a domain bounded by four polylines.
+ *
+ * - `counts`: 4 entries; `counts[i]` is the number of points of polyline i (at least 2).
+ * - `points`: 4 pointers; `points[i]` holds `counts[i] × 2` doubles (x0 y0 x1 y1 ...).
+ * - `out`: receives the new handle, to be released with `igaparam_domain_free`.
+ *
+ * The polylines may be given in any order and direction: they are chained end to end into a
+ * counter-clockwise loop, the first one becoming the side u = 0. Errors:
+ * `IGAPARAM_STATUS_NOT_FINITE` for a NaN or infinite coordinate, `IGAPARAM_STATUS_INVALID_ARGUMENT`
+ * for a polyline of fewer than two distinct points, a loop that does not close, one of zero area
+ * or a corner whose interior angle reaches 180 degrees. The arrays are copied.
+ */
+igaparam_status igaparam_domain_new_from_polylines(const size_t *counts,
+                                                   const double *const *points,
+                                                   igaparam_domain **out);
+
+/**
+ * Releases a domain. NULL is a no-op.
+ */
+void igaparam_domain_free(igaparam_domain *domain);
+
+/**
+ * Adapts a T-mesh to the boundary (refining boundary cells until `options.tolerance` or
+ * `options.max_level` is met), places its vertices (boundary ones on the curves, inner ones by
+ * the Coons patch) and optimizes them; the result is kept in the handle, replacing that of an
+ * earlier build. `options` may be NULL for the defaults; `report` may be NULL. On any error or
+ * cancellation the handle is unchanged (an earlier build stays) and `*report` is not written.
+ */
+igaparam_status igaparam_domain_build(igaparam_domain *domain,
+                                      const igaparam_domain_options *options,
+                                      igaparam_domain_report *report);
+
+/**
+ * Writes the number of vertices of the built T-mesh (hanging ones included) to `*out`.
+ * Fails with `IGAPARAM_STATUS_INVALID_ARGUMENT` if the domain has not been built.
+ */
+igaparam_status igaparam_domain_vertex_count(const igaparam_domain *domain, size_t *out);
+
+/**
+ * Writes the number of cells of the built T-mesh to `*out`. Fails with
+ * `IGAPARAM_STATUS_INVALID_ARGUMENT` if the domain has not been built.
+ */
+igaparam_status igaparam_domain_cell_count(const igaparam_domain *domain, size_t *out);
+
+/**
+ * Copies the vertices of the built T-mesh: `parametric` receives their (u, v) in [0,1]², and
+ * `physical` their (x, y) in the domain, each `num_vertices × 2` doubles (u0 v0 u1 v1 ...).
+ * Either may be NULL to skip it; `len_each` is the number of doubles each non-NULL buffer holds
+ * (at least `2 × num_vertices`). Fails with `IGAPARAM_STATUS_INVALID_ARGUMENT` if the domain has
+ * not been built.
+ */
+igaparam_status igaparam_domain_copy_vertices(const igaparam_domain *domain,
+                                              double *parametric,
+                                              double *physical,
+                                              size_t len_each);
+
+/**
+ * Copies the quality of every cell of the built T-mesh into `quality` (`len` doubles, at least
+ * `num_cells`): the inverse mean distortion against its parametric cell, in (0, 1], or 0 for a
+ * cell with det J <= 0 somewhere. Fails with `IGAPARAM_STATUS_INVALID_ARGUMENT` if the domain
+ * has not been built.
+ */
+igaparam_status igaparam_domain_copy_cell_quality(const igaparam_domain *domain,
+                                                  double *quality,
+                                                  size_t len);
+
+/**
+ * Copies the cells of the built T-mesh, in the order of their qualities:
+ *
+ * - `levels`: the refinement level of every cell (`num_cells` bytes), or NULL to skip it;
+ * - `bounds`: the parametric box of every cell, `num_cells × 4` doubles `u0 v0 u1 v1` (lower
+ *   then upper corner), or NULL to skip it.
+ *
+ * `len` is the number of cells the buffers hold (`levels` has `len` bytes, `bounds` `4 × len`
+ * doubles), at least `num_cells`. Fails with `IGAPARAM_STATUS_INVALID_ARGUMENT` if the domain has
+ * not been built.
+ */
+igaparam_status igaparam_domain_copy_cells(const igaparam_domain *domain,
+                                           uint8_t *levels,
+                                           double *bounds,
+                                           size_t len);
+
+/**
+ * Writes the built T-mesh to a VTK XML unstructured grid (`.vtu`) at `path` (NUL-terminated
+ * UTF-8): one polygon per cell through its corners and hanging vertices, at the physical
+ * positions; point data `parametric` (u, v, 0), cell data `quality` and `level`. Fails with
+ * `IGAPARAM_STATUS_IO` if the file cannot be written, `IGAPARAM_STATUS_INVALID_ARGUMENT` if the
+ * domain has not been built.
+ */
+igaparam_status igaparam_domain_write_vtu(const igaparam_domain *domain, const char *path);
+
+/**
+ * Writes to `*out` 1 if the domain has been built (by a successful `igaparam_domain_build`),
+ * else 0.
+ */
+igaparam_status igaparam_domain_is_built(const igaparam_domain *domain, int *out);
 
 /**
  * The default relocation options.

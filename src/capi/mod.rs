@@ -10,9 +10,11 @@
 #![allow(clippy::not_unsafe_ptr_arg_deref)]
 
 mod boundary;
+mod domain;
 mod mesh;
 
 pub use boundary::{igaparam_last_error_message, igaparam_status, igaparam_version};
+pub use domain::*;
 pub use mesh::*;
 
 /// Major version of the library this header belongs to.

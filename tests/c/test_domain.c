@@ -1,0 +1,390 @@
+/*
+ * Tests of the planar-domain part of the C API (include/igaparam.h) through its C ABI.
+ *
+ * Usage: test_domain DATA_DIR OUT_DIR, where DATA_DIR holds male_bdry.xml and gran_canaria.txt
+ * and OUT_DIR receives the .vtu files. Builds the bundled domains and a unit square from four
+ * polylines; calls every entry point with NULL, wrong sizes, non-finite values, an unbuilt domain
+ * and invalid boundaries, checking the status, the message and that no output is written;
+ * cancels a build through the progress callback. Prints "N passed, M failed"; exits non-zero if
+ * any check failed.
+ */
+
+#include <math.h>
+#include <stdarg.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "igaparam.h"
+
+static int passed, failed;
+
+static void check_at(int ok, const char *file, int line, const char *format, ...) {
+  if (ok) {
+    passed++;
+    return;
+  }
+  failed++;
+  va_list args;
+  va_start(args, format);
+  fprintf(stderr, "FAIL %s:%d: ", file, line);
+  vfprintf(stderr, format, args);
+  fputc('\n', stderr);
+  va_end(args);
+}
+
+#define CHECK(cond, ...) check_at((cond), __FILE__, __LINE__, __VA_ARGS__)
+
+static const char *message(void) {
+  static char buf[1024];
+  igaparam_last_error_message(buf, sizeof buf);
+  return buf;
+}
+
+/* The call returned `want`, and a non-empty message unless `want` is OK. */
+static void expect_at(igaparam_status got, igaparam_status want, const char *what, const char *file,
+                      int line) {
+  const char *m = message();
+  if (want == IGAPARAM_STATUS_OK) {
+    check_at(got == want, file, line, "%s: status %d, expected OK (%s)", what, (int)got, m);
+  } else {
+    check_at(got == want && m[0] != '\0', file, line,
+             "%s: status %d (message \"%s\"), expected %d with a message", what, (int)got, m,
+             (int)want);
+  }
+}
+
+#define EXPECT(call, want) expect_at((call), (want), #call, __FILE__, __LINE__)
+
+static char data_dir[512], out_dir[512];
+
+static const char *joined(const char *dir, const char *name) {
+  static char buf[2][1024];
+  static int which;
+  which ^= 1;
+  snprintf(buf[which], sizeof buf[which], "%s/%s", dir, name);
+  return buf[which];
+}
+
+/* A sentinel handle value: a failed constructor must leave it. */
+#define UNTOUCHED ((igaparam_domain *)(uintptr_t)0x1234)
+
+/* Four polylines of a unit square, the first being the side x = 0, each of `n` points evenly
+ * spaced. `xy` has room for 4 × n × 2 doubles. */
+static void unit_square(size_t n, double *xy, size_t counts[4], const double *points[4]) {
+  static const double from[4][2] = {{0, 1}, {0, 0}, {1, 0}, {1, 1}};
+  static const double to[4][2] = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
+  for (int s = 0; s < 4; s++) {
+    for (size_t i = 0; i < n; i++) {
+      double t = (double)i / (double)(n - 1);
+      xy[(s * n + i) * 2 + 0] = from[s][0] + t * (to[s][0] - from[s][0]);
+      xy[(s * n + i) * 2 + 1] = from[s][1] + t * (to[s][1] - from[s][1]);
+    }
+    counts[s] = n;
+    points[s] = xy + s * n * 2;
+  }
+}
+
+/* ---------------------------------------------------------------------------------------------
+ * Construction errors
+ * ------------------------------------------------------------------------------------------- */
+
+static void test_constructor_errors(void) {
+  igaparam_domain *d = UNTOUCHED;
+  EXPECT(igaparam_domain_new_from_file(NULL, &d), IGAPARAM_STATUS_NULL_ARGUMENT);
+  EXPECT(igaparam_domain_new_from_file(joined(data_dir, "male_bdry.xml"), NULL),
+         IGAPARAM_STATUS_NULL_ARGUMENT);
+  EXPECT(igaparam_domain_new_from_file(joined(data_dir, "no_such_file.xml"), &d),
+         IGAPARAM_STATUS_IO);
+  EXPECT(igaparam_domain_new_from_file(joined(data_dir, "no_such_file.txt"), &d),
+         IGAPARAM_STATUS_IO);
+  EXPECT(igaparam_domain_new_from_file(joined(data_dir, "README.md"), &d),
+         IGAPARAM_STATUS_INVALID_ARGUMENT);
+  EXPECT(igaparam_domain_new_from_file("", &d), IGAPARAM_STATUS_INVALID_ARGUMENT);
+  CHECK(d == UNTOUCHED, "a failed constructor wrote its handle");
+
+  double xy[4 * 3 * 2];
+  size_t counts[4];
+  const double *points[4];
+  unit_square(3, xy, counts, points);
+  EXPECT(igaparam_domain_new_from_polylines(NULL, points, &d), IGAPARAM_STATUS_NULL_ARGUMENT);
+  EXPECT(igaparam_domain_new_from_polylines(counts, NULL, &d), IGAPARAM_STATUS_NULL_ARGUMENT);
+  EXPECT(igaparam_domain_new_from_polylines(counts, points, NULL), IGAPARAM_STATUS_NULL_ARGUMENT);
+  const double *with_null[4] = {points[0], NULL, points[2], points[3]};
+  EXPECT(igaparam_domain_new_from_polylines(counts, with_null, &d), IGAPARAM_STATUS_NULL_ARGUMENT);
+  size_t too_few[4] = {3, 1, 3, 3};
+  EXPECT(igaparam_domain_new_from_polylines(too_few, points, &d),
+         IGAPARAM_STATUS_INVALID_ARGUMENT);
+
+  /* NaN and infinity. */
+  double saved = xy[3];
+  xy[3] = NAN;
+  EXPECT(igaparam_domain_new_from_polylines(counts, points, &d), IGAPARAM_STATUS_NOT_FINITE);
+  xy[3] = INFINITY;
+  EXPECT(igaparam_domain_new_from_polylines(counts, points, &d), IGAPARAM_STATUS_NOT_FINITE);
+  xy[3] = saved;
+
+  /* An open loop: the top side stops short of the corner (0, 1). */
+  double *top_end = xy + (3 * 3 + 2) * 2;
+  top_end[0] = 0.5;
+  EXPECT(igaparam_domain_new_from_polylines(counts, points, &d),
+         IGAPARAM_STATUS_INVALID_ARGUMENT);
+  unit_square(3, xy, counts, points);
+
+  /* A reflex corner: an L-shape cut into four polylines with the reflex vertex as a corner. */
+  const double l0[] = {0, 0, 2, 0};          /* bottom */
+  const double l1[] = {2, 0, 2, 1, 1, 1};    /* right, then inward to the reflex vertex (1, 1) */
+  const double l2[] = {1, 1, 1, 2, 0, 2};    /* up, then left */
+  const double l3[] = {0, 2, 0, 0};          /* left */
+  const double *lp[4] = {l3, l0, l1, l2};
+  size_t lc[4] = {2, 2, 3, 3};
+  EXPECT(igaparam_domain_new_from_polylines(lc, lp, &d), IGAPARAM_STATUS_INVALID_ARGUMENT);
+  CHECK(d == UNTOUCHED, "a failed constructor wrote its handle");
+
+  /* A zero-area loop: every point the same. */
+  double flat[4 * 2 * 2] = {0};
+  for (int i = 0; i < 16; i += 2) flat[i] = i / 4;
+  const double *fp[4] = {flat, flat + 4, flat + 8, flat + 12};
+  size_t fc[4] = {2, 2, 2, 2};
+  igaparam_status s = igaparam_domain_new_from_polylines(fc, fp, &d);
+  CHECK(s != IGAPARAM_STATUS_OK && message()[0] != '\0', "degenerate loop accepted");
+  CHECK(d == UNTOUCHED, "a failed constructor wrote its handle");
+
+  igaparam_domain_free(NULL);
+}
+
+/* ---------------------------------------------------------------------------------------------
+ * Unit square: physical == parametric; queries before the build; option errors
+ * ------------------------------------------------------------------------------------------- */
+
+static void test_unit_square(void) {
+  double xy[4 * 5 * 2];
+  size_t counts[4];
+  const double *points[4];
+  unit_square(5, xy, counts, points);
+  igaparam_domain *d = NULL;
+  EXPECT(igaparam_domain_new_from_polylines(counts, points, &d), IGAPARAM_STATUS_OK);
+  if (!d) return;
+
+  /* Not built yet. */
+  size_t n = 77;
+  int is_built = 5;
+  EXPECT(igaparam_domain_is_built(d, &is_built), IGAPARAM_STATUS_OK);
+  CHECK(is_built == 0, "is_built = %d before the build", is_built);
+  EXPECT(igaparam_domain_vertex_count(d, &n), IGAPARAM_STATUS_INVALID_ARGUMENT);
+  EXPECT(igaparam_domain_cell_count(d, &n), IGAPARAM_STATUS_INVALID_ARGUMENT);
+  CHECK(n == 77, "a failed count wrote its output");
+  double buf[8];
+  uint8_t levels[2];
+  EXPECT(igaparam_domain_copy_vertices(d, buf, buf, 8), IGAPARAM_STATUS_INVALID_ARGUMENT);
+  EXPECT(igaparam_domain_copy_cell_quality(d, buf, 8), IGAPARAM_STATUS_INVALID_ARGUMENT);
+  EXPECT(igaparam_domain_copy_cells(d, levels, buf, 2), IGAPARAM_STATUS_INVALID_ARGUMENT);
+  EXPECT(igaparam_domain_write_vtu(d, joined(out_dir, "unbuilt.vtu")),
+         IGAPARAM_STATUS_INVALID_ARGUMENT);
+  EXPECT(igaparam_domain_vertex_count(NULL, &n), IGAPARAM_STATUS_NULL_ARGUMENT);
+  EXPECT(igaparam_domain_build(NULL, NULL, NULL), IGAPARAM_STATUS_NULL_ARGUMENT);
+
+  /* Bad options leave the domain unbuilt and the report unwritten. */
+  igaparam_domain_report report;
+  memset(&report, 0xAB, sizeof report);
+  igaparam_domain_report untouched = report;
+  igaparam_domain_options o = igaparam_domain_options_default();
+  CHECK(o.tolerance > 0 && o.min_level <= o.max_level && o.progress == NULL,
+        "default options are not sensible");
+  o.tolerance = NAN;
+  EXPECT(igaparam_domain_build(d, &o, &report), IGAPARAM_STATUS_NOT_FINITE);
+  o = igaparam_domain_options_default();
+  o.tolerance = -1;
+  EXPECT(igaparam_domain_build(d, &o, &report), IGAPARAM_STATUS_INVALID_ARGUMENT);
+  o = igaparam_domain_options_default();
+  o.max_level = 17;
+  EXPECT(igaparam_domain_build(d, &o, &report), IGAPARAM_STATUS_INVALID_ARGUMENT);
+  o = igaparam_domain_options_default();
+  o.min_level = 5;
+  o.max_level = 4;
+  EXPECT(igaparam_domain_build(d, &o, &report), IGAPARAM_STATUS_INVALID_ARGUMENT);
+  o = igaparam_domain_options_default();
+  o.threads = 5000;
+  EXPECT(igaparam_domain_build(d, &o, &report), IGAPARAM_STATUS_INVALID_ARGUMENT);
+  CHECK(memcmp(&report, &untouched, sizeof report) == 0, "a failed build wrote the report");
+  EXPECT(igaparam_domain_is_built(d, &is_built), IGAPARAM_STATUS_OK);
+  CHECK(is_built == 0, "a failed build left the domain built");
+
+  /* Build: a uniform grid of the square, mapped by the identity. */
+  o = igaparam_domain_options_default();
+  o.min_level = 3;
+  o.max_level = 3;
+  EXPECT(igaparam_domain_build(d, &o, &report), IGAPARAM_STATUS_OK);
+  CHECK(report.invalid_cells == 0, "square: %zu invalid cells", report.invalid_cells);
+  CHECK(report.cells == 64 && report.vertices == 81, "square: %zu cells, %zu vertices",
+        report.cells, report.vertices);
+  CHECK(report.max_level == 3, "square: max level %u", report.max_level);
+  CHECK(fabs(report.min_quality - 1) < 1e-9, "square: min quality %g", report.min_quality);
+  size_t nv = 0, nc = 0;
+  EXPECT(igaparam_domain_vertex_count(d, &nv), IGAPARAM_STATUS_OK);
+  EXPECT(igaparam_domain_cell_count(d, &nc), IGAPARAM_STATUS_OK);
+  CHECK(nv == report.vertices && nc == report.cells, "square: counts differ from the report");
+  double *uv = malloc(2 * nv * sizeof *uv), *x = malloc(2 * nv * sizeof *x);
+  EXPECT(igaparam_domain_copy_vertices(d, uv, x, 2 * nv), IGAPARAM_STATUS_OK);
+  double worst = 0;
+  for (size_t i = 0; i < 2 * nv; i++) worst = fmax(worst, fabs(uv[i] - x[i]));
+  CHECK(worst < 1e-9, "square: physical differs from parametric by %g", worst);
+  free(uv);
+  free(x);
+  igaparam_domain_free(d);
+}
+
+/* ---------------------------------------------------------------------------------------------
+ * Bundled domains
+ * ------------------------------------------------------------------------------------------- */
+
+static int cancel_at;  /* the progress callback cancels at its cancel_at-th call */
+static int calls;
+
+static int progress(void *user, igaparam_stage stage, size_t done, size_t total) {
+  (void)done;
+  (void)total;
+  CHECK(user == &calls, "progress: wrong user pointer");
+  CHECK(stage == IGAPARAM_STAGE_OPTIMIZATION, "progress: stage %d", (int)stage);
+  calls++;
+  return calls >= cancel_at;
+}
+
+static void test_file(const char *name, const char *vtu) {
+  igaparam_domain *d = NULL;
+  EXPECT(igaparam_domain_new_from_file(joined(data_dir, name), &d), IGAPARAM_STATUS_OK);
+  if (!d) return;
+
+  igaparam_domain_report report;
+  EXPECT(igaparam_domain_build(d, NULL, &report), IGAPARAM_STATUS_OK);
+  CHECK(report.invalid_cells == 0, "%s: %zu invalid cells", name, report.invalid_cells);
+  CHECK(report.cells > 0 && report.vertices > report.cells / 2, "%s: %zu cells, %zu vertices",
+        name, report.cells, report.vertices);
+  CHECK(report.min_quality > 0 && report.min_quality <= report.mean_quality &&
+            report.mean_quality <= 1,
+        "%s: quality min %g mean %g", name, report.min_quality, report.mean_quality);
+  printf("%s: %zu cells, %zu vertices, max level %u, boundary error %.2e, quality min %.3f mean "
+         "%.3f, %u sweeps, %.2f s\n",
+         name, report.cells, report.vertices, report.max_level, report.boundary_error,
+         report.min_quality, report.mean_quality, report.sweeps, report.seconds);
+
+  size_t nv = 0, nc = 0;
+  EXPECT(igaparam_domain_vertex_count(d, &nv), IGAPARAM_STATUS_OK);
+  EXPECT(igaparam_domain_cell_count(d, &nc), IGAPARAM_STATUS_OK);
+  CHECK(nv == report.vertices && nc == report.cells, "%s: counts differ from the report", name);
+
+  /* Vertices. */
+  double *uv = malloc(2 * nv * sizeof *uv), *x = malloc(2 * nv * sizeof *x);
+  for (size_t i = 0; i < 2 * nv; i++) uv[i] = x[i] = -7;
+  EXPECT(igaparam_domain_copy_vertices(d, uv, x, 2 * nv - 1), IGAPARAM_STATUS_BUFFER_TOO_SMALL);
+  EXPECT(igaparam_domain_copy_vertices(d, NULL, x, 2 * nv - 1), IGAPARAM_STATUS_BUFFER_TOO_SMALL);
+  CHECK(uv[0] == -7 && x[0] == -7, "%s: a failed copy wrote its output", name);
+  EXPECT(igaparam_domain_copy_vertices(d, NULL, NULL, 0), IGAPARAM_STATUS_OK);
+  EXPECT(igaparam_domain_copy_vertices(d, uv, NULL, 2 * nv), IGAPARAM_STATUS_OK);
+  CHECK(x[0] == -7, "%s: a NULL-skipped output was written", name);
+  EXPECT(igaparam_domain_copy_vertices(d, NULL, x, 2 * nv), IGAPARAM_STATUS_OK);
+  int in_square = 1, finite = 1;
+  for (size_t i = 0; i < 2 * nv; i++) {
+    in_square &= uv[i] >= 0 && uv[i] <= 1;
+    finite &= isfinite(x[i]) != 0;
+  }
+  CHECK(in_square, "%s: a parametric vertex is outside [0,1]^2", name);
+  CHECK(finite, "%s: a physical vertex is not finite", name);
+
+  /* Cells. */
+  double *q = malloc(nc * sizeof *q), *bounds = malloc(4 * nc * sizeof *bounds);
+  uint8_t *levels = malloc(nc);
+  EXPECT(igaparam_domain_copy_cell_quality(d, q, nc - 1), IGAPARAM_STATUS_BUFFER_TOO_SMALL);
+  EXPECT(igaparam_domain_copy_cell_quality(d, NULL, nc), IGAPARAM_STATUS_NULL_ARGUMENT);
+  EXPECT(igaparam_domain_copy_cell_quality(d, q, nc), IGAPARAM_STATUS_OK);
+  double qmin = 2;
+  for (size_t c = 0; c < nc; c++) qmin = fmin(qmin, q[c]);
+  CHECK(fabs(qmin - report.min_quality) < 1e-12, "%s: min quality %g, report %g", name, qmin,
+        report.min_quality);
+  EXPECT(igaparam_domain_copy_cells(d, levels, bounds, nc - 1), IGAPARAM_STATUS_BUFFER_TOO_SMALL);
+  EXPECT(igaparam_domain_copy_cells(d, levels, bounds, nc), IGAPARAM_STATUS_OK);
+  double area = 0;
+  int levels_ok = 1, bounds_ok = 1;
+  for (size_t c = 0; c < nc; c++) {
+    const double *b = bounds + 4 * c;
+    double h = b[2] - b[0];
+    levels_ok &= levels[c] <= report.max_level;
+    bounds_ok &= b[0] >= 0 && b[1] >= 0 && b[2] <= 1 && b[3] <= 1 && h > 0 &&
+                 fabs((b[3] - b[1]) - h) < 1e-15 && fabs(h - ldexp(1.0, -levels[c])) < 1e-15;
+    area += h * h;
+  }
+  CHECK(levels_ok, "%s: a level is above the report's max level", name);
+  CHECK(bounds_ok, "%s: a cell's bounds do not match its level", name);
+  CHECK(fabs(area - 1) < 1e-12, "%s: the cells cover an area of %g", name, area);
+
+  /* VTU output. */
+  EXPECT(igaparam_domain_write_vtu(d, NULL), IGAPARAM_STATUS_NULL_ARGUMENT);
+  EXPECT(igaparam_domain_write_vtu(d, joined(out_dir, "no_such_dir/x.vtu")), IGAPARAM_STATUS_IO);
+  const char *path = joined(out_dir, vtu);
+  remove(path);
+  EXPECT(igaparam_domain_write_vtu(d, path), IGAPARAM_STATUS_OK);
+  FILE *f = fopen(path, "rb");
+  long size = 0;
+  if (f) {
+    fseek(f, 0, SEEK_END);
+    size = ftell(f);
+    fclose(f);
+  }
+  CHECK(size > 1000, "%s: %s has %ld bytes", name, path, size);
+
+  /* Cancellation leaves the earlier build: same counts, same vertices. */
+  igaparam_domain_options o = igaparam_domain_options_default();
+  o.progress = progress;
+  o.progress_user = &calls;
+  o.max_level = 4;
+  calls = 0;
+  cancel_at = 1;
+  igaparam_domain_report r2;
+  memset(&r2, 0xAB, sizeof r2);
+  unsigned char untouched[sizeof r2];
+  memcpy(untouched, &r2, sizeof r2);
+  EXPECT(igaparam_domain_build(d, &o, &r2), IGAPARAM_STATUS_CANCELLED);
+  CHECK(calls == 1, "%s: progress called %d times before cancelling", name, calls);
+  CHECK(memcmp(&r2, untouched, sizeof r2) == 0, "%s: a cancelled build wrote the report", name);
+  size_t nv2 = 0, nc2 = 0;
+  EXPECT(igaparam_domain_vertex_count(d, &nv2), IGAPARAM_STATUS_OK);
+  EXPECT(igaparam_domain_cell_count(d, &nc2), IGAPARAM_STATUS_OK);
+  CHECK(nv2 == nv && nc2 == nc, "%s: a cancelled build changed the counts", name);
+  double *x2 = malloc(2 * nv * sizeof *x2);
+  EXPECT(igaparam_domain_copy_vertices(d, NULL, x2, 2 * nv), IGAPARAM_STATUS_OK);
+  CHECK(memcmp(x, x2, 2 * nv * sizeof *x) == 0, "%s: a cancelled build moved vertices", name);
+
+  /* Without cancelling, the callback sees the sweeps and the build replaces the earlier one. */
+  calls = 0;
+  cancel_at = 1 << 30;
+  EXPECT(igaparam_domain_build(d, &o, &r2), IGAPARAM_STATUS_OK);
+  CHECK(calls > 0, "%s: progress never called", name);
+  CHECK(r2.max_level <= 4 && r2.cells < report.cells, "%s: max_level 4 gave %u, %zu cells", name,
+        r2.max_level, r2.cells);
+  EXPECT(igaparam_domain_cell_count(d, &nc2), IGAPARAM_STATUS_OK);
+  CHECK(nc2 == r2.cells, "%s: the rebuild did not replace the mesh", name);
+
+  free(x2);
+  free(q);
+  free(bounds);
+  free(levels);
+  free(uv);
+  free(x);
+  igaparam_domain_free(d);
+}
+
+int main(int argc, char **argv) {
+  if (argc != 3) {
+    fprintf(stderr, "usage: %s DATA_DIR OUT_DIR\n", argv[0]);
+    return 2;
+  }
+  snprintf(data_dir, sizeof data_dir, "%s", argv[1]);
+  snprintf(out_dir, sizeof out_dir, "%s", argv[2]);
+  test_constructor_errors();
+  test_unit_square();
+  test_file("male_bdry.xml", "domain_male.vtu");
+  test_file("gran_canaria.txt", "domain_gran_canaria.vtu");
+  printf("%d passed, %d failed\n", passed, failed);
+  return failed ? 1 : 0;
+}
