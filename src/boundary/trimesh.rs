@@ -4,7 +4,7 @@
 // Index loops over coordinates and vertices read best in this numerical code.
 #![allow(clippy::needless_range_loop)]
 
-use std::collections::HashMap;
+use std::collections::{BTreeMap, HashMap};
 use std::path::Path;
 
 use super::bspline::Vec3;
@@ -26,6 +26,14 @@ fn sub3(a: Vec3, b: Vec3) -> Vec3 {
 
 fn norm3(a: Vec3) -> f64 {
     (a[0] * a[0] + a[1] * a[1] + a[2] * a[2]).sqrt()
+}
+
+fn cross3(a: Vec3, b: Vec3) -> Vec3 {
+    [
+        a[1] * b[2] - a[2] * b[1],
+        a[2] * b[0] - a[0] * b[2],
+        a[0] * b[1] - a[1] * b[0],
+    ]
 }
 
 fn dot3(a: Vec3, b: Vec3) -> f64 {
@@ -233,7 +241,8 @@ pub fn floater_parameterize(mesh: &TriMesh, corners: [usize; 4]) -> Result<Vec<P
         }
     }
     // Mean-value weights.
-    let mut weights: Vec<HashMap<usize, f64>> = vec![HashMap::new(); nv];
+    // Ordered maps: the rows, and so the solution, do not depend on hashing order.
+    let mut weights: Vec<BTreeMap<usize, f64>> = vec![BTreeMap::new(); nv];
     for tri in &mesh.triangles {
         for k in 0..3 {
             let (i, j, l) = (tri[k], tri[(k + 1) % 3], tri[(k + 2) % 3]);
@@ -250,8 +259,18 @@ pub fn floater_parameterize(mesh: &TriMesh, corners: [usize; 4]) -> Result<Vec<P
                     "triangle {tri:?} has a zero-length edge"
                 )));
             }
-            let cos = (dot3(ej, el) / (nj * nl)).clamp(-1.0, 1.0);
-            let half_tan = ((1.0 - cos) / (1.0 + cos)).max(0.0).sqrt();
+            // tan(α/2) = |a×b| / (|a||b| + a·b), or (|a||b| − a·b) / |a×b| for obtuse angles:
+            // no cancellation, finite for angles up to (not including) π.
+            let (cross, dot) = (norm3(cross3(ej, el)), dot3(ej, el));
+            let half_tan = if dot >= 0.0 {
+                cross / (nj * nl + dot)
+            } else if cross > 0.0 {
+                (nj * nl - dot) / cross
+            } else {
+                return Err(Error::mesh(format!(
+                    "triangle {tri:?} is degenerate (an angle of 180°)"
+                )));
+            };
             *weights[i].entry(j).or_insert(0.0) += half_tan / nj;
             *weights[i].entry(l).or_insert(0.0) += half_tan / nl;
         }
