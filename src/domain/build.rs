@@ -19,6 +19,39 @@ pub trait CubeMap<const D: usize> {
     fn boundary_point(&self, p: [f64; D]) -> [f64; D];
 }
 
+/// A boundary map seen with its first two parametric coordinates swapped when `swap` is set: a
+/// left-handed boundary parameterization becomes right-handed, so the cells are not inverted.
+struct Oriented<'a, B> {
+    inner: &'a B,
+    swap: bool,
+}
+
+impl<const D: usize, B: CubeMap<D>> CubeMap<D> for Oriented<'_, B> {
+    fn boundary_point(&self, mut p: [f64; D]) -> [f64; D] {
+        if self.swap {
+            p.swap(0, 1);
+        }
+        self.inner.boundary_point(p)
+    }
+}
+
+/// Whether the transfinite interpolation of the boundary reverses orientation (negative Jacobian
+/// determinant, by central differences, at the centre of the parametric domain).
+fn is_left_handed<const D: usize>(boundary: &impl CubeMap<D>) -> bool {
+    const H: f64 = 1e-3;
+    let jacobian: Matrix<D> = std::array::from_fn(|i| {
+        let column: [f64; D] = {
+            let (mut plus, mut minus) = ([0.5; D], [0.5; D]);
+            plus[i] += H;
+            minus[i] -= H;
+            let (a, b) = (transfinite(boundary, plus), transfinite(boundary, minus));
+            std::array::from_fn(|k| (a[k] - b[k]) / (2.0 * H))
+        };
+        column
+    });
+    det(&jacobian) < 0.0
+}
+
 /// Options of [`Domain::build`].
 #[derive(Clone, Copy, Debug)]
 pub struct DomainOptions {
@@ -72,6 +105,9 @@ pub struct DomainReport {
     pub sweeps: u32,
     /// Wall-clock seconds.
     pub seconds: f64,
+    /// Whether the boundary's parameterization is left-handed, so that the T-mesh's first two
+    /// parametric coordinates are swapped relative to it.
+    pub swapped: bool,
 }
 
 /// A domain with its optimized T-mesh: parametric vertices in [0,1]^d, physical ones in the
@@ -233,7 +269,12 @@ impl<const D: usize, B: CubeMap<D>> Domain<D, B> {
                 "levels must satisfy min_level <= max_level <= 16",
             ));
         }
-        let (centre, diagonal) = extent(&boundary);
+        let swapped = is_left_handed(&boundary);
+        let oriented = Oriented {
+            inner: &boundary,
+            swap: swapped,
+        };
+        let (centre, diagonal) = extent(&oriented);
         if !(diagonal.is_finite() && diagonal > 0.0) {
             return Err(Error::invalid("the boundary has no extent"));
         }
@@ -246,7 +287,7 @@ impl<const D: usize, B: CubeMap<D>> Domain<D, B> {
                 .into_iter()
                 .filter(|&c| {
                     tree.cells()[c].level < options.max_level
-                        && cell_boundary_error(&tree, c, &boundary) > options.tolerance * scale
+                        && cell_boundary_error(&tree, c, &oriented) > options.tolerance * scale
                 })
                 .collect();
             if marked.is_empty() {
@@ -262,7 +303,7 @@ impl<const D: usize, B: CubeMap<D>> Domain<D, B> {
             .tree()
             .leaves()
             .into_iter()
-            .map(|c| cell_boundary_error(mesh.tree(), c, &boundary))
+            .map(|c| cell_boundary_error(mesh.tree(), c, &oriented))
             .fold(0.0, f64::max)
             / scale;
         // Optimize in coordinates normalised by the bounding box, so tolerances are dimensionless.
@@ -274,9 +315,9 @@ impl<const D: usize, B: CubeMap<D>> Domain<D, B> {
             .enumerate()
             .map(|(v, p)| {
                 normalise(if mesh.on_boundary(v) {
-                    boundary.boundary_point(p)
+                    oriented.boundary_point(p)
                 } else {
-                    transfinite(&boundary, p)
+                    transfinite(&oriented, p)
                 })
             })
             .collect();
@@ -342,6 +383,7 @@ impl<const D: usize, B: CubeMap<D>> Domain<D, B> {
             mean_quality: quality.iter().sum::<f64>() / quality.len() as f64,
             sweeps: stats.sweeps,
             seconds: start.elapsed().as_secs_f64(),
+            swapped,
         };
         let positions = x
             .into_iter()

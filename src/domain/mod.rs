@@ -5,6 +5,8 @@
 
 mod build;
 mod planar;
+mod solid;
 
 pub use build::{transfinite, CubeMap, Domain, DomainOptions, DomainReport};
 pub use planar::{PlanarDomain, PlanarOptions, PlanarReport};
+pub use solid::{SolidDomain, SolidOptions, SolidReport};

@@ -20,6 +20,10 @@ const MIN_STEP: f64 = 1.0 / 256.0;
 /// Intermediate steps stop at a looser move tolerance: only the last one needs to be smooth.
 const INTERMEDIATE_TOLERANCE_FACTOR: f64 = 10.0;
 
+/// The sweeps of all steps together stay below this many times the sweep limit of one step
+/// (the last step excepted).
+const SWEEP_BUDGET_FACTOR: u32 = 10;
+
 /// Largest prescribed move, in local cell sizes, applied in one step.
 const CELLS_PER_STEP: f64 = 4.0;
 
@@ -74,6 +78,8 @@ pub fn follow_motion<const D: usize>(
             })?;
             Ok((s, invalid_cells(pool, problem, x).is_empty()))
         };
+    // Bounds the work when steps keep failing: the remaining motion then comes in one step.
+    let budget = options.max_sweeps.saturating_mul(SWEEP_BUDGET_FACTOR);
     let mut done_t = 0.0;
     let mut state = start.to_vec();
     let first_dt = 1.0 / initial_steps(problem, start, goal) as f64;
@@ -85,7 +91,7 @@ pub fn follow_motion<const D: usize>(
         pool.install(|| graph.harmonic_placement(problem, &state, &mut trial));
         let (sweep, valid) = run(&mut trial, stats.sweeps, t >= 1.0)?;
         stats.sweeps += sweep.sweeps;
-        if !valid && dt > MIN_STEP {
+        if !valid && dt > MIN_STEP && stats.sweeps < budget {
             dt *= 0.5;
             continue;
         }
@@ -95,7 +101,7 @@ pub fn follow_motion<const D: usize>(
         state = trial;
         // After a success the step grows back; a failure even at the smallest step will not be
         // repaired by more small steps, so the rest comes in one.
-        dt = if valid {
+        dt = if valid && stats.sweeps < budget {
             (2.0 * dt).min(first_dt)
         } else {
             1.0 - done_t

@@ -1,0 +1,17 @@
+//! Solids bounded by six surfaces mapped onto the faces of the unit cube.
+
+use super::build::{CubeMap, Domain, DomainOptions, DomainReport};
+use crate::boundary::SolidBoundary;
+
+impl CubeMap<3> for SolidBoundary {
+    fn boundary_point(&self, p: [f64; 3]) -> [f64; 3] {
+        self.eval(p)
+    }
+}
+
+/// A solid with its optimized T-mesh.
+pub type SolidDomain = Domain<3, SolidBoundary>;
+/// Options of [`SolidDomain::build`].
+pub type SolidOptions = DomainOptions;
+/// What [`SolidDomain::build`] did.
+pub type SolidReport = DomainReport;
