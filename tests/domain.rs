@@ -35,17 +35,24 @@ fn mapped_square(f: impl Fn([f64; 2]) -> [f64; 2], n: usize) -> BoundaryLoop2 {
     .unwrap()
 }
 
-#[test]
-fn the_unit_square_gives_the_identity() {
-    let (domain, report) = build(mapped_square(|p| p, 4), &PlanarOptions::default());
-    assert_eq!(report.invalid_cells, 0);
-    let worst = domain
+/// Largest coordinate difference between the physical and the parametric vertices.
+fn distance_from_parametric<const D: usize, B: igaparam::domain::CubeMap<D>>(
+    domain: &igaparam::domain::Domain<D, B>,
+) -> f64 {
+    domain
         .mesh()
         .parametric()
         .iter()
         .zip(domain.positions())
-        .map(|(a, b)| (a[0] - b[0]).abs().max((a[1] - b[1]).abs()))
-        .fold(0.0, f64::max);
+        .map(|(a, b)| (0..D).map(|k| (a[k] - b[k]).abs()).fold(0.0, f64::max))
+        .fold(0.0, f64::max)
+}
+
+#[test]
+fn the_unit_square_gives_the_identity() {
+    let (domain, report) = build(mapped_square(|p| p, 4), &PlanarOptions::default());
+    assert_eq!(report.invalid_cells, 0);
+    let worst = distance_from_parametric(&domain);
     assert!(worst < 1e-12, "moved by {worst}");
     assert!((report.min_quality - 1.0).abs() < 1e-12);
 }
@@ -110,13 +117,7 @@ fn the_unit_cube_gives_the_identity() {
         igaparam::domain::Domain::build(MappedCube(|p: [f64; 3]| p), &options, &mut |_, _| true)
             .unwrap();
     assert_eq!(report.invalid_cells, 0);
-    let worst = domain
-        .mesh()
-        .parametric()
-        .iter()
-        .zip(domain.positions())
-        .map(|(a, b)| (0..3).map(|k| (a[k] - b[k]).abs()).fold(0.0, f64::max))
-        .fold(0.0, f64::max);
+    let worst = distance_from_parametric(&domain);
     assert!(worst < 1e-12, "moved by {worst}");
 }
 

@@ -4,7 +4,7 @@
 mod common;
 
 use common::Lcg;
-use igaparam::optimize::{invalid_cells, optimize, NodeSolverOptions, SweepOptions};
+use igaparam::optimize::{invalid_cells, optimize, NodeSolverOptions, Problem, SweepOptions};
 use igaparam::tmesh::{TMesh, Tree, UNIT};
 
 fn random_tree<const D: usize>(refinements: usize, seed: u64) -> Tree<D> {
@@ -72,13 +72,19 @@ fn sweep_options() -> SweepOptions {
     }
 }
 
-fn check_identity_is_fixed<const D: usize>(tree: Tree<D>) {
+/// The T-mesh of a tree, its optimization problem and a pool of two threads.
+fn setup<const D: usize>(tree: Tree<D>) -> (TMesh<D>, Problem<D>, rayon::ThreadPool) {
     let mesh = TMesh::new(tree).unwrap();
     let problem = mesh.problem().unwrap();
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(2)
         .build()
         .unwrap();
+    (mesh, problem, pool)
+}
+
+fn check_identity_is_fixed<const D: usize>(tree: Tree<D>) {
+    let (mesh, problem, pool) = setup(tree);
     let mut x = mesh.parametric();
     let before = x.clone();
     optimize(&pool, &problem, &mut x, &sweep_options(), &mut |_, _| true).unwrap();
@@ -99,12 +105,7 @@ fn the_identity_is_a_fixed_point_of_t_meshes() {
 
 #[test]
 fn perturbed_t_meshes_are_repaired() {
-    let mesh = TMesh::new(random_tree::<2>(40, 17)).unwrap();
-    let problem = mesh.problem().unwrap();
-    let pool = rayon::ThreadPoolBuilder::new()
-        .num_threads(2)
-        .build()
-        .unwrap();
+    let (mesh, problem, pool) = setup(random_tree::<2>(40, 17));
     let mut x = mesh.parametric();
     let mut rng = Lcg(99);
     for (v, p) in x.iter_mut().enumerate() {
