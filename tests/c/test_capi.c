@@ -22,21 +22,7 @@
  * Checks
  * ------------------------------------------------------------------------------------------- */
 
-static int passed, failed;
-
-static void check_at(int ok, const char *file, int line, const char *format, ...) {
-  if (ok) {
-    passed++;
-    return;
-  }
-  failed++;
-  va_list args;
-  va_start(args, format);
-  fprintf(stderr, "FAIL %s:%d: ", file, line);
-  vfprintf(stderr, format, args);
-  fputc('\n', stderr);
-  va_end(args);
-}
+#include "check.h"
 
 #define CHECK(cond) check_at((cond) != 0, __FILE__, __LINE__, "%s", #cond)
 #define EXPECT_OK(call) expect_ok_at((call), __FILE__, __LINE__, #call)

@@ -18,21 +18,7 @@
 
 #include "igaparam.h"
 
-static int passed, failed;
-
-static void check_at(int ok, const char *file, int line, const char *format, ...) {
-  if (ok) {
-    passed++;
-    return;
-  }
-  failed++;
-  va_list args;
-  va_start(args, format);
-  fprintf(stderr, "FAIL %s:%d: ", file, line);
-  vfprintf(stderr, format, args);
-  fputc('\n', stderr);
-  va_end(args);
-}
+#include "check.h"
 
 #define CHECK(cond, ...) check_at((cond), __FILE__, __LINE__, __VA_ARGS__)
 
