@@ -47,6 +47,11 @@ impl Error {
         Self::new(ErrorKind::InvalidMesh, message)
     }
 
+    /// The [`ErrorKind::Cancelled`] error of a progress callback that asked to stop.
+    pub fn cancelled() -> Self {
+        Self::new(ErrorKind::Cancelled, "cancelled by the progress callback")
+    }
+
     /// An [`ErrorKind::Io`] error.
     pub fn io(message: impl Into<String>) -> Self {
         Self::new(ErrorKind::Io, message)

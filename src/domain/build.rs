@@ -9,7 +9,7 @@ use crate::io::vtu::{DataArray, UnstructuredGrid};
 use crate::optimize::laplace::MeshGraph;
 use crate::optimize::motion::{follow_motion, optimize_in_place};
 use crate::optimize::small::{det, Matrix};
-use crate::optimize::{invalid_cells, lattice, NodeSolverOptions, SweepOptions};
+use crate::optimize::{invalid_cells, lattice, NodeSolverOptions, QualitySummary, SweepOptions};
 use crate::tmesh::{TMesh, Tree, UNIT};
 
 /// A map from the boundary of the unit square (d = 2) or cube (d = 3) onto the boundary of a
@@ -366,9 +366,7 @@ impl<const D: usize, B: CubeMap<D>> Domain<D, B> {
                 x = grown;
             }
         }
-        let quality: Vec<f64> = (0..problem.cell_count())
-            .map(|c| problem.cell_quality(c, &x))
-            .collect();
+        let quality = QualitySummary::of(&pool, &problem, &x);
         let report = DomainReport {
             cells: mesh.cell_count(),
             vertices: mesh.vertex_count(),
@@ -379,8 +377,8 @@ impl<const D: usize, B: CubeMap<D>> Domain<D, B> {
             boundary_error,
             invalid_after_placement,
             invalid_cells: invalid_cells(&pool, &problem, &x).len(),
-            min_quality: quality.iter().copied().fold(f64::INFINITY, f64::min),
-            mean_quality: quality.iter().sum::<f64>() / quality.len() as f64,
+            min_quality: quality.min,
+            mean_quality: quality.mean,
             sweeps: stats.sweeps,
             seconds: start.elapsed().as_secs_f64(),
             swapped,
@@ -394,7 +392,7 @@ impl<const D: usize, B: CubeMap<D>> Domain<D, B> {
                 boundary,
                 mesh,
                 positions,
-                quality,
+                quality: quality.quality,
             },
             report,
         ))

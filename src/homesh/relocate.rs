@@ -5,8 +5,8 @@ use std::time::Instant;
 use super::{project, Mesh};
 use crate::error::{Error, ErrorKind, Result};
 use crate::optimize::{
-    invalid_cells, laplace::MeshGraph, motion, small::Vector, NodeSolverOptions, SweepOptions,
-    TargetKind,
+    invalid_cells, laplace::MeshGraph, motion, small::Vector, NodeSolverOptions, QualitySummary,
+    SweepOptions, TargetKind,
 };
 
 /// Where the free nodes start before the optimizer runs.
@@ -172,7 +172,7 @@ impl Mesh {
             ..Default::default()
         };
         if !progress(Stage::Placement, 0, 1) {
-            return Err(cancelled());
+            return Err(Error::cancelled());
         }
         let mut x = goal.clone();
         let graph = MeshGraph::new(&problem);
@@ -184,7 +184,7 @@ impl Mesh {
         }
         report.invalid_after_placement = invalid_cells(pool, &problem, &x).len();
         if !progress(Stage::Placement, 1, 1) {
-            return Err(cancelled());
+            return Err(Error::cancelled());
         }
         if options.optimize {
             let sweep_options = SweepOptions {
@@ -216,20 +216,14 @@ impl Mesh {
             report.steps = stats.steps;
             report.converged = stats.converged;
         }
-        let quality: Vec<f64> = (0..problem.cell_count())
-            .map(|c| problem.cell_quality(c, &x))
-            .collect();
+        let quality = QualitySummary::of(pool, &problem, &x);
         report.invalid_after = invalid_cells(pool, &problem, &x).len();
-        report.min_quality = quality.iter().copied().fold(f64::INFINITY, f64::min);
-        report.mean_quality = quality.iter().sum::<f64>() / quality.len() as f64;
+        report.min_quality = quality.min;
+        report.mean_quality = quality.mean;
         for (p, q) in self.positions.iter_mut().zip(&x) {
             p[..D].copy_from_slice(q);
         }
         report.seconds = start.elapsed().as_secs_f64();
         Ok(report)
     }
-}
-
-fn cancelled() -> Error {
-    Error::new(ErrorKind::Cancelled, "cancelled by the progress callback")
 }

@@ -18,4 +18,4 @@ pub mod sweep;
 pub use node::NodeSolverOptions;
 pub use pattern::CellPattern;
 pub use problem::{CellSpec, Problem, TargetKind};
-pub use sweep::{invalid_cells, optimize, SweepOptions, SweepStats};
+pub use sweep::{invalid_cells, optimize, QualitySummary, SweepOptions, SweepStats};

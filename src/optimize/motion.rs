@@ -117,7 +117,6 @@ fn initial_steps<const D: usize>(
     start: &[Vector<D>],
     goal: &[Vector<D>],
 ) -> usize {
-    let mut terms = Vec::new();
     let mut ratio = 0.0f64;
     for v in 0..start.len() {
         if problem.free_mask(v) == (1 << D) - 1 {
@@ -130,7 +129,7 @@ fn initial_steps<const D: usize>(
         if moved == 0.0 {
             continue;
         }
-        let (_, length) = problem.node_terms(v, start, &mut terms);
+        let length = problem.node_length(v);
         if length > 0.0 {
             ratio = ratio.max(moved / (2.0 * length));
         }

@@ -242,6 +242,19 @@ impl<const D: usize> Problem<D> {
         Self::POINTS as f64 / eta
     }
 
+    /// Local length of `node`: the mean target size of its cells (0 for a node in no cell).
+    pub fn node_length(&self, node: usize) -> f64 {
+        let incident = self.incident_cells(node);
+        if incident.is_empty() {
+            return 0.0;
+        }
+        let sum: f64 = incident
+            .iter()
+            .map(|&(c, _)| self.target_length[c as usize])
+            .sum();
+        sum / incident.len() as f64
+    }
+
     /// The objective terms of `node` (all other nodes fixed at `positions`), the sum of its
     /// cell weights, and a local length (mean target size of the incident cells).
     pub fn node_terms(
@@ -252,7 +265,6 @@ impl<const D: usize> Problem<D> {
     ) -> (f64, f64) {
         terms.clear();
         let mut weight_sum = 0.0;
-        let mut length = 0.0;
         let range = self.incidence_start[node]..self.incidence_start[node + 1];
         let incident = &self.incidence[range.clone()];
         for (&(c, r), &weight) in incident.iter().zip(&self.incidence_weight[range]) {
@@ -283,11 +295,7 @@ impl<const D: usize> Problem<D> {
                     w,
                 });
             }
-            length += self.target_length[c];
         }
-        if !incident.is_empty() {
-            length /= incident.len() as f64;
-        }
-        (weight_sum, length)
+        (weight_sum, self.node_length(node))
     }
 }

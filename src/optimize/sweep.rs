@@ -7,7 +7,7 @@ use super::colour::colour_nodes;
 use super::node::{minimise, NodeSolverOptions};
 use super::problem::Problem;
 use super::small::Vector;
-use crate::error::{Error, ErrorKind, Result};
+use crate::error::{Error, Result};
 
 /// When the sweeps stop.
 #[derive(Clone, Copy, Debug)]
@@ -95,10 +95,7 @@ pub fn optimize<const D: usize>(
         stats.sweeps = sweep;
         stats.last_max_move = max_move;
         if !progress(sweep as usize, total) {
-            return Err(Error::new(
-                ErrorKind::Cancelled,
-                "cancelled by the progress callback",
-            ));
+            return Err(Error::cancelled());
         }
         let quality = QualitySummary::of(pool, problem, positions);
         let stalled = history
@@ -126,16 +123,22 @@ pub fn optimize<const D: usize>(
 /// Sweeps over which a stalled quality ends the optimization.
 const STALL_WINDOW: usize = 10;
 
-/// Quality of the whole mesh after a sweep.
+/// Quality of every cell of a mesh and its summary.
 #[derive(Clone, Debug)]
-struct QualitySummary {
-    min: f64,
-    mean: f64,
-    invalid: Vec<usize>,
+pub struct QualitySummary {
+    /// Quality of every cell (see [`Problem::cell_quality`]).
+    pub quality: Vec<f64>,
+    /// Smallest cell quality.
+    pub min: f64,
+    /// Mean cell quality.
+    pub mean: f64,
+    /// Cells of quality 0 (inverted somewhere).
+    pub invalid: Vec<usize>,
 }
 
 impl QualitySummary {
-    fn of<const D: usize>(
+    /// Evaluates every cell in parallel; the summary does not depend on the thread count.
+    pub fn of<const D: usize>(
         pool: &ThreadPool,
         problem: &Problem<D>,
         positions: &[Vector<D>],
@@ -151,6 +154,7 @@ impl QualitySummary {
             min: quality.iter().copied().fold(f64::INFINITY, f64::min),
             mean: quality.iter().sum::<f64>() / quality.len().max(1) as f64,
             invalid: (0..quality.len()).filter(|&c| quality[c] <= 0.0).collect(),
+            quality,
         }
     }
 
