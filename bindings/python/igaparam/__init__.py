@@ -1,5 +1,6 @@
 """igaparam: relocation of the free nodes of quadrilateral/hexahedral finite-element meshes
-after their boundary moves (ctypes bindings of the C API, with numpy arrays).
+after their boundary moves, and T-mesh parameterizations of planar domains from their boundary
+(ctypes bindings of the C API, with numpy arrays).
 
 Example::
 
@@ -10,17 +11,24 @@ Example::
         report = mesh.relocate()
         xyz = mesh.positions                           # (n, 3)
 
+    with igaparam.Domain.from_file("puzzle3_bdry.xml") as domain:
+        report = domain.build()                        # report.invalid_cells == 0
+        xy, quality = domain.physical_vertices, domain.cell_quality
+
 The shared library is found through the environment variable ``IGAPARAM_LIBRARY`` (its path),
 else next to this package, else with ``ctypes.util.find_library("igaparam")``.
 """
 
 from ._capi import CellType, Stage, Status
+from ._domain import Domain, DomainReport
 from ._mesh import IgaparamError, Mesh, RelocateReport, cell_type_code, nodes_per_cell, version
 
 __version__ = "0.1.0"
 
 __all__ = [
     "CellType",
+    "Domain",
+    "DomainReport",
     "IgaparamError",
     "Mesh",
     "RelocateReport",

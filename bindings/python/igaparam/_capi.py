@@ -17,6 +17,8 @@ __all__ = [
     "CellType",
     "RelocateOptions",
     "RelocateReport",
+    "DomainOptions",
+    "DomainReport",
     "PROGRESS_FN",
     "load_library",
     "library",
@@ -101,7 +103,39 @@ class RelocateReport(ctypes.Structure):
     ]
 
 
+class DomainOptions(ctypes.Structure):
+    """``igaparam_domain_options``."""
+
+    _fields_ = [
+        ("tolerance", ctypes.c_double),
+        ("min_level", ctypes.c_uint32),
+        ("max_level", ctypes.c_uint32),
+        ("max_sweeps", ctypes.c_uint32),
+        ("threads", ctypes.c_uint32),
+        ("progress", PROGRESS_FN),
+        ("progress_user", ctypes.c_void_p),
+    ]
+
+
+class DomainReport(ctypes.Structure):
+    """``igaparam_domain_report``."""
+
+    _fields_ = [
+        ("cells", ctypes.c_size_t),
+        ("vertices", ctypes.c_size_t),
+        ("max_level", ctypes.c_uint32),
+        ("boundary_error", ctypes.c_double),
+        ("invalid_after_placement", ctypes.c_size_t),
+        ("invalid_cells", ctypes.c_size_t),
+        ("min_quality", ctypes.c_double),
+        ("mean_quality", ctypes.c_double),
+        ("sweeps", ctypes.c_uint32),
+        ("seconds", ctypes.c_double),
+    ]
+
+
 _mesh_p = ctypes.c_void_p  # igaparam_mesh * (opaque)
+_domain_p = ctypes.c_void_p  # igaparam_domain * (opaque)
 _status = ctypes.c_int
 _size_p = ctypes.POINTER(ctypes.c_size_t)
 _double_p = ctypes.POINTER(ctypes.c_double)
@@ -134,6 +168,24 @@ _PROTOTYPES = {
     "igaparam_mesh_copy_fixed": (_status, [_mesh_p, _uint8_p, ctypes.c_size_t]),
     "igaparam_cell_type_node_count": (_status, [ctypes.c_int, _size_p]),
     "igaparam_mesh_invalid_cell_count": (_status, [_mesh_p, _size_p]),
+    "igaparam_domain_options_default": (DomainOptions, []),
+    "igaparam_domain_new_from_file": (_status, [ctypes.c_char_p, ctypes.POINTER(_domain_p)]),
+    "igaparam_domain_new_from_polylines": (
+        _status,
+        [_size_p, ctypes.POINTER(_double_p), ctypes.POINTER(_domain_p)],
+    ),
+    "igaparam_domain_free": (None, [_domain_p]),
+    "igaparam_domain_build": (
+        _status,
+        [_domain_p, ctypes.POINTER(DomainOptions), ctypes.POINTER(DomainReport)],
+    ),
+    "igaparam_domain_vertex_count": (_status, [_domain_p, _size_p]),
+    "igaparam_domain_cell_count": (_status, [_domain_p, _size_p]),
+    "igaparam_domain_copy_vertices": (_status, [_domain_p, _double_p, _double_p, ctypes.c_size_t]),
+    "igaparam_domain_copy_cell_quality": (_status, [_domain_p, _double_p, ctypes.c_size_t]),
+    "igaparam_domain_copy_cells": (_status, [_domain_p, _uint8_p, _double_p, ctypes.c_size_t]),
+    "igaparam_domain_write_vtu": (_status, [_domain_p, ctypes.c_char_p]),
+    "igaparam_domain_is_built": (_status, [_domain_p, ctypes.POINTER(ctypes.c_int)]),
 }
 
 

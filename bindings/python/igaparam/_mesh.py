@@ -114,6 +114,27 @@ def _as_int64(values, name, ndim):
     return np.ascontiguousarray(array, dtype=np.int64)
 
 
+def _progress_callback(progress, raised):
+    """A C progress callback calling ``progress(stage, done, total)`` (None if ``progress`` is
+    None): False cancels; an exception cancels and is appended to ``raised`` (re-raise it after
+    the call)."""
+    if progress is None:
+        return None
+
+    def trampoline(_user, stage, done, total):
+        try:
+            try:
+                stage = Stage(stage)
+            except ValueError:
+                pass
+            return 1 if progress(stage, done, total) is False else 0
+        except BaseException as error:  # cancel, re-raise after the call
+            raised.append(error)
+            return 1
+
+    return _capi.PROGRESS_FN(trampoline)
+
+
 @dataclasses.dataclass(frozen=True)
 class RelocateReport:
     """What :meth:`Mesh.relocate` did (``igaparam_relocate_report``). Quality is the inverse mean
@@ -368,21 +389,8 @@ class Mesh:
                 setattr(options, name, float(value))
 
         raised = []
-        callback = None
-        if progress is not None:
-
-            def trampoline(_user, stage, done, total):
-                try:
-                    try:
-                        stage = Stage(stage)
-                    except ValueError:
-                        pass
-                    return 1 if progress(stage, done, total) is False else 0
-                except BaseException as error:  # cancel, re-raise after the call
-                    raised.append(error)
-                    return 1
-
-            callback = _capi.PROGRESS_FN(trampoline)
+        callback = _progress_callback(progress, raised)  # kept alive during the call
+        if callback is not None:
             options.progress = callback
 
         report = _capi.RelocateReport()
