@@ -37,12 +37,19 @@
 #include <vector>
 
 #include "igaparam.hpp"
+#if IGAPARAM_RENDER
+#include "render_picture.h"
+#endif
+#include "vtu_io.h"
 
 namespace {
 
+using vtu_io::capture_vtk_messages;
+using vtu_io::read_grid;
+
 constexpr const char* kUsage =
     "usage: igaparam_relocate IN.vtu OUT.vtu [--threads N] [--target initial|master]\n"
-    "                         [--laplacian-only] [--max-sweeps N]\n"
+    "                         [--laplacian-only] [--max-sweeps N] [--png OUT.png]\n"
     "\n"
     "Relocates the free nodes of a mesh of one cell type among Q4, Q8, Q9, H8, H20, H27\n"
     "(VTK types 9, 23, 28, 12, 25, 29). Point arrays of IN.vtu:\n"
@@ -55,6 +62,8 @@ constexpr const char* kUsage =
     "  --target T         ideal cell shape: `initial` (input cells, default) or `master`\n"
     "  --laplacian-only   stop after the harmonic placement (no optimization)\n"
     "  --max-sweeps N     largest number of optimization sweeps per step (default 100)\n"
+    "  --png OUT.png      also draw the result, cells coloured by quality, to OUT.png (needs an\n"
+    "                     X display: run under xvfb-run when there is none)\n"
     "  --help             this text\n"
     "\n"
     "The last line of stdout is a JSON object; exit code 0 on success, 1 on error, 2 on usage error.\n";
@@ -67,6 +76,7 @@ struct UsageError : std::runtime_error {
 struct Arguments {
   std::string input;
   std::string output;
+  std::string png;  // empty: no picture
   igaparam_relocate_options options = igaparam::default_options();
 };
 
@@ -101,6 +111,8 @@ std::optional<Arguments> parse_arguments(int argc, char** argv) {
       args.options.threads = parse_count(arg, value());
     } else if (arg == "--max-sweeps") {
       args.options.max_sweeps = parse_count(arg, value());
+    } else if (arg == "--png") {
+      args.png = value();
     } else if (arg == "--laplacian-only") {
       args.options.optimize = 0;
     } else if (arg == "--target") {
@@ -146,69 +158,6 @@ const CellTypeInfo* find_cell_type(int vtk_type) {
     if (info.vtk_type == vtk_type) return &info;
   }
   return nullptr;
-}
-
-/// The gist of a VTK error text ("ERROR: In <file>, line <n>\n<Class> (<address>): <message>..."):
-/// the message's first line, or nothing for the pipeline's generic "returned failure" report.
-std::string vtk_error_gist(const std::string& text) {
-  static const std::regex pattern(R"(^ERROR: In [^\n]*\n[A-Za-z0-9_]+ \(0x[0-9a-fA-F]+\): ([^\n]*))");
-  std::smatch match;
-  if (!std::regex_search(text, match, pattern)) return text;
-  const std::string message = match[1];
-  return message.find("returned failure for request") != std::string::npos ? std::string() : message;
-}
-
-/// Takes the place of VTK's output window: keeps error texts instead of printing them, so that a
-/// failed read or write is reported as one error; warnings go to stderr.
-class VtkMessages : public vtkOutputWindow {
- public:
-  static VtkMessages* New();
-  vtkTypeMacro(VtkMessages, vtkOutputWindow);
-
-  void DisplayErrorText(const char* text) override {
-    const std::string gist = vtk_error_gist(text != nullptr ? text : "");
-    if (!gist.empty()) errors_ += (errors_.empty() ? "" : "; ") + gist;
-    failed_ = true;
-  }
-  void DisplayWarningText(const char* text) override {
-    if (text != nullptr) std::cerr << "igaparam_relocate: VTK warning: " << text;
-  }
-  void DisplayGenericWarningText(const char* text) override { DisplayWarningText(text); }
-  void DisplayText(const char* text) override {
-    if (text != nullptr) std::cerr << text;
-  }
-
-  /// Throws if VTK reported an error or if `failed`: `what` says which operation.
-  void throw_if_failed(const std::string& what, bool failed = false) const {
-    if (failed_ || failed) throw std::runtime_error(what + (errors_.empty() ? std::string() : ": " + errors_));
-  }
-
- private:
-  std::string errors_;
-  bool failed_ = false;
-};
-
-vtkStandardNewMacro(VtkMessages);
-
-/// Installs a fresh VtkMessages as VTK's output window and returns it.
-vtkSmartPointer<VtkMessages> capture_vtk_messages() {
-  auto messages = vtkSmartPointer<VtkMessages>::New();
-  vtkOutputWindow::SetInstance(messages);
-  return messages;
-}
-
-vtkSmartPointer<vtkUnstructuredGrid> read_grid(const std::string& path) {
-  if (!std::ifstream(path).good()) throw std::runtime_error("cannot open " + path);
-  vtkNew<vtkXMLUnstructuredGridReader> reader;
-  auto messages = capture_vtk_messages();
-  reader->SetFileName(path.c_str());
-  reader->Update();
-  messages->throw_if_failed("cannot read " + path);
-  vtkSmartPointer<vtkUnstructuredGrid> grid = reader->GetOutput();
-  if (grid == nullptr || grid->GetNumberOfCells() == 0 || grid->GetNumberOfPoints() == 0) {
-    throw std::runtime_error(path + " holds no cells");
-  }
-  return grid;
 }
 
 /// The grid's one cell type; throws if it is unsupported or if cell types are mixed.
@@ -391,6 +340,17 @@ int run(const Arguments& args) {
   }
   write_grid(grid, args.output, original, mesh.positions(), mesh.cell_quality(args.options.target));
   print_summary(args.input, type, args.options, report);
+  if (!args.png.empty()) {
+    std::fflush(stdout);
+#if IGAPARAM_RENDER
+    render_picture::MeshPicture picture;
+    picture.title = args.output;
+    picture.subtitle = render_picture::array_summary(grid, "quality");
+    render_picture::render_mesh_png(grid, picture, args.png);
+#else
+    throw std::runtime_error("cannot draw " + args.png + ": this build has no VTK rendering modules");
+#endif
+  }
   return 0;
 }
 
