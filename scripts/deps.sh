@@ -4,7 +4,9 @@
 set -euo pipefail
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
 
-packages=(cmake g++ pkg-config libvtk9-dev libopenmesh-dev)
+# xvfb (with xauth for xvfb-run) and Mesa's OpenGL drivers: VTK renders the pictures through X,
+# on a virtual display when there is no real one.
+packages=(cmake g++ pkg-config libvtk9-dev libopenmesh-dev xvfb xauth libgl1-mesa-dri)
 
 if command -v dpkg >/dev/null 2>&1; then
   missing=()

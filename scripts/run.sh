@@ -3,6 +3,13 @@
 #   out/airfoil_relocated.vtu   Q9 airfoil mesh, airfoil rotated by 60 degrees
 #   out/airfoil_laplacian.vtu   the same, harmonic placement only (no optimization)
 #   out/wing_relocated.vtu      H27 wing mesh, twisted wing (takes about half a minute)
+#   out/wing_laplacian.vtu      the same, harmonic placement only
+# and draws them (cells coloured by quality) with igaparam_render:
+#   out/airfoil_relocated.png, out/airfoil_laplacian.png, out/wing_relocated.png,
+#   out/airfoil_sorted_quality.png, out/wing_sorted_quality.png (cell qualities sorted ascending,
+#   harmonic placement against optimized)
+# Rendering needs an X display: the real one, else a virtual one through xvfb-run; without
+# either, the pictures are skipped with a message.
 set -euo pipefail
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
 
@@ -22,3 +29,38 @@ run() {
 run tests/data/airfoil_0012_q9.vtu out/airfoil_relocated.vtu
 run tests/data/airfoil_0012_q9.vtu out/airfoil_laplacian.vtu --laplacian-only
 run tests/data/wing_0012_h27.vtu out/wing_relocated.vtu
+run tests/data/wing_0012_h27.vtu out/wing_laplacian.vtu --laplacian-only
+
+render=build/examples-c/igaparam_render
+display=()
+if [[ ! -x $render ]]; then
+  echo "run.sh: $render was not built (VTK's rendering modules missing?): no pictures" >&2
+  exit 0
+elif [[ -n ${DISPLAY:-} ]]; then
+  :
+elif command -v xvfb-run >/dev/null 2>&1; then
+  display=(xvfb-run -a)
+else
+  echo "run.sh: no X display and no xvfb-run (Debian package xvfb): no pictures" >&2
+  exit 0
+fi
+draw() {
+  echo "+ ${display[*]} $render $*"
+  local status=0
+  "${display[@]}" "$render" "$@" || status=$?
+  if ((status == 77)); then
+    echo "run.sh: no X display could be opened: no pictures" >&2
+    exit 0
+  fi
+  return "$status"
+}
+echo
+draw out/airfoil_relocated.vtu out/airfoil_relocated.png --title "airfoil rotated 60 degrees, optimized"
+draw out/airfoil_laplacian.vtu out/airfoil_laplacian.png --title "airfoil rotated 60 degrees, harmonic placement" \
+  --range 0 1
+draw out/wing_relocated.vtu out/wing_relocated.png --cut z 0.52 --view 25 20 \
+  --title "wing twisted 18 degrees at the tip, optimized (cut at mid-span)"
+draw --sorted-quality out/airfoil_laplacian.vtu out/airfoil_relocated.vtu out/airfoil_sorted_quality.png \
+  --labels "harmonic placement,optimized" --title "airfoil (490 Q9 cells): cell quality, sorted"
+draw --sorted-quality out/wing_laplacian.vtu out/wing_relocated.vtu out/wing_sorted_quality.png \
+  --labels "harmonic placement,optimized" --title "wing (12,250 H27 cells): cell quality, sorted"
