@@ -25,7 +25,7 @@
 #include <vtkChartXY.h>
 #include <vtkColorTransferFunction.h>
 #include <vtkContextScene.h>
-#include <vtkContextView.h>
+#include <vtkContextActor.h>
 #include <vtkDataArray.h>
 #include <vtkDataSetSurfaceFilter.h>
 #include <vtkDoubleArray.h>
@@ -72,25 +72,20 @@ struct NoDisplayError : std::runtime_error {
 };
 
 /// Whether an X display can be opened (DISPLAY is set and its server answers). Asked through
-/// libX11 at run time, the library VTK itself renders with.
+/// libX11 at run time, the library VTK itself renders with. The probe's connection stays open
+/// for the life of the program: closing the last client of a server makes it reset (as Xvfb
+/// under xvfb-run does), and VTK's own connection opened during the reset would be broken.
 inline bool display_available() {
-  const char* display = std::getenv("DISPLAY");
-  if (display == nullptr || *display == '\0') return false;
-  void* x11 = dlopen("libX11.so.6", RTLD_LAZY | RTLD_LOCAL);
-  if (x11 == nullptr) return false;
-  using OpenFn = void* (*)(const char*);
-  using CloseFn = int (*)(void*);
-  auto open = reinterpret_cast<OpenFn>(dlsym(x11, "XOpenDisplay"));
-  auto close = reinterpret_cast<CloseFn>(dlsym(x11, "XCloseDisplay"));
-  bool ok = false;
-  if (open != nullptr && close != nullptr) {
-    if (void* connection = open(nullptr)) {
-      close(connection);
-      ok = true;
-    }
-  }
-  dlclose(x11);
-  return ok;
+  static const bool available = [] {
+    const char* display = std::getenv("DISPLAY");
+    if (display == nullptr || *display == '\0') return false;
+    void* x11 = dlopen("libX11.so.6", RTLD_LAZY | RTLD_LOCAL);
+    if (x11 == nullptr) return false;
+    using OpenFn = void* (*)(const char*);
+    auto open = reinterpret_cast<OpenFn>(dlsym(x11, "XOpenDisplay"));
+    return open != nullptr && open(nullptr) != nullptr;  // kept open (see above)
+  }();
+  return available;
 }
 
 /// Throws NoDisplayError with the way out unless a display can be opened.
@@ -495,12 +490,18 @@ inline void render_sorted_quality_png(const std::vector<QualityCurve>& curves, c
                                       const std::string& path, int width = 1000, int height = 650) {
   if (curves.empty()) throw std::runtime_error("no quality curve to draw");
   require_display();
-  vtkNew<vtkContextView> view;
-  view->GetRenderer()->SetBackground(1, 1, 1);
-  view->GetRenderWindow()->SetOffScreenRendering(1);
-  view->GetRenderWindow()->SetSize(width, height);
+  // A plain window with the chart in a context actor (a vtkContextView would bring an
+  // interactor, which an offscreen window does not want).
+  vtkNew<vtkRenderWindow> window;
+  window->SetOffScreenRendering(1);
+  window->SetSize(width, height);
+  vtkNew<vtkRenderer> renderer;
+  renderer->SetBackground(1, 1, 1);
+  window->AddRenderer(renderer);
+  vtkNew<vtkContextActor> actor;
+  renderer->AddActor(actor);
   vtkNew<vtkChartXY> chart;
-  view->GetScene()->AddItem(chart);
+  actor->GetScene()->AddItem(chart);
   chart->SetTitle(title);
   detail::style_text(chart->GetTitleProperties(), height / 30, true);
   chart->SetShowLegend(true);
@@ -547,7 +548,7 @@ inline void render_sorted_quality_png(const std::vector<QualityCurve>& curves, c
     detail::style_text(axis->GetLabelProperties(), height / 38);
     axis->GetGridPen()->SetColor(220, 220, 220, 255);
   }
-  detail::write_png(view->GetRenderWindow(), path);
+  detail::write_png(window, path);
 }
 
 }  // namespace render_picture
