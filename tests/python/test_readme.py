@@ -1,0 +1,33 @@
+"""The Python example of README.md, extracted from it and run (see tests/readme/)."""
+
+import importlib.util
+import os
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+ROOT = Path(__file__).resolve().parents[2]
+spec = importlib.util.spec_from_file_location("readme_examples", ROOT / "tests" / "readme" / "readme_examples.py")
+readme_examples = importlib.util.module_from_spec(spec)
+spec.loader.exec_module(readme_examples)
+
+
+def test_readme_python_example(tmp_path):
+    pytest.importorskip("meshio")
+    code = readme_examples.examples()["python"]
+    work = readme_examples.work_directory(tmp_path / "python")
+    (work / "example.py").write_text(code)
+    run = subprocess.run([sys.executable, "example.py"], cwd=work, capture_output=True, text=True, env=os.environ)
+    assert run.returncode == 0, run.stderr
+    assert "airfoil: 63 folded cells before, 0 after" in run.stdout
+    assert "puzzle: 361 cells, 0 invalid" in run.stdout
+    assert (work / "airfoil_relocated.vtu").exists()
+
+
+def test_readme_markers():
+    found = readme_examples.examples()
+    assert set(found) == {"c", "cpp", "cmake", "python"}
+    with pytest.raises(ValueError):
+        readme_examples.examples("<!-- example: c -->\nno block\n")

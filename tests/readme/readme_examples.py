@@ -1,0 +1,125 @@
+"""The code examples of README.md, extracted and run, so that the README cannot go stale.
+
+An example is a fenced code block right after a marker line ``<!-- example: NAME -->``; NAME is
+one of ``c``, ``cpp``, ``cmake`` (a CMakeLists.txt building the ``c`` example as ``main.c``) and
+``python``. Examples run in a work directory holding a link ``tests`` to the repository's
+``tests`` directory, so they read the bundled data by the paths the README shows.
+
+    python3 readme_examples.py --build-dir BUILD --work-dir DIR NAME...   # c, cpp, cmake
+
+The Python example is run by tests/python/test_readme.py (it needs the virtual environment).
+"""
+
+import argparse
+import os
+import re
+import shutil
+import subprocess
+import sys
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[2]
+README = ROOT / "README.md"
+MARKER = re.compile(r"^<!-- example: ([a-z+]+) -->\s*$")
+FENCE = re.compile(r"^```")
+
+
+def examples(text=None):
+    """{name: code} of the README's marked blocks."""
+    if text is None:
+        text = README.read_text(encoding="utf-8")
+    lines = text.splitlines()
+    found = {}
+    for i, line in enumerate(lines):
+        match = MARKER.match(line)
+        if not match:
+            continue
+        start = i + 1
+        if start >= len(lines) or not FENCE.match(lines[start]):
+            raise ValueError(f"README.md line {i + 1}: marker `{match.group(1)}` not followed by a ``` block")
+        end = next((k for k in range(start + 1, len(lines)) if FENCE.match(lines[k])), None)
+        if end is None:
+            raise ValueError(f"README.md line {start + 1}: unterminated ``` block")
+        name = match.group(1)
+        if name in found:
+            raise ValueError(f"README.md: two examples named `{name}`")
+        found[name] = "\n".join(lines[start + 1 : end]) + "\n"
+    return found
+
+
+def work_directory(path):
+    """A fresh directory with the link ``tests`` -> the repository's tests/."""
+    path = Path(path)
+    if path.exists():
+        shutil.rmtree(path)
+    path.mkdir(parents=True)
+    (path / "tests").symlink_to(ROOT / "tests", target_is_directory=True)
+    return path
+
+
+def run(command, cwd, env=None):
+    print("+", " ".join(str(c) for c in command), flush=True)
+    result = subprocess.run([str(c) for c in command], cwd=cwd, env=env, text=True, capture_output=True)
+    sys.stdout.write(result.stdout)
+    sys.stderr.write(result.stderr)
+    if result.returncode != 0:
+        raise SystemExit(f"readme_examples: `{command[0]}` exited with {result.returncode}")
+    return result.stdout
+
+
+def run_compiled(name, code, args, work):
+    """Compiles the c or cpp example against the build's library and runs it."""
+    library = Path(args.build_dir) / "cargo" / "release"
+    source = work / ("main.c" if name == "c" else "main.cpp")
+    source.write_text(code)
+    compiler = args.c_compiler if name == "c" else args.cxx_compiler
+    flags = ["-std=c11"] if name == "c" else ["-std=c++17", f"-I{ROOT / 'bindings' / 'cpp'}"]
+    exe = work / name
+    run([compiler, *flags, "-Wall", "-Wextra", "-Werror", f"-I{ROOT / 'include'}", source, "-o", exe,
+         f"-L{library}", "-ligaparam", f"-Wl,-rpath,{library}", "-lm"], work)
+    return run([exe], work)
+
+
+def run_cmake(code, c_code, args, work):
+    """Installs the build into work/prefix, then configures, builds and runs the cmake example
+    (with the c example as main.c) against it."""
+    prefix = work / "prefix"
+    run([args.cmake, "--install", args.build_dir, "--prefix", prefix], work)
+    project = work / "project"
+    project.mkdir()
+    (project / "CMakeLists.txt").write_text(code)
+    (project / "main.c").write_text(c_code)
+    build = work / "project-build"
+    run([args.cmake, "-S", project, "-B", build, f"-DCMAKE_PREFIX_PATH={prefix}",
+         f"-DCMAKE_C_COMPILER={args.c_compiler}", "-DCMAKE_BUILD_TYPE=Release"], work)
+    run([args.cmake, "--build", build], work)
+    executables = [p for p in build.iterdir() if p.is_file() and os.access(p, os.X_OK)]
+    if len(executables) != 1:
+        raise SystemExit(f"readme_examples: expected one program in {build}, found {executables}")
+    return run([executables[0]], work)
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("--build-dir", required=True)
+    parser.add_argument("--work-dir", required=True)
+    parser.add_argument("--c-compiler", default="cc")
+    parser.add_argument("--cxx-compiler", default="c++")
+    parser.add_argument("--cmake", default="cmake")
+    parser.add_argument("names", nargs="+", choices=["c", "cpp", "cmake"])
+    args = parser.parse_args()
+    args.build_dir = str(Path(args.build_dir).resolve())
+    found = examples()
+    for name in args.names:
+        if name not in found or (name == "cmake" and "c" not in found):
+            raise SystemExit(f"readme_examples: README.md has no `<!-- example: {name} -->` block")
+        work = work_directory(Path(args.work_dir) / name)
+        if name == "cmake":
+            run_cmake(found["cmake"], found["c"], args, work)
+        else:
+            run_compiled(name, found[name], args, work)
+        print(f"readme_examples: `{name}` example ran", flush=True)
+
+
+if __name__ == "__main__":
+    main()
