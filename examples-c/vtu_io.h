@@ -49,19 +49,26 @@ class VtkMessages : public vtkOutputWindow {
     if (text != nullptr) std::cerr << text;
   }
 
-  /// Throws if VTK reported an error or if `failed`: `what` says which operation.
-  void throw_if_failed(const std::string& what, bool failed = false) const {
+  /// Puts back the output window this one replaced, then throws if VTK reported an error or if
+  /// `failed`: `what` says which operation.
+  void throw_if_failed(const std::string& what, bool failed = false) {
+    if (previous_ != nullptr) vtkOutputWindow::SetInstance(previous_);
+    previous_ = nullptr;
     if (failed_ || failed) throw std::runtime_error(what + (errors_.empty() ? std::string() : ": " + errors_));
   }
 
  private:
   std::string errors_;
   bool failed_ = false;
+  vtkSmartPointer<vtkOutputWindow> previous_;
+
+  friend vtkSmartPointer<VtkMessages> capture_vtk_messages();
 };
 
 /// Installs a fresh VtkMessages as VTK's output window and returns it.
 inline vtkSmartPointer<VtkMessages> capture_vtk_messages() {
   auto messages = vtkSmartPointer<VtkMessages>::New();
+  messages->previous_ = vtkOutputWindow::GetInstance();
   vtkOutputWindow::SetInstance(messages);
   return messages;
 }
