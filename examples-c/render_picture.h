@@ -345,7 +345,7 @@ inline void render_mesh_png(vtkUnstructuredGrid* input, const MeshPicture& pictu
   vtkNew<vtkPolyDataMapper> mapper;
   mapper->SetInputConnection(surface->GetOutputPort());
   mapper->SetResolveCoincidentTopologyToPolygonOffset();
-  mapper->SetRelativeCoincidentTopologyPolygonOffsetParameters(2, 8);
+  mapper->SetRelativeCoincidentTopologyPolygonOffsetParameters(2, 40);
 
   vtkNew<vtkRenderer> renderer;
   renderer->SetBackground(1, 1, 1);
@@ -398,7 +398,7 @@ inline void render_mesh_png(vtkUnstructuredGrid* input, const MeshPicture& pictu
     edge_mapper->SetInputData(detail::visible_edges(grid));
     edge_mapper->ScalarVisibilityOff();
     edge_mapper->SetResolveCoincidentTopologyToPolygonOffset();
-    edge_mapper->SetRelativeCoincidentTopologyLineOffsetParameters(-2, -8);
+    edge_mapper->SetRelativeCoincidentTopologyLineOffsetParameters(-2, -40);
     vtkNew<vtkActor> edge_actor;
     edge_actor->SetMapper(edge_mapper);
     edge_actor->GetProperty()->SetColor(0.1, 0.1, 0.1);
