@@ -408,7 +408,10 @@ inline void render_mesh_png(vtkUnstructuredGrid* input, const MeshPicture& pictu
     renderer->AddActor(edge_actor);
   }
 
+  // The mesh goes into the band [bottom, top] of the window height: below the title lines and
+  // above the colour bar.
   const double top = picture.title.empty() ? 0.98 : picture.subtitle.empty() ? 0.9 : 0.85;
+  const double bottom = array != nullptr ? 0.15 : 0.02;
   int line = 0;
   for (const std::string* text : {&picture.title, &picture.subtitle}) {
     if (text->empty()) continue;
@@ -422,9 +425,6 @@ inline void render_mesh_png(vtkUnstructuredGrid* input, const MeshPicture& pictu
     renderer->AddActor2D(actor);
     line++;
   }
-  // The mesh between the title and the colour bar.
-  const double bottom = array != nullptr ? 0.15 : 0.02;
-  renderer->SetViewport(0, 0, 1, 1);
 
   vtkNew<vtkRenderWindow> window;
   window->SetOffScreenRendering(1);
@@ -455,7 +455,7 @@ inline void render_mesh_png(vtkUnstructuredGrid* input, const MeshPicture& pictu
     const double half = std::max(0.5 * (bounds[3] - bounds[2]), 0.5 * (bounds[1] - bounds[0]) / aspect);
     camera->SetParallelScale(half / (0.96 * band));
   }
-  // Shift the view so the band's centre is the picture's centre of the mesh.
+  // Shift the view so that the mesh's centre comes to the band's centre.
   const double shift = (0.5 - 0.5 * (top + bottom));  // fraction of the window height
   double focal[3], position[3], up[3];
   camera->GetFocalPoint(focal);
