@@ -233,7 +233,9 @@ impl<const D: usize> Bernstein<D> {
             let mut w = c;
             for k in 0..D {
                 let p = self.degree[k];
-                w *= binomial(p, i[k]) * t[k].powi(i[k] as i32) * (1.0 - t[k]).powi((p - i[k]) as i32);
+                w *= binomial(p, i[k])
+                    * t[k].powi(i[k] as i32)
+                    * (1.0 - t[k]).powi((p - i[k]) as i32);
             }
             acc += w;
         }

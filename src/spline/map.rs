@@ -149,7 +149,10 @@ impl<const D: usize, S: SplineSpace<D>> SplineMap<D, S> {
                 }
             }
             (
-                normal.into_iter().map(|r| r.into_iter().collect()).collect(),
+                normal
+                    .into_iter()
+                    .map(|r| r.into_iter().collect())
+                    .collect(),
                 rhs,
             )
         } else {

@@ -9,19 +9,19 @@
 //! the same elements can be added by implementing it.
 
 pub mod bernstein;
-// mod gismo;
+mod gismo;
 mod map;
 mod quadratic;
 mod solve;
 mod space;
 mod thb;
-// mod validity;
-// mod vtu;
+mod validity;
+mod vtu;
 
-// pub use gismo::{read_gismo_thb, write_gismo_thb};
+pub use gismo::{read_gismo_thb, write_gismo_thb};
 pub use map::{FitReport, InverseMap, SplineMap};
 pub use quadratic::QuadraticMap;
 pub use solve::SparseLu;
 pub use space::{BasisValues, SplineSpace};
 pub use thb::ThbSpace;
-// pub use validity::{ElementValidity, ValidityOptions, ValidityReport, HISTOGRAM_BINS};
+pub use validity::{ElementValidity, ValidityOptions, ValidityReport, HISTOGRAM_BINS};

@@ -122,7 +122,12 @@ impl SparseLu {
             let last_row = (j + band).min(n - 1);
             let last_col = (j + 2 * band).min(n - 1);
             let p = (j..=last_row)
-                .max_by(|&r, &s| a[at(r, j)].abs().total_cmp(&a[at(s, j)].abs()).then(s.cmp(&r)))
+                .max_by(|&r, &s| {
+                    a[at(r, j)]
+                        .abs()
+                        .total_cmp(&a[at(s, j)].abs())
+                        .then(s.cmp(&r))
+                })
                 .unwrap_or(j);
             let pivot = a[at(p, j)];
             if !(pivot.abs() > SINGULAR * scale) {

@@ -63,7 +63,13 @@ pub trait SplineSpace<const D: usize>: Clone + Send + Sync {
             b[flat] = (0..D).map(|k| value[k][idx[k]]).product();
             for (g, dbg) in db[flat].iter_mut().enumerate() {
                 *dbg = (0..D)
-                    .map(|k| if k == g { slope[k][idx[k]] } else { value[k][idx[k]] })
+                    .map(|k| {
+                        if k == g {
+                            slope[k][idx[k]]
+                        } else {
+                            value[k][idx[k]]
+                        }
+                    })
                     .product();
             }
         }

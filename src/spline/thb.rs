@@ -111,8 +111,7 @@ impl<const D: usize> ThbSpace<D> {
         for &c in &leaves {
             let cell = cells[c];
             let span = cell.lower.map(|v| v / cell.side());
-            let ancestor =
-                |k: u8| -> [usize; D] { span.map(|s| (s >> (cell.level - k)) as usize) };
+            let ancestor = |k: u8| -> [usize; D] { span.map(|s| (s >> (cell.level - k)) as usize) };
             let mut rows: Vec<(usize, Vec<f64>)> = Vec::new();
             for k in 0..=cell.level {
                 let a = ancestor(k);
@@ -203,9 +202,7 @@ impl<const D: usize> SplineSpace<D> for ThbSpace<D> {
     }
 
     fn element_at(&self, x: [f64; D]) -> Option<usize> {
-        self.tree
-            .leaf_at_point(&x)
-            .map(|c| self.leaf_of_cell[c])
+        self.tree.leaf_at_point(&x).map(|c| self.leaf_of_cell[c])
     }
 
     fn extraction(&self, e: usize) -> (&[usize], &[f64]) {
