@@ -102,7 +102,7 @@ fn basis_properties<const D: usize>(seed: u64, steps: usize, max_level: u8) {
     for x in probe_points::<D>(seed + 7, 200) {
         let (a, b) = (coarse.eval(x).unwrap(), fine.eval(x).unwrap());
         for k in 0..D {
-            assert!((a[k] - b[k]).abs() < 1e-12, "{x:?}: {a:?} vs {b:?}");
+            assert!((a[k] - b[k]).abs() < 1e-10, "{x:?}: {a:?} vs {b:?}");
         }
     }
 }

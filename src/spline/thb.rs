@@ -216,30 +216,25 @@ impl<const D: usize> SplineSpace<D> for ThbSpace<D> {
             .collect()
     }
 
-    /// The Greville point of a level-`l` function when every leaf touching it has level `l`.
-    /// Otherwise — near a level change, where Greville points of two levels can coincide and
-    /// make the collocation matrix singular — among the points `{¼, ½, ¾}^d` of the level-`l`
-    /// leaves in the function's support (a coordinate on the boundary of [0,1]^d stays there),
-    /// the free one where the function is largest.
+    /// The Greville points, except where those of functions of different levels coincide (near
+    /// a level change; the collocation matrix would be singular): the finest function keeps the
+    /// point, each coarser one (level `l`) takes, among the points `{¼, ½, ¾}^d` of the level-`l`
+    /// leaves in its support (a coordinate on the boundary of [0,1]^d stays there), the free one
+    /// where it is largest.
     fn interpolation_points(&self) -> Vec<[f64; D]> {
-        const PROBE: f64 = 1e-9;
         let cells = self.tree.cells();
         let level_at = |x: &[f64; D]| self.tree.leaf_at_point(x).map(|c| cells[c].level);
         let mut points = self.greville_points();
         let key = |p: &[f64; D]| p.map(f64::to_bits);
+        // Where Greville points of several functions coincide, the finest function keeps it.
+        let mut owner: std::collections::HashMap<[u64; D], usize> = Default::default();
         let mut moved = Vec::new();
-        for (i, (&(level, _), g)) in self.functions.iter().zip(&points).enumerate() {
-            let at_home = (0..1usize << D).all(|corner| {
-                let p: [f64; D] = std::array::from_fn(|k| {
-                    let s = if corner >> k & 1 == 1 { PROBE } else { -PROBE };
-                    (g[k] + s).clamp(0.0, 1.0)
-                });
-                level_at(&p) == Some(level)
-            });
-            if !at_home {
+        for i in (0..points.len()).rev() {
+            if owner.insert(key(&points[i]), i).is_some() {
                 moved.push(i);
             }
         }
+        moved.sort_unstable();
         let mut taken: std::collections::HashSet<[u64; D]> = points
             .iter()
             .enumerate()
