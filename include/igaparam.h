@@ -786,6 +786,17 @@ igaparam_status igaparam_spline_copy_control_points(const igaparam_spline *splin
                                                     size_t len);
 
 /**
+ * Copies the Greville points of the basis functions, `num_basis × d` doubles in [0,1]^d (in the
+ * order of the global function indices), into `params` (`len` doubles). A function whose
+ * Greville point lies inside (0,1)^d vanishes on the boundary of the parametric domain (the
+ * knots are clamped): the functions with a Greville point on the boundary (some coordinate 0 or
+ * 1) are the degrees of freedom a Dirichlet condition sets.
+ */
+igaparam_status igaparam_spline_copy_greville_points(const igaparam_spline *spline,
+                                                     double *params,
+                                                     size_t len);
+
+/**
  * Copies the elements: `levels` receives the refinement level of each (`num_elements` bytes;
  * an element of level l has side 2^-l), `bounds` the parametric box of each,
  * `num_elements × 2d` doubles (lower corner then upper corner). Either may be NULL to skip it;

@@ -9,7 +9,7 @@ use super::boundary::{check_capacity, non_null, non_null_mut, run, slice, slice_
 use super::domain::{c_path, fit_domain, igaparam_domain};
 use super::igaparam_status;
 use crate::error::{check_finite, Error, Result};
-use crate::spline::{FitReport, SplineMap, ValidityOptions, HISTOGRAM_BINS};
+use crate::spline::{FitReport, SplineMap, SplineSpace, ValidityOptions, HISTOGRAM_BINS};
 
 /// The spline map of a 2D or 3D domain.
 #[derive(Clone, Debug)]
@@ -290,6 +290,27 @@ pub extern "C" fn igaparam_spline_copy_control_points(
             with_map!(map(spline)?, m => m.control_points().iter().flatten().copied().collect());
         check_capacity("xyz", len, values.len())?;
         slice_mut(xyz, len, "xyz")?[..values.len()].copy_from_slice(&values);
+        Ok(())
+    })
+}
+
+/// Copies the Greville points of the basis functions, `num_basis × d` doubles in [0,1]^d (in the
+/// order of the global function indices), into `params` (`len` doubles). A function whose
+/// Greville point lies inside (0,1)^d vanishes on the boundary of the parametric domain (the
+/// knots are clamped): the functions with a Greville point on the boundary (some coordinate 0 or
+/// 1) are the degrees of freedom a Dirichlet condition sets.
+#[no_mangle]
+pub extern "C" fn igaparam_spline_copy_greville_points(
+    spline: *const igaparam_spline,
+    params: *mut f64,
+    len: usize,
+) -> igaparam_status {
+    run("igaparam_spline_copy_greville_points", || {
+        let values: Vec<f64> = with_map!(map(spline)?, m => {
+            m.space().greville_points().iter().flatten().copied().collect()
+        });
+        check_capacity("params", len, values.len())?;
+        slice_mut(params, len, "params")?[..values.len()].copy_from_slice(&values);
         Ok(())
     })
 }

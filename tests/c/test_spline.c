@@ -164,6 +164,41 @@ static void test_extraction(const igaparam_spline *s) {
   free(bounds);
 }
 
+/* Functions with an inner Greville point vanish on the boundary. */
+static void test_greville(const igaparam_spline *s) {
+  size_t nb = 0;
+  EXPECT(igaparam_spline_basis_count(s, &nb), IGAPARAM_STATUS_OK);
+  double *g = malloc(2 * nb * sizeof *g);
+  EXPECT(igaparam_spline_copy_greville_points(s, g, 2 * nb), IGAPARAM_STATUS_OK);
+  int on_boundary = 0, wrong = 0;
+  for (size_t i = 0; i < nb; i++) {
+    CHECK(g[2 * i] >= 0 && g[2 * i] <= 1 && g[2 * i + 1] >= 0 && g[2 * i + 1] <= 1,
+          "Greville point %zu outside", i);
+    if (g[2 * i] == 0 || g[2 * i] == 1 || g[2 * i + 1] == 0 || g[2 * i + 1] == 1) on_boundary++;
+  }
+  for (int i = 0; i < SAMPLES; i++) {
+    double p[2] = {uniform(), uniform()};
+    p[i % 2] = (i / 2) % 2 ? 1.0 : 0.0;
+    size_t m = 0;
+    EXPECT(igaparam_spline_basis_count_at(s, p, &m), IGAPARAM_STATUS_OK);
+    size_t *f = malloc(m * sizeof *f);
+    double *v = malloc(m * sizeof *v);
+    EXPECT(igaparam_spline_basis_at(s, p, &m, f, v, NULL, m), IGAPARAM_STATUS_OK);
+    for (size_t a = 0; a < m; a++) {
+      const double *q = g + 2 * f[a];
+      int inner = q[0] > 0 && q[0] < 1 && q[1] > 0 && q[1] < 1;
+      if (inner && fabs(v[a]) > 1e-14) wrong++;
+    }
+    free(f);
+    free(v);
+  }
+  CHECK(on_boundary > 8, "%d functions with a Greville point on the boundary", on_boundary);
+  CHECK(wrong == 0, "%d inner functions do not vanish on the boundary", wrong);
+  double small[1];
+  EXPECT(igaparam_spline_copy_greville_points(s, small, 1), IGAPARAM_STATUS_BUFFER_TOO_SMALL);
+  free(g);
+}
+
 static void test_inverse(const igaparam_spline *s) {
   double params[2 * SAMPLES], points[2 * SAMPLES], back[2 * SAMPLES];
   int found[SAMPLES];
@@ -335,6 +370,7 @@ int main(int argc, char **argv) {
   if (s) {
     test_basis_agrees_with_evaluation(s);
     test_extraction(s);
+    test_greville(s);
     test_inverse(s);
     test_validity(s);
     test_refine_and_files(s);
