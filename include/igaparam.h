@@ -31,7 +31,27 @@
  */
 #define IGAPARAM_VERSION_PATCH 0
 
+/**
+ * Number of bins of the quality histogram of `igaparam_validity_report`.
+ */
+#define IGAPARAM_HISTOGRAM_BINS HISTOGRAM_BINS
 
+
+
+/**
+ * Spline degree in every direction.
+ */
+#define DEGREE 3
+
+/**
+ * Functions (and Bernstein polynomials) of one direction that are non-zero on one knot span.
+ */
+#define SPAN_FUNCTIONS (DEGREE + 1)
+
+/**
+ * Number of bins of the quality histogram over [0, 1].
+ */
+#define HISTOGRAM_BINS 10
 
 /**
  * A stage of long work, passed to the progress callback.
@@ -104,6 +124,14 @@ typedef struct igaparam_domain igaparam_domain;
  * Create with `igaparam_mesh_new`, release with `igaparam_mesh_free`.
  */
 typedef struct igaparam_mesh igaparam_mesh;
+
+/**
+ * A cubic truncated hierarchical B-spline (THB) map `S: [0,1]^d → Ω`, d = 2 or 3 (opaque).
+ * Create with `igaparam_spline_fit_domain` or `igaparam_spline_read_gismo`, release with
+ * `igaparam_spline_free`. Parametric points are `d` doubles in [0,1]^d, physical points `d`
+ * doubles; arrays of points are flat, `n × d` (x0 y0 x1 y1 ... in 2D).
+ */
+typedef struct igaparam_spline igaparam_spline;
 
 /**
  * Progress callback: `user` is the options' `progress_user`; `done` of `total` steps of `stage`
@@ -321,6 +349,81 @@ typedef struct {
    */
   double seconds;
 } igaparam_relocate_report;
+
+/**
+ * Options of `igaparam_spline_check_validity`; get the defaults from
+ * `igaparam_validity_options_default`.
+ */
+typedef struct {
+  /**
+   * Largest number of subdivisions of an element's Jacobian determinant polynomial when its
+   * Bernstein coefficients are inconclusive (default 5, at most 12).
+   */
+  uint32_t max_depth;
+  /**
+   * Sample points per direction and element for the mean ratio (default 5, from 2 to 64).
+   */
+  uint32_t samples;
+} igaparam_validity_options;
+
+/**
+ * What a fit (`igaparam_spline_fit_domain`, `igaparam_spline_refine`) did.
+ */
+typedef struct {
+  /**
+   * Basis functions (= control points).
+   */
+  size_t basis_count;
+  /**
+   * Elements (the leaves of the hierarchical mesh).
+   */
+  size_t element_count;
+  /**
+   * Largest coordinate difference between the spline and the data at the fit points.
+   */
+  double residual;
+  /**
+   * 1 when a least-squares fit replaced a singular or badly conditioned interpolation at the
+   * Greville points, else 0.
+   */
+  int32_t least_squares;
+  /**
+   * Wall-clock seconds.
+   */
+  double seconds;
+} igaparam_fit_report;
+
+/**
+ * Certified validity and quality of a spline map.
+ */
+typedef struct {
+  /**
+   * 1 when `det J_S > 0` is proven on every element (Bernstein coefficients of the
+   * determinant, with subdivision), else 0.
+   */
+  int32_t certified_positive;
+  /**
+   * Elements where positivity is not proven.
+   */
+  size_t uncertified;
+  /**
+   * Smallest lower bound of `det J_S` over the elements (Jacobian with respect to the
+   * parametric coordinates).
+   */
+  double det_lower_bound;
+  /**
+   * Smallest mean ratio `q_S = d·det(J)^(2/d)/‖J‖²` at the samples (0 where det ≤ 0).
+   */
+  double min_quality;
+  /**
+   * Mean of the element means of `q_S` at the samples.
+   */
+  double mean_quality;
+  /**
+   * Samples per quality bin `[i/10, (i+1)/10)` (the last bin includes 1).
+   */
+  size_t histogram[IGAPARAM_HISTOGRAM_BINS];
+} igaparam_validity_report;
 
 /**
  * Bilinear quadrilateral, 4 nodes (VTK_QUAD).
@@ -624,6 +727,214 @@ igaparam_status igaparam_cell_type_node_count(igaparam_cell_type cell_type_code,
  * Writes to `*out` the number of cells with det J <= 0 at some Gauss–Lobatto point.
  */
 igaparam_status igaparam_mesh_invalid_cell_count(const igaparam_mesh *mesh, size_t *out);
+
+/**
+ * The default validity options.
+ */
+igaparam_validity_options igaparam_validity_options_default(void);
+
+/**
+ * Fits the cubic THB spline space of a built domain's T-mesh to its optimized piecewise
+ * quadratic map (interpolation at the Greville points, sparse LU; a least-squares fit when that
+ * system is singular) and writes the new handle to `*out`. `report` may be NULL. Fails with
+ * `IGAPARAM_STATUS_INVALID_ARGUMENT` if the domain has not been built; `*out` is written only
+ * on success. The spline does not refer to the domain afterwards.
+ */
+igaparam_status igaparam_spline_fit_domain(const igaparam_domain *domain,
+                                           igaparam_spline **out,
+                                           igaparam_fit_report *report);
+
+/**
+ * Reads a THB-spline map written by `igaparam_spline_write_gismo` (G+Smo XML, a
+ * `THBSpline2` or `THBSpline3` geometry) from `path` (NUL-terminated UTF-8) and writes the new
+ * handle to `*out`. Fails with `IGAPARAM_STATUS_IO` if the file cannot be read or holds no
+ * such map.
+ */
+igaparam_status igaparam_spline_read_gismo(const char *path, igaparam_spline **out);
+
+/**
+ * Releases a spline created by this library; NULL is a no-op.
+ */
+void igaparam_spline_free(igaparam_spline *spline);
+
+/**
+ * Writes to `*out` a new, independent copy of `spline` (to refine one while keeping the other).
+ */
+igaparam_status igaparam_spline_clone(const igaparam_spline *spline, igaparam_spline **out);
+
+/**
+ * Writes the map's dimension d (2 or 3) to `*out`.
+ */
+igaparam_status igaparam_spline_dimension(const igaparam_spline *spline, size_t *out);
+
+/**
+ * Writes the number of basis functions (= control points) to `*out`.
+ */
+igaparam_status igaparam_spline_basis_count(const igaparam_spline *spline, size_t *out);
+
+/**
+ * Writes the number of elements (boxes on which every basis function is a polynomial) to
+ * `*out`.
+ */
+igaparam_status igaparam_spline_element_count(const igaparam_spline *spline, size_t *out);
+
+/**
+ * Copies the control points, `num_basis × d` doubles, into `xyz` (`len` doubles).
+ */
+igaparam_status igaparam_spline_copy_control_points(const igaparam_spline *spline,
+                                                    double *xyz,
+                                                    size_t len);
+
+/**
+ * Copies the Greville points of the basis functions, `num_basis × d` doubles in [0,1]^d (in the
+ * order of the global function indices), into `params` (`len` doubles). A function whose
+ * Greville point lies inside (0,1)^d vanishes on the boundary of the parametric domain (the
+ * knots are clamped): the functions with a Greville point on the boundary (some coordinate 0 or
+ * 1) are the degrees of freedom a Dirichlet condition sets.
+ */
+igaparam_status igaparam_spline_copy_greville_points(const igaparam_spline *spline,
+                                                     double *params,
+                                                     size_t len);
+
+/**
+ * Copies the elements: `levels` receives the refinement level of each (`num_elements` bytes;
+ * an element of level l has side 2^-l), `bounds` the parametric box of each,
+ * `num_elements × 2d` doubles (lower corner then upper corner). Either may be NULL to skip it;
+ * `len` is the number of elements the buffers hold, at least `num_elements`.
+ */
+igaparam_status igaparam_spline_copy_elements(const igaparam_spline *spline,
+                                              uint8_t *levels,
+                                              double *bounds,
+                                              size_t len);
+
+/**
+ * Writes to `*out` the number of basis functions that are non-zero on element `element`: the
+ * rows of its Bézier extraction operator (which has `4^d` columns).
+ */
+igaparam_status igaparam_spline_element_function_count(const igaparam_spline *spline,
+                                                       size_t element,
+                                                       size_t *out);
+
+/**
+ * Copies the Bézier extraction of element `element`: `functions` receives the global indices
+ * of the `m` basis functions non-zero on it (increasing; `m` from
+ * `igaparam_spline_element_function_count`, `len_functions` at least `m`), and `operator` the
+ * `m × 4^d` matrix C (row-major, `len_operator` at least `m × 4^d` doubles) such that
+ * `N_functions[i] = Σ_k C[i][k] B_k` on the element, with `B_k` the tensor Bernstein
+ * polynomials of degree 3 on the element's box mapped to [0,1]^d, `k = k0 + 4 k1 (+ 16 k2)`.
+ * Either buffer may be NULL to skip it.
+ */
+igaparam_status igaparam_spline_copy_element_extraction(const igaparam_spline *spline,
+                                                        size_t element,
+                                                        size_t *functions,
+                                                        size_t len_functions,
+                                                        double *operator_,
+                                                        size_t len_operator);
+
+/**
+ * Evaluates the map at `n` parametric points `params` (`n × d` doubles in [0,1]^d): `points`
+ * receives `S(params)` (`n × d` doubles) and `jacobians` the Jacobian matrices `dS/du`
+ * (`n × d × d` doubles, row-major: entry (i, j) = ∂S_i/∂u_j). Either may be NULL to skip it.
+ * Fails with `IGAPARAM_STATUS_INVALID_ARGUMENT` when a point is outside [0,1]^d.
+ */
+igaparam_status igaparam_spline_evaluate(const igaparam_spline *spline,
+                                         size_t n,
+                                         const double *params,
+                                         double *points,
+                                         double *jacobians);
+
+/**
+ * Writes the mean ratio of the Jacobian, `q_S = d·det(J)^(2/d)/‖J‖²_F` in [0, 1] (1 for a
+ * conformal map, 0 where det J ≤ 0), at `n` parametric points `params` (`n × d` doubles) into
+ * `quality` (`n` doubles).
+ */
+igaparam_status igaparam_spline_mean_ratio(const igaparam_spline *spline,
+                                           size_t n,
+                                           const double *params,
+                                           double *quality);
+
+/**
+ * Inverts the map at `n` physical points `points` (`n × d` doubles): `params` receives the
+ * parametric points whose images they are (`n × d` doubles), `found` (`n` ints) 1 where the
+ * point was located and 0 where it is outside the domain (or Newton's method did not converge;
+ * `params` is NaN there). `found` may be NULL. Newton's method starts from the nearest of
+ * `samples^d` samples per element (`samples` from 2 to 32; 4 is a good choice).
+ */
+igaparam_status igaparam_spline_invert(const igaparam_spline *spline,
+                                       size_t n,
+                                       const double *points,
+                                       uint32_t samples,
+                                       double *params,
+                                       int32_t *found);
+
+/**
+ * Writes to `*count` the number of basis functions non-zero on the element holding the
+ * parametric point `param` (`d` doubles in [0,1]^d): the size of the buffers of
+ * `igaparam_spline_basis_at`.
+ */
+igaparam_status igaparam_spline_basis_count_at(const igaparam_spline *spline,
+                                               const double *param,
+                                               size_t *count);
+
+/**
+ * The basis functions non-zero on the element holding the parametric point `param` (`d`
+ * doubles in [0,1]^d; on an element boundary the element on the upper side): `*count` receives
+ * their number `m`, `functions` their global indices (`m` values), `values` their values (`m`
+ * doubles) and `gradients` their gradients with respect to the parametric coordinates
+ * (`m × d` doubles). The buffers hold `len` functions (`len ≥ m`, see
+ * `igaparam_spline_basis_count_at`); any of them may be NULL to skip it. The values sum to 1,
+ * and `Σ values[i] × control_point[functions[i]]` is the map's value at `param`.
+ */
+igaparam_status igaparam_spline_basis_at(const igaparam_spline *spline,
+                                         const double *param,
+                                         size_t *count,
+                                         size_t *functions,
+                                         double *values,
+                                         double *gradients,
+                                         size_t len);
+
+/**
+ * h-refines the spline space, the map staying the same (the refined space contains the old
+ * one; the new control points reproduce the map to round-off, see `report->residual`): the
+ * elements listed in `elements` (`n` indices) are split into 2^d, and more where the mesh's
+ * 2:1 balance requires it; `n = 0` (with `elements` NULL) refines every element once. Element
+ * and function indices change. `report` may be NULL. On failure the spline is unchanged.
+ */
+igaparam_status igaparam_spline_refine(igaparam_spline *spline,
+                                       size_t n,
+                                       const size_t *elements,
+                                       igaparam_fit_report *report);
+
+/**
+ * Certifies the sign of the Jacobian determinant on every element (lower bounds from the
+ * Bernstein coefficients of det J_S, a polynomial of degree 5×5 in 2D and 8×8×8 in 3D per
+ * element, subdividing when inconclusive) and samples the mean ratio; writes the summary to
+ * `*report`. `options` may be NULL for the defaults. `element_bounds` (may be NULL) receives
+ * each element's lower bound of det J_S and `element_quality` (may be NULL) each element's
+ * smallest sampled mean ratio, `len` doubles each, at least `num_elements`: what an adaptive
+ * loop marks elements by.
+ */
+igaparam_status igaparam_spline_check_validity(const igaparam_spline *spline,
+                                               const igaparam_validity_options *options,
+                                               igaparam_validity_report *report,
+                                               double *element_bounds,
+                                               double *element_quality,
+                                               size_t len);
+
+/**
+ * Writes the map sampled on `samples^d` sub-cells per element (`samples` from 1 to 32) to a VTK
+ * XML unstructured grid (`.vtu`) at `path`: quads (2D) or hexahedra (3D) at the physical
+ * positions, point data `quality` (q_S) and `det` (det J_S), cell data `level` and `element`.
+ */
+igaparam_status igaparam_spline_write_vtu(const igaparam_spline *spline,
+                                          const char *path,
+                                          uint32_t samples);
+
+/**
+ * Writes the map to G+Smo XML at `path` (a `THBSpline2`/`THBSpline3` geometry over a
+ * `THBSplineBasis2`/`3`, readable by G+Smo's `gsReadFile` and by `igaparam_spline_read_gismo`).
+ */
+igaparam_status igaparam_spline_write_gismo(const igaparam_spline *spline, const char *path);
 
 #ifdef __cplusplus
 }  // extern "C"

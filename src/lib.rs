@@ -11,6 +11,7 @@ pub mod error;
 pub mod homesh;
 pub mod io;
 pub mod optimize;
+pub mod spline;
 pub mod tmesh;
 
 pub use error::{Error, ErrorKind, Result};

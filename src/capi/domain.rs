@@ -5,6 +5,7 @@ use std::ffi::{c_char, c_int, c_void, CStr};
 use std::path::Path;
 
 use super::boundary::{check_capacity, non_null, non_null_mut, run, slice, slice_mut, Failure};
+use super::spline::AnyMap;
 use super::{igaparam_progress_fn, igaparam_stage, igaparam_status};
 use crate::boundary::{BoundaryLoop2, Coastline, Curve2, Point2};
 use crate::domain::{PlanarDomain, PlanarOptions};
@@ -118,7 +119,10 @@ fn planar_options(o: &igaparam_domain_options) -> Result<PlanarOptions> {
 }
 
 /// A path from a NUL-terminated C string that must not be NULL.
-fn c_path<'a>(ptr: *const c_char, name: &'static str) -> std::result::Result<&'a Path, Failure> {
+pub(super) fn c_path<'a>(
+    ptr: *const c_char,
+    name: &'static str,
+) -> std::result::Result<&'a Path, Failure> {
     non_null(ptr, name)?;
     // SAFETY: `ptr` is not NULL and the caller passes a NUL-terminated string (documented
     // contract) that outlives the call.
@@ -240,6 +244,15 @@ fn built<'a>(domain: *const igaparam_domain) -> std::result::Result<&'a PlanarDo
     non_null(domain, "domain")?.built.as_ref().ok_or_else(|| {
         Error::invalid("the domain has not been built: call igaparam_domain_build first").into()
     })
+}
+
+/// Fits the spline map of the built domain (see `igaparam_spline_fit_domain`).
+pub(super) fn fit_domain(
+    domain: *const igaparam_domain,
+) -> std::result::Result<(AnyMap, crate::spline::FitReport), Failure> {
+    let d = built(domain)?;
+    let (map, report) = crate::spline::SplineMap::fit_tmesh(d.mesh(), d.positions())?;
+    Ok((AnyMap::Two(map), report))
 }
 
 /// Adapts a T-mesh to the boundary (refining boundary cells until `options.tolerance` or

@@ -12,10 +12,12 @@
 mod boundary;
 mod domain;
 mod mesh;
+mod spline;
 
 pub use boundary::{igaparam_last_error_message, igaparam_status, igaparam_version};
 pub use domain::*;
 pub use mesh::*;
+pub use spline::*;
 
 /// Major version of the library this header belongs to.
 pub const IGAPARAM_VERSION_MAJOR: u32 = 0;

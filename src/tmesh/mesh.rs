@@ -76,6 +76,11 @@ impl<const D: usize> TMesh<D> {
         &self.tree
     }
 
+    /// Tree-cell index of each T-mesh cell (the tree's leaves in depth-first order).
+    pub fn leaves(&self) -> &[usize] {
+        &self.leaves
+    }
+
     /// Number of cells (leaves).
     pub fn cell_count(&self) -> usize {
         self.leaves.len()

@@ -138,6 +138,16 @@ impl<const D: usize> Tree<D> {
         Some(c)
     }
 
+    /// The leaf containing the parametric point `x ∈ [0,1]^d`, or `None` outside (or not finite).
+    /// On shared boundaries the cell on the upper side is chosen.
+    pub fn leaf_at_point(&self, x: &[f64; D]) -> Option<usize> {
+        if x.iter().any(|v| !v.is_finite() || *v < 0.0 || *v > 1.0) {
+            return None;
+        }
+        let p: [i64; D] = std::array::from_fn(|k| (x[k] * UNIT as f64).floor() as i64);
+        self.leaf_at(&p)
+    }
+
     /// Refines leaves until every two leaves that touch (across a face, an edge or a corner)
     /// differ by at most one level (strong 2:1 balance). Returns the number of refinements.
     pub fn balance(&mut self) -> Result<usize> {

@@ -1,0 +1,318 @@
+//! Cubic B-spline knot vectors of the tree levels (clamped, uniform, dyadic), their blossoms, the
+//! 1D matrices built from them (Bézier extraction, two-scale relation), and tensor Bernstein
+//! polynomials of any degree with products and subdivision.
+
+/// Spline degree in every direction.
+pub const DEGREE: usize = 3;
+
+/// Functions (and Bernstein polynomials) of one direction that are non-zero on one knot span.
+pub const SPAN_FUNCTIONS: usize = DEGREE + 1;
+
+/// Number of cubic B-splines of one direction at `level`: `2^level + 3`.
+pub fn function_count(level: u8) -> usize {
+    (1usize << level) + DEGREE
+}
+
+/// Knot `j` of the clamped uniform knot vector of `level`: `clamp(j − 3, 0, 2^level) / 2^level`.
+pub fn knot(level: u8, j: i64) -> f64 {
+    let m = 1i64 << level;
+    (j - DEGREE as i64).clamp(0, m) as f64 / m as f64
+}
+
+/// Knot spans (of `level`) in the support of function `i`: `lo..hi`.
+pub fn support_spans(level: u8, i: usize) -> (usize, usize) {
+    let m = 1i64 << level;
+    let i = i as i64;
+    (
+        (i - DEGREE as i64).clamp(0, m) as usize,
+        (i + 1).clamp(0, m) as usize,
+    )
+}
+
+/// Greville abscissa of function `i` of `level`: the mean of its three inner knots.
+pub fn greville(level: u8, i: usize) -> f64 {
+    let i = i as i64;
+    (knot(level, i + 1) + knot(level, i + 2) + knot(level, i + 3)) / 3.0
+}
+
+/// Blossom at `args` of the polynomial piece on span `span` of `level` of the spline whose
+/// coefficients on the four functions `span..span + 4` are `coef` (de Boor's algorithm with one
+/// argument per stage).
+pub fn blossom(level: u8, span: usize, coef: [f64; 4], args: [f64; 3]) -> f64 {
+    let mu = span as i64 + DEGREE as i64;
+    let mut d = coef;
+    for (r, &x) in args.iter().enumerate() {
+        let r = r + 1;
+        // d[q] holds the value of index j = mu − 3 + q; update from the top down.
+        for q in (r..=DEGREE).rev() {
+            let j = mu - DEGREE as i64 + q as i64;
+            let (tj, tk) = (knot(level, j), knot(level, j + 4 - r as i64));
+            let alpha = (x - tj) / (tk - tj);
+            d[q] = (1.0 - alpha) * d[q - 1] + alpha * d[q];
+        }
+    }
+    d[DEGREE]
+}
+
+/// A 4×4 matrix of one direction, `m[row][column]`.
+pub type Matrix4 = [[f64; 4]; 4];
+
+fn unit(i: usize) -> [f64; 4] {
+    std::array::from_fn(|k| if k == i { 1.0 } else { 0.0 })
+}
+
+/// Bézier extraction of span `span` of `level`: row `i` holds the Bernstein coefficients (on the
+/// span) of function `span + i`.
+pub fn extraction(level: u8, span: usize) -> Matrix4 {
+    let (u0, u1) = (knot(level, span as i64 + 3), knot(level, span as i64 + 4));
+    std::array::from_fn(|i| {
+        std::array::from_fn(|b| {
+            let args = std::array::from_fn(|r| if r < DEGREE - b { u0 } else { u1 });
+            blossom(level, span, unit(i), args)
+        })
+    })
+}
+
+/// Two-scale relation on one span: row `j` holds the coefficients of function `span + j` of
+/// `level` on the functions `child + q` of `level + 1` that are non-zero on `child`, one of the
+/// two halves (`2·span` or `2·span + 1`) of `span`.
+pub fn two_scale(level: u8, span: usize, child: usize) -> Matrix4 {
+    std::array::from_fn(|j| {
+        std::array::from_fn(|q| {
+            let i = (child + q) as i64;
+            let args = std::array::from_fn(|r| knot(level + 1, i + 1 + r as i64));
+            blossom(level, span, unit(j), args)
+        })
+    })
+}
+
+/// Values and first derivatives of the four cubic Bernstein polynomials at `t ∈ [0,1]`.
+pub fn bernstein3(t: f64) -> ([f64; 4], [f64; 4]) {
+    let s = 1.0 - t;
+    (
+        [s * s * s, 3.0 * t * s * s, 3.0 * t * t * s, t * t * t],
+        [
+            -3.0 * s * s,
+            3.0 * s * s - 6.0 * t * s,
+            6.0 * t * s - 3.0 * t * t,
+            3.0 * t * t,
+        ],
+    )
+}
+
+fn binomial(n: usize, k: usize) -> f64 {
+    (0..k).fold(1.0, |acc, i| acc * (n - i) as f64 / (i + 1) as f64)
+}
+
+/// A polynomial on [0,1]^d in tensor Bernstein form: `degree[k]` in direction `k`, coefficient
+/// of multi-index `i` at `Σ i_k · stride_k` with direction 0 fastest.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Bernstein<const D: usize> {
+    /// Degree in each direction.
+    pub degree: [usize; D],
+    /// Coefficients, direction 0 fastest.
+    pub coef: Vec<f64>,
+}
+
+impl<const D: usize> Bernstein<D> {
+    /// The zero polynomial of the given degrees.
+    pub fn zero(degree: [usize; D]) -> Self {
+        let n = degree.iter().map(|p| p + 1).product();
+        Bernstein {
+            degree,
+            coef: vec![0.0; n],
+        }
+    }
+
+    fn strides(&self) -> [usize; D] {
+        let mut s = [1; D];
+        for k in 1..D {
+            s[k] = s[k - 1] * (self.degree[k - 1] + 1);
+        }
+        s
+    }
+
+    fn multi_index(&self, mut flat: usize) -> [usize; D] {
+        std::array::from_fn(|k| {
+            let v = flat % (self.degree[k] + 1);
+            flat /= self.degree[k] + 1;
+            v
+        })
+    }
+
+    /// Derivative in direction `k` (degree one lower there).
+    pub fn derivative(&self, k: usize) -> Self {
+        let mut degree = self.degree;
+        degree[k] -= 1;
+        let mut out = Bernstein::zero(degree);
+        let stride = self.strides()[k];
+        let p = self.degree[k] as f64;
+        for flat in 0..out.coef.len() {
+            let idx = out.multi_index(flat);
+            let src: usize = idx
+                .iter()
+                .zip(self.strides())
+                .map(|(i, s)| i * s)
+                .sum::<usize>();
+            out.coef[flat] = p * (self.coef[src + stride] - self.coef[src]);
+        }
+        out
+    }
+
+    /// The product of two polynomials (degrees add).
+    pub fn mul(&self, other: &Self) -> Self {
+        let degree = std::array::from_fn(|k| self.degree[k] + other.degree[k]);
+        let mut out = Bernstein::zero(degree);
+        let os = out.strides();
+        // Scale by binomials so the product is a plain convolution, then unscale.
+        let scaled = |b: &Self| -> Vec<f64> {
+            b.coef
+                .iter()
+                .enumerate()
+                .map(|(f, &c)| {
+                    let i = b.multi_index(f);
+                    (0..D).fold(c, |acc, k| acc * binomial(b.degree[k], i[k]))
+                })
+                .collect()
+        };
+        let (a, b) = (scaled(self), scaled(other));
+        for (fa, &ca) in a.iter().enumerate() {
+            if ca == 0.0 {
+                continue;
+            }
+            let ia = self.multi_index(fa);
+            for (fb, &cb) in b.iter().enumerate() {
+                let ib = other.multi_index(fb);
+                let target: usize = (0..D).map(|k| (ia[k] + ib[k]) * os[k]).sum();
+                out.coef[target] += ca * cb;
+            }
+        }
+        for f in 0..out.coef.len() {
+            let i = out.multi_index(f);
+            out.coef[f] /= (0..D).fold(1.0, |acc, k| acc * binomial(degree[k], i[k]));
+        }
+        out
+    }
+
+    /// `self + s·other` (same degrees).
+    pub fn add_scaled(&mut self, s: f64, other: &Self) {
+        for (a, b) in self.coef.iter_mut().zip(&other.coef) {
+            *a += s * b;
+        }
+    }
+
+    /// Splits at the middle of direction `k` by de Casteljau: the polynomials on the lower and
+    /// upper halves, each reparameterized to [0,1].
+    pub fn split(&self, k: usize) -> (Self, Self) {
+        let (mut lo, mut hi) = (self.clone(), self.clone());
+        let stride = self.strides()[k];
+        let p = self.degree[k];
+        for flat in 0..self.coef.len() {
+            if self.multi_index(flat)[k] != 0 {
+                continue;
+            }
+            let mut stage: Vec<f64> = (0..=p).map(|i| self.coef[flat + i * stride]).collect();
+            lo.coef[flat] = stage[0];
+            hi.coef[flat + p * stride] = stage[p];
+            for r in 1..=p {
+                for i in 0..=p - r {
+                    stage[i] = 0.5 * (stage[i] + stage[i + 1]);
+                }
+                lo.coef[flat + r * stride] = stage[0];
+                hi.coef[flat + (p - r) * stride] = stage[p - r];
+            }
+        }
+        (lo, hi)
+    }
+
+    /// Value at `t ∈ [0,1]^d`.
+    pub fn eval(&self, t: [f64; D]) -> f64 {
+        let mut acc = 0.0;
+        for (f, &c) in self.coef.iter().enumerate() {
+            let i = self.multi_index(f);
+            let mut w = c;
+            for k in 0..D {
+                let p = self.degree[k];
+                w *= binomial(p, i[k])
+                    * t[k].powi(i[k] as i32)
+                    * (1.0 - t[k]).powi((p - i[k]) as i32);
+            }
+            acc += w;
+        }
+        acc
+    }
+
+    /// Smallest coefficient: a lower bound of the polynomial on [0,1]^d.
+    pub fn min_coef(&self) -> f64 {
+        self.coef.iter().copied().fold(f64::INFINITY, f64::min)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn extraction_rows_sum_to_bernstein_partition() {
+        for level in 0..4u8 {
+            for span in 0..1usize << level {
+                let e = extraction(level, span);
+                for b in 0..4 {
+                    let s: f64 = (0..4).map(|i| e[i][b]).sum();
+                    assert!((s - 1.0).abs() < 1e-14);
+                }
+            }
+        }
+        // Level 0 is the Bernstein basis itself.
+        let e = extraction(0, 0);
+        for i in 0..4 {
+            for b in 0..4 {
+                assert_eq!(e[i][b], if i == b { 1.0 } else { 0.0 });
+            }
+        }
+    }
+
+    #[test]
+    fn two_scale_of_level_zero_is_de_casteljau() {
+        let r = two_scale(0, 0, 0);
+        let expected = [
+            [1.0, 0.5, 0.25, 0.125],
+            [0.0, 0.5, 0.5, 0.375],
+            [0.0, 0.0, 0.25, 0.375],
+            [0.0, 0.0, 0.0, 0.125],
+        ];
+        for j in 0..4 {
+            for q in 0..4 {
+                assert!((r[j][q] - expected[j][q]).abs() < 1e-15, "{r:?}");
+            }
+        }
+    }
+
+    #[test]
+    fn split_and_product_agree_with_evaluation() {
+        let mut a = Bernstein::<2>::zero([2, 3]);
+        let mut b = Bernstein::<2>::zero([3, 1]);
+        for (i, c) in a.coef.iter_mut().enumerate() {
+            *c = (i as f64 * 0.7).sin();
+        }
+        for (i, c) in b.coef.iter_mut().enumerate() {
+            *c = (i as f64 * 1.3).cos();
+        }
+        let ab = a.mul(&b);
+        let (lo, hi) = ab.split(1);
+        for t in [[0.1, 0.2], [0.7, 0.9], [0.5, 0.3]] {
+            let v = a.eval(t) * b.eval(t);
+            assert!((ab.eval(t) - v).abs() < 1e-13);
+            let (half, u) = if t[1] < 0.5 {
+                (&lo, 2.0 * t[1])
+            } else {
+                (&hi, 2.0 * t[1] - 1.0)
+            };
+            assert!((half.eval([t[0], u]) - v).abs() < 1e-13);
+        }
+        let da = a.derivative(0);
+        let h = 1e-6;
+        let fd = (a.eval([0.3 + h, 0.4]) - a.eval([0.3 - h, 0.4])) / (2.0 * h);
+        assert!((da.eval([0.3, 0.4]) - fd).abs() < 1e-7);
+    }
+}

@@ -1,0 +1,27 @@
+//! Spline maps of [0,1]^d over the T-mesh: cubic truncated hierarchical B-splines (THB) on the
+//! tree levels, their Bézier extraction, Greville interpolation of the T-mesh's piecewise
+//! quadratic map, queries (values, Jacobians, inverse), h-refinement, certified validity of the
+//! Jacobian determinant, and output (`.vtu` samples, G+Smo XML).
+//!
+//! Everything past the basis construction works through the [`SplineSpace`] trait, which gives
+//! per element the non-zero functions and the Bézier extraction operator `C^e` (`N^e = C^e B^e`
+//! with `B^e` the tensor Bernstein polynomials of degree 3 on the element), so another basis over
+//! the same elements can be added by implementing it.
+
+pub mod bernstein;
+mod gismo;
+mod map;
+mod quadratic;
+mod solve;
+mod space;
+mod thb;
+mod validity;
+mod vtu;
+
+pub use gismo::{read_gismo_thb, write_gismo_thb};
+pub use map::{FitReport, InverseMap, SplineMap};
+pub use quadratic::QuadraticMap;
+pub use solve::SparseLu;
+pub use space::{BasisValues, SplineSpace};
+pub use thb::ThbSpace;
+pub use validity::{ElementValidity, ValidityOptions, ValidityReport, HISTOGRAM_BINS};

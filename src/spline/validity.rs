@@ -1,0 +1,246 @@
+//! Certified validity and sampled quality of a spline map.
+//!
+//! On each element `det J_S` is a polynomial of degree `3d − 1` per direction (5×5 in 2D,
+//! 8×8×8 in 3D): the sum over permutations of products of the derivative patches, formed by
+//! Bernstein products. Its smallest Bernstein coefficient is a lower bound; when that bound is
+//! not positive but the values sampled are, the polynomial is subdivided (de Casteljau) up to a
+//! depth limit, the bound being the smallest over the pieces.
+
+use rayon::prelude::*;
+
+use super::bernstein::Bernstein;
+use super::map::SplineMap;
+use super::space::SplineSpace;
+use crate::optimize::metric::mean_ratio;
+use crate::optimize::small::det;
+
+/// Number of bins of the quality histogram over [0, 1].
+pub const HISTOGRAM_BINS: usize = 10;
+
+/// Options of [`SplineMap::validity`].
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ValidityOptions {
+    /// Largest number of subdivisions of an element's determinant (each halves every
+    /// direction).
+    pub max_depth: u32,
+    /// Sample points per direction and element for the quality (and the sampled determinant).
+    pub samples: usize,
+}
+
+impl Default for ValidityOptions {
+    fn default() -> Self {
+        ValidityOptions {
+            max_depth: 5,
+            samples: 5,
+        }
+    }
+}
+
+/// Validity and quality of one element.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ElementValidity {
+    /// Whether `det J_S > 0` on the whole element is proven.
+    pub certified_positive: bool,
+    /// Lower bound of `det J_S` on the element (with respect to the parametric coordinates).
+    pub det_lower_bound: f64,
+    /// Smallest `det J_S` at the samples.
+    pub sampled_min_det: f64,
+    /// Smallest mean ratio at the samples.
+    pub min_quality: f64,
+    /// Mean of the mean ratio at the samples.
+    pub mean_quality: f64,
+}
+
+/// Validity and quality of a whole map.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ValidityReport {
+    /// Per element, in element order.
+    pub elements: Vec<ElementValidity>,
+    /// Whether every element is certified positive.
+    pub certified_positive: bool,
+    /// Elements not certified positive.
+    pub uncertified: usize,
+    /// Smallest lower bound of `det J_S`.
+    pub det_lower_bound: f64,
+    /// Smallest sampled mean ratio.
+    pub min_quality: f64,
+    /// Mean of the sampled mean ratio over all samples.
+    pub mean_quality: f64,
+    /// Samples per quality bin `[i/10, (i+1)/10)` (the last bin includes 1).
+    pub histogram: [usize; HISTOGRAM_BINS],
+}
+
+/// Lower bound of a Bernstein polynomial on [0,1]^d by subdivision, stopping at positive
+/// bounds, at a non-positive corner value (the polynomial's own value there) or at `depth`.
+fn lower_bound<const D: usize>(p: &Bernstein<D>, depth: u32) -> f64 {
+    let m = p.min_coef();
+    if m > 0.0 || depth == 0 {
+        return m;
+    }
+    let corner_min = (0..1usize << D)
+        .map(|c| p.eval(std::array::from_fn(|k| (c >> k & 1) as f64)))
+        .fold(f64::INFINITY, f64::min);
+    if corner_min <= 0.0 {
+        return m;
+    }
+    let mut pieces = vec![p.clone()];
+    for k in 0..D {
+        pieces = pieces
+            .into_iter()
+            .flat_map(|q| {
+                let (a, b) = q.split(k);
+                [a, b]
+            })
+            .collect();
+    }
+    pieces
+        .iter()
+        .map(|q| lower_bound(q, depth - 1))
+        .fold(f64::INFINITY, f64::min)
+}
+
+impl<const D: usize, S: SplineSpace<D>> SplineMap<D, S> {
+    /// `det J_S` on element `e` as a Bernstein polynomial on the element mapped to [0,1]^d,
+    /// the Jacobian taken with respect to the parametric coordinates.
+    pub fn det_polynomial(&self, e: usize) -> Bernstein<D> {
+        let (functions, c) = self.extraction(e);
+        let (lo, hi) = self.element_bounds(e);
+        let count = 4usize.pow(D as u32);
+        // Bézier control points of each component.
+        let patches: Vec<Bernstein<D>> = (0..D)
+            .map(|a| {
+                let mut p = Bernstein::zero([3; D]);
+                for (row, &f) in c.chunks_exact(count).zip(functions) {
+                    let x = self.control_points()[f][a];
+                    for (b, &v) in row.iter().enumerate() {
+                        p.coef[b] += v * x;
+                    }
+                }
+                p
+            })
+            .collect();
+        // jac[a][b] = ∂S_a/∂x_b.
+        let jac: Vec<Vec<Bernstein<D>>> = patches
+            .iter()
+            .map(|p| {
+                (0..D)
+                    .map(|b| {
+                        let mut d = p.derivative(b);
+                        let scale = 1.0 / (hi[b] - lo[b]);
+                        d.coef.iter_mut().for_each(|v| *v *= scale);
+                        d
+                    })
+                    .collect()
+            })
+            .collect();
+        let mut total = Bernstein::zero([3 * D - 1; D]);
+        for (perm, sign) in permutations(D) {
+            let mut term = jac[0][perm[0]].clone();
+            for a in 1..D {
+                term = term.mul(&jac[a][perm[a]]);
+            }
+            total.add_scaled(sign, &term);
+        }
+        total
+    }
+
+    /// Certified validity of element `e` and its sampled quality.
+    pub fn element_validity(&self, e: usize, options: &ValidityOptions) -> ElementValidity {
+        let poly = self.det_polynomial(e);
+        let bound = lower_bound(&poly, options.max_depth);
+        let (lo, hi) = self.element_bounds(e);
+        let n = options.samples.max(2);
+        let (mut min_det, mut min_q, mut sum_q) = (f64::INFINITY, f64::INFINITY, 0.0);
+        let per = n.pow(D as u32);
+        for s in 0..per {
+            let x: [f64; D] = std::array::from_fn(|k| {
+                let i = s / n.pow(k as u32) % n;
+                lo[k] + (hi[k] - lo[k]) * i as f64 / (n - 1) as f64
+            });
+            if let Some((_, j)) = self.eval_with_jacobian(x) {
+                let q = mean_ratio(&j);
+                min_det = min_det.min(det(&j));
+                min_q = min_q.min(q);
+                sum_q += q;
+            }
+        }
+        ElementValidity {
+            certified_positive: bound > 0.0,
+            det_lower_bound: bound,
+            sampled_min_det: min_det,
+            min_quality: min_q,
+            mean_quality: sum_q / per as f64,
+        }
+    }
+
+    /// Certified validity and sampled quality of every element (in parallel; the result does
+    /// not depend on the number of threads).
+    pub fn validity(&self, options: &ValidityOptions) -> ValidityReport {
+        let elements: Vec<ElementValidity> = (0..self.element_count())
+            .into_par_iter()
+            .map(|e| self.element_validity(e, options))
+            .collect();
+        let mut histogram = [0; HISTOGRAM_BINS];
+        let n = options.samples.max(2);
+        let per = n.pow(D as u32);
+        for e in 0..self.element_count() {
+            let (lo, hi) = self.element_bounds(e);
+            for s in 0..per {
+                let x: [f64; D] = std::array::from_fn(|k| {
+                    let i = s / n.pow(k as u32) % n;
+                    lo[k] + (hi[k] - lo[k]) * i as f64 / (n - 1) as f64
+                });
+                if let Some(q) = self.mean_ratio(x) {
+                    histogram[((q * HISTOGRAM_BINS as f64) as usize).min(HISTOGRAM_BINS - 1)] += 1;
+                }
+            }
+        }
+        let uncertified = elements.iter().filter(|v| !v.certified_positive).count();
+        ValidityReport {
+            certified_positive: uncertified == 0,
+            uncertified,
+            det_lower_bound: elements
+                .iter()
+                .map(|v| v.det_lower_bound)
+                .fold(f64::INFINITY, f64::min),
+            min_quality: elements
+                .iter()
+                .map(|v| v.min_quality)
+                .fold(f64::INFINITY, f64::min),
+            mean_quality: elements.iter().map(|v| v.mean_quality).sum::<f64>()
+                / elements.len().max(1) as f64,
+            histogram,
+            elements,
+        }
+    }
+
+    /// Smallest sampled mean ratio of every element: what an adaptive loop marks elements by.
+    pub fn element_min_quality(&self, samples: usize) -> Vec<f64> {
+        let options = ValidityOptions {
+            max_depth: 0,
+            samples,
+        };
+        (0..self.element_count())
+            .into_par_iter()
+            .map(|e| self.element_validity(e, &options).min_quality)
+            .collect()
+    }
+}
+
+/// All permutations of `0..n` with their signs.
+fn permutations(n: usize) -> Vec<(Vec<usize>, f64)> {
+    if n == 1 {
+        return vec![(vec![0], 1.0)];
+    }
+    let mut out = Vec::new();
+    for (p, s) in permutations(n - 1) {
+        // Insert n − 1 at every position; moving it left past k entries flips the sign k times.
+        for pos in (0..n).rev() {
+            let mut q = p.clone();
+            q.insert(pos, n - 1);
+            let flips = n - 1 - pos;
+            out.push((q, if flips % 2 == 0 { s } else { -s }));
+        }
+    }
+    out
+}

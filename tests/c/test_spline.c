@@ -1,0 +1,382 @@
+/*
+ * Tests of the spline part of the C API (include/igaparam.h) through its C ABI.
+ *
+ * Usage: test_spline DATA_DIR OUT_DIR, where DATA_DIR holds male_bdry.xml and OUT_DIR receives
+ * the output files. Builds the male rotor domain, fits its spline map, and checks that the basis
+ * queries agree with the evaluation (Σ N_i P_i = S, Σ ∇N_i P_i = J, Σ N_i = 1, N_i ≥ 0), that the
+ * Bézier extraction reproduces the basis values, that inversion undoes evaluation, that the map
+ * is certified valid, that refinement keeps the map and that the G+Smo XML round trip keeps it;
+ * calls the entry points with NULL, out-of-range and non-finite arguments, checking the status,
+ * the message and that a failed call leaves the handle as it was. Prints "N passed, M failed";
+ * exits non-zero if any check failed.
+ */
+
+#include <math.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "expect.h"
+
+static char data_dir[512], out_dir[512];
+
+static const char *joined(const char *dir, const char *name) {
+  static char buf[2][1024];
+  static int which;
+  which ^= 1;
+  snprintf(buf[which], sizeof buf[which], "%s/%s", dir, name);
+  return buf[which];
+}
+
+/* Deterministic pseudo-random numbers in [0, 1). */
+static double uniform(void) {
+  static uint64_t state = 0x9e3779b97f4a7c15u;
+  state = state * 6364136223846793005u + 1442695040888963407u;
+  return (double)(state >> 11) / 9007199254740992.0;
+}
+
+/* Cubic Bernstein polynomials at t. */
+static void bernstein3(double t, double b[4]) {
+  double s = 1.0 - t;
+  b[0] = s * s * s;
+  b[1] = 3.0 * t * s * s;
+  b[2] = 3.0 * t * t * s;
+  b[3] = t * t * t;
+}
+
+#define SAMPLES 40
+
+static igaparam_spline *fit_male(void) {
+  igaparam_domain *domain = NULL;
+  EXPECT(igaparam_domain_new_from_file(joined(data_dir, "male_bdry.xml"), &domain),
+         IGAPARAM_STATUS_OK);
+  igaparam_domain_options options = igaparam_domain_options_default();
+  options.threads = 2;
+  EXPECT(igaparam_domain_build(domain, &options, NULL), IGAPARAM_STATUS_OK);
+  igaparam_spline *spline = NULL;
+  igaparam_fit_report report;
+  memset(&report, 0, sizeof report);
+  EXPECT(igaparam_spline_fit_domain(domain, &spline, &report), IGAPARAM_STATUS_OK);
+  CHECK(spline != NULL, "fit gave no handle");
+  CHECK(report.basis_count > 16 && report.element_count > 1, "fit report: %zu functions, %zu elements",
+        report.basis_count, report.element_count);
+  CHECK(report.residual < 1e-8, "fit residual %g", report.residual);
+  /* The spline does not refer to the domain. */
+  igaparam_domain_free(domain);
+  return spline;
+}
+
+/* Σ N_i P_i = S and Σ ∇N_i P_i = J at random points; Σ N_i = 1; N_i ≥ 0. */
+static void test_basis_agrees_with_evaluation(const igaparam_spline *s) {
+  size_t nb = 0;
+  EXPECT(igaparam_spline_basis_count(s, &nb), IGAPARAM_STATUS_OK);
+  double *control = malloc(2 * nb * sizeof *control);
+  EXPECT(igaparam_spline_copy_control_points(s, control, 2 * nb), IGAPARAM_STATUS_OK);
+  double params[2 * SAMPLES], points[2 * SAMPLES], jac[4 * SAMPLES], q[SAMPLES];
+  for (int i = 0; i < 2 * SAMPLES; i++) params[i] = uniform();
+  params[0] = 0.0; /* a corner and a point on the upper boundary */
+  params[1] = 0.0;
+  params[2] = 1.0;
+  params[3] = 0.5;
+  EXPECT(igaparam_spline_evaluate(s, SAMPLES, params, points, jac), IGAPARAM_STATUS_OK);
+  EXPECT(igaparam_spline_mean_ratio(s, SAMPLES, params, q), IGAPARAM_STATUS_OK);
+  double worst_value = 0, worst_grad = 0, worst_sum = 0, worst_q = 0, most_negative = 0;
+  for (int i = 0; i < SAMPLES; i++) {
+    size_t m = 0;
+    EXPECT(igaparam_spline_basis_count_at(s, params + 2 * i, &m), IGAPARAM_STATUS_OK);
+    size_t *f = malloc(m * sizeof *f);
+    double *v = malloc(m * sizeof *v), *g = malloc(2 * m * sizeof *g);
+    size_t count = 0;
+    EXPECT(igaparam_spline_basis_at(s, params + 2 * i, &count, f, v, g, m), IGAPARAM_STATUS_OK);
+    CHECK(count == m, "basis_at count %zu, basis_count_at %zu", count, m);
+    double x[2] = {0, 0}, j[4] = {0, 0, 0, 0}, sum = 0;
+    for (size_t a = 0; a < count; a++) {
+      CHECK(f[a] < nb, "function index %zu out of range", f[a]);
+      sum += v[a];
+      if (v[a] < most_negative) most_negative = v[a];
+      for (int k = 0; k < 2; k++) {
+        x[k] += v[a] * control[2 * f[a] + k];
+        for (int l = 0; l < 2; l++) j[2 * k + l] += g[2 * a + l] * control[2 * f[a] + k];
+      }
+    }
+    for (int k = 0; k < 2; k++) worst_value = fmax(worst_value, fabs(x[k] - points[2 * i + k]));
+    for (int k = 0; k < 4; k++) worst_grad = fmax(worst_grad, fabs(j[k] - jac[4 * i + k]));
+    worst_sum = fmax(worst_sum, fabs(sum - 1.0));
+    double det = jac[4 * i] * jac[4 * i + 3] - jac[4 * i + 1] * jac[4 * i + 2];
+    double frob = jac[4 * i] * jac[4 * i] + jac[4 * i + 1] * jac[4 * i + 1] +
+                  jac[4 * i + 2] * jac[4 * i + 2] + jac[4 * i + 3] * jac[4 * i + 3];
+    double expected = det > 0 ? 2.0 * det / frob : 0.0;
+    worst_q = fmax(worst_q, fabs(expected - q[i]));
+    free(f);
+    free(v);
+    free(g);
+  }
+  CHECK(worst_value < 1e-10, "Σ N_i P_i differs from S by %g", worst_value);
+  CHECK(worst_grad < 1e-8, "Σ ∇N_i P_i differs from J by %g", worst_grad);
+  CHECK(worst_sum < 1e-12, "Σ N_i differs from 1 by %g", worst_sum);
+  CHECK(most_negative > -1e-14, "a basis value is negative: %g", most_negative);
+  CHECK(worst_q < 1e-12, "mean ratio differs from 2 det J / |J|² by %g", worst_q);
+  free(control);
+}
+
+/* On every tenth element, C^e times the Bernstein values gives basis_at's values. */
+static void test_extraction(const igaparam_spline *s) {
+  size_t ne = 0;
+  EXPECT(igaparam_spline_element_count(s, &ne), IGAPARAM_STATUS_OK);
+  uint8_t *levels = malloc(ne);
+  double *bounds = malloc(4 * ne * sizeof *bounds);
+  EXPECT(igaparam_spline_copy_elements(s, levels, bounds, ne), IGAPARAM_STATUS_OK);
+  double worst = 0;
+  int index_mismatch = 0;
+  for (size_t e = 0; e < ne; e += 10) {
+    double *b = bounds + 4 * e;
+    CHECK(fabs((b[2] - b[0]) - ldexp(1.0, -levels[e])) < 1e-15, "element %zu: side vs level", e);
+    size_t m = 0;
+    EXPECT(igaparam_spline_element_function_count(s, e, &m), IGAPARAM_STATUS_OK);
+    size_t *f = malloc(m * sizeof *f);
+    double *c = malloc(16 * m * sizeof *c);
+    EXPECT(igaparam_spline_copy_element_extraction(s, e, f, m, c, 16 * m), IGAPARAM_STATUS_OK);
+    double t[2] = {0.3, 0.7}, bu[4], bv[4];
+    double p[2] = {b[0] + t[0] * (b[2] - b[0]), b[1] + t[1] * (b[3] - b[1])};
+    bernstein3(t[0], bu);
+    bernstein3(t[1], bv);
+    size_t count = 0;
+    size_t *g = malloc(m * sizeof *g);
+    double *v = malloc(m * sizeof *v);
+    EXPECT(igaparam_spline_basis_at(s, p, &count, g, v, NULL, m), IGAPARAM_STATUS_OK);
+    for (size_t a = 0; a < m && a < count; a++) {
+      if (g[a] != f[a]) index_mismatch++;
+      double value = 0;
+      for (int k = 0; k < 16; k++) value += c[16 * a + k] * bu[k % 4] * bv[k / 4];
+      worst = fmax(worst, fabs(value - v[a]));
+    }
+    CHECK(count == m, "element %zu: %zu functions at a point, %zu in the extraction", e, count, m);
+    free(f);
+    free(c);
+    free(g);
+    free(v);
+  }
+  CHECK(index_mismatch == 0, "%d function indices differ between extraction and basis_at",
+        index_mismatch);
+  CHECK(worst < 1e-12, "extraction differs from basis values by %g", worst);
+  free(levels);
+  free(bounds);
+}
+
+/* Functions with an inner Greville point vanish on the boundary. */
+static void test_greville(const igaparam_spline *s) {
+  size_t nb = 0;
+  EXPECT(igaparam_spline_basis_count(s, &nb), IGAPARAM_STATUS_OK);
+  double *g = malloc(2 * nb * sizeof *g);
+  EXPECT(igaparam_spline_copy_greville_points(s, g, 2 * nb), IGAPARAM_STATUS_OK);
+  int on_boundary = 0, wrong = 0;
+  for (size_t i = 0; i < nb; i++) {
+    CHECK(g[2 * i] >= 0 && g[2 * i] <= 1 && g[2 * i + 1] >= 0 && g[2 * i + 1] <= 1,
+          "Greville point %zu outside", i);
+    if (g[2 * i] == 0 || g[2 * i] == 1 || g[2 * i + 1] == 0 || g[2 * i + 1] == 1) on_boundary++;
+  }
+  for (int i = 0; i < SAMPLES; i++) {
+    double p[2] = {uniform(), uniform()};
+    p[i % 2] = (i / 2) % 2 ? 1.0 : 0.0;
+    size_t m = 0;
+    EXPECT(igaparam_spline_basis_count_at(s, p, &m), IGAPARAM_STATUS_OK);
+    size_t *f = malloc(m * sizeof *f);
+    double *v = malloc(m * sizeof *v);
+    EXPECT(igaparam_spline_basis_at(s, p, &m, f, v, NULL, m), IGAPARAM_STATUS_OK);
+    for (size_t a = 0; a < m; a++) {
+      const double *q = g + 2 * f[a];
+      int inner = q[0] > 0 && q[0] < 1 && q[1] > 0 && q[1] < 1;
+      if (inner && fabs(v[a]) > 1e-14) wrong++;
+    }
+    free(f);
+    free(v);
+  }
+  CHECK(on_boundary > 8, "%d functions with a Greville point on the boundary", on_boundary);
+  CHECK(wrong == 0, "%d inner functions do not vanish on the boundary", wrong);
+  double small[1];
+  EXPECT(igaparam_spline_copy_greville_points(s, small, 1), IGAPARAM_STATUS_BUFFER_TOO_SMALL);
+  free(g);
+}
+
+static void test_inverse(const igaparam_spline *s) {
+  double params[2 * SAMPLES], points[2 * SAMPLES], back[2 * SAMPLES];
+  int found[SAMPLES];
+  for (int i = 0; i < 2 * SAMPLES; i++) params[i] = 0.05 + 0.9 * uniform();
+  EXPECT(igaparam_spline_evaluate(s, SAMPLES, params, points, NULL), IGAPARAM_STATUS_OK);
+  EXPECT(igaparam_spline_invert(s, SAMPLES, points, 4, back, found), IGAPARAM_STATUS_OK);
+  double worst = 0;
+  int missed = 0;
+  for (int i = 0; i < SAMPLES; i++) {
+    if (!found[i]) missed++;
+    else
+      for (int k = 0; k < 2; k++) worst = fmax(worst, fabs(back[2 * i + k] - params[2 * i + k]));
+  }
+  CHECK(missed == 0, "%d of %d points not located", missed, SAMPLES);
+  CHECK(worst < 1e-9, "inverse(S(u)) differs from u by %g", worst);
+  /* A point far outside. */
+  double far[2] = {1e6, 1e6}, u[2];
+  int f = 1;
+  EXPECT(igaparam_spline_invert(s, 1, far, 4, u, &f), IGAPARAM_STATUS_OK);
+  CHECK(f == 0 && isnan(u[0]), "a point far outside was located at (%g, %g)", u[0], u[1]);
+}
+
+static void test_validity(const igaparam_spline *s) {
+  size_t ne = 0;
+  EXPECT(igaparam_spline_element_count(s, &ne), IGAPARAM_STATUS_OK);
+  double *lower = malloc(ne * sizeof *lower), *quality = malloc(ne * sizeof *quality);
+  igaparam_validity_report r;
+  memset(&r, 0, sizeof r);
+  EXPECT(igaparam_spline_check_validity(s, NULL, &r, lower, quality, ne), IGAPARAM_STATUS_OK);
+  CHECK(r.certified_positive == 1 && r.uncertified == 0, "not certified: %zu elements",
+        r.uncertified);
+  CHECK(r.det_lower_bound > 0, "det lower bound %g", r.det_lower_bound);
+  CHECK(r.min_quality > 0 && r.min_quality <= r.mean_quality && r.mean_quality <= 1,
+        "quality min %g mean %g", r.min_quality, r.mean_quality);
+  size_t total = 0;
+  for (int b = 0; b < IGAPARAM_HISTOGRAM_BINS; b++) total += r.histogram[b];
+  CHECK(total > 0, "empty histogram");
+  double smallest = INFINITY;
+  for (size_t e = 0; e < ne; e++) smallest = fmin(smallest, lower[e]);
+  CHECK(smallest == r.det_lower_bound, "per-element bounds' minimum %g vs %g", smallest,
+        r.det_lower_bound);
+  printf("male rotor spline: %zu elements, min q %.3f, mean q %.3f, det >= %.3g, certified %d\n",
+         ne, r.min_quality, r.mean_quality, r.det_lower_bound, r.certified_positive);
+  free(lower);
+  free(quality);
+}
+
+/* The largest difference between the images of `n` points under two splines. */
+static double distance(const igaparam_spline *a, const igaparam_spline *b) {
+  double params[2 * SAMPLES], pa[2 * SAMPLES], pb[2 * SAMPLES];
+  for (int i = 0; i < 2 * SAMPLES; i++) params[i] = uniform();
+  EXPECT(igaparam_spline_evaluate(a, SAMPLES, params, pa, NULL), IGAPARAM_STATUS_OK);
+  EXPECT(igaparam_spline_evaluate(b, SAMPLES, params, pb, NULL), IGAPARAM_STATUS_OK);
+  double worst = 0;
+  for (int i = 0; i < 2 * SAMPLES; i++) worst = fmax(worst, fabs(pa[i] - pb[i]));
+  return worst;
+}
+
+static void test_refine_and_files(const igaparam_spline *s) {
+  igaparam_spline *r = NULL;
+  EXPECT(igaparam_spline_clone(s, &r), IGAPARAM_STATUS_OK);
+  size_t before = 0, after = 0;
+  EXPECT(igaparam_spline_basis_count(r, &before), IGAPARAM_STATUS_OK);
+  size_t marked[2] = {0, 3};
+  igaparam_fit_report report;
+  EXPECT(igaparam_spline_refine(r, 2, marked, &report), IGAPARAM_STATUS_OK);
+  EXPECT(igaparam_spline_basis_count(r, &after), IGAPARAM_STATUS_OK);
+  CHECK(after > before && report.basis_count == after, "refinement: %zu -> %zu functions", before,
+        after);
+  CHECK(distance(s, r) < 1e-9, "local refinement changed the map by %g", distance(s, r));
+  EXPECT(igaparam_spline_refine(r, 0, NULL, NULL), IGAPARAM_STATUS_OK);
+  CHECK(distance(s, r) < 1e-9, "uniform refinement changed the map by %g", distance(s, r));
+  EXPECT(igaparam_spline_basis_count(r, &after), IGAPARAM_STATUS_OK);
+
+  const char *xml = joined(out_dir, "male_spline.xml");
+  EXPECT(igaparam_spline_write_gismo(r, xml), IGAPARAM_STATUS_OK);
+  igaparam_spline *back = NULL;
+  EXPECT(igaparam_spline_read_gismo(xml, &back), IGAPARAM_STATUS_OK);
+  size_t nb = 0;
+  EXPECT(igaparam_spline_basis_count(back, &nb), IGAPARAM_STATUS_OK);
+  CHECK(nb == after, "read back %zu functions, wrote %zu", nb, after);
+  CHECK(distance(r, back) < 1e-12, "XML round trip changed the map by %g", distance(r, back));
+  size_t d = 0;
+  EXPECT(igaparam_spline_dimension(back, &d), IGAPARAM_STATUS_OK);
+  CHECK(d == 2, "dimension %zu", d);
+  EXPECT(igaparam_spline_write_vtu(s, joined(out_dir, "male_spline.vtu"), 4), IGAPARAM_STATUS_OK);
+  FILE *f = fopen(joined(out_dir, "male_spline.vtu"), "r");
+  CHECK(f != NULL, "no .vtu written");
+  if (f) fclose(f);
+  igaparam_spline_free(back);
+  igaparam_spline_free(r);
+}
+
+static void test_errors(igaparam_spline *s) {
+  size_t n = 7, nb = 0, ne = 0;
+  EXPECT(igaparam_spline_basis_count(s, &nb), IGAPARAM_STATUS_OK);
+  EXPECT(igaparam_spline_element_count(s, &ne), IGAPARAM_STATUS_OK);
+  EXPECT(igaparam_spline_basis_count(NULL, &n), IGAPARAM_STATUS_NULL_ARGUMENT);
+  EXPECT(igaparam_spline_basis_count(s, NULL), IGAPARAM_STATUS_NULL_ARGUMENT);
+
+  /* Unbuilt domain; NULL domain. The out handle stays untouched. */
+  igaparam_domain *domain = NULL;
+  EXPECT(igaparam_domain_new_from_file(joined(data_dir, "male_bdry.xml"), &domain),
+         IGAPARAM_STATUS_OK);
+  igaparam_spline *untouched = (igaparam_spline *)(uintptr_t)0x1234;
+  EXPECT(igaparam_spline_fit_domain(domain, &untouched, NULL), IGAPARAM_STATUS_INVALID_ARGUMENT);
+  EXPECT(igaparam_spline_fit_domain(NULL, &untouched, NULL), IGAPARAM_STATUS_NULL_ARGUMENT);
+  EXPECT(igaparam_spline_fit_domain(domain, NULL, NULL), IGAPARAM_STATUS_NULL_ARGUMENT);
+  CHECK(untouched == (igaparam_spline *)(uintptr_t)0x1234, "a failed fit wrote the handle");
+  igaparam_domain_free(domain);
+
+  /* Parameters outside [0,1]^2, not finite; outputs not written. */
+  double bad[2] = {0.5, 1.5}, nan2[2] = {0.5, NAN}, out[2] = {-7, -7};
+  EXPECT(igaparam_spline_evaluate(s, 1, bad, out, NULL), IGAPARAM_STATUS_INVALID_ARGUMENT);
+  EXPECT(igaparam_spline_evaluate(s, 1, nan2, out, NULL), IGAPARAM_STATUS_NOT_FINITE);
+  EXPECT(igaparam_spline_evaluate(s, 1, NULL, out, NULL), IGAPARAM_STATUS_NULL_ARGUMENT);
+  EXPECT(igaparam_spline_evaluate(s, SIZE_MAX, bad, out, NULL), IGAPARAM_STATUS_INVALID_ARGUMENT);
+  CHECK(out[0] == -7 && out[1] == -7, "a failed evaluation wrote its output");
+  EXPECT(igaparam_spline_mean_ratio(s, 1, bad, out), IGAPARAM_STATUS_INVALID_ARGUMENT);
+  EXPECT(igaparam_spline_basis_count_at(s, bad, &n), IGAPARAM_STATUS_INVALID_ARGUMENT);
+  EXPECT(igaparam_spline_invert(s, 1, nan2, 4, out, NULL), IGAPARAM_STATUS_NOT_FINITE);
+  EXPECT(igaparam_spline_invert(s, 1, bad, 1, out, NULL), IGAPARAM_STATUS_INVALID_ARGUMENT);
+  EXPECT(igaparam_spline_invert(s, 1, bad, 4, NULL, NULL), IGAPARAM_STATUS_NULL_ARGUMENT);
+
+  /* Buffers too small; element out of range. */
+  double small[1];
+  EXPECT(igaparam_spline_copy_control_points(s, small, 1), IGAPARAM_STATUS_BUFFER_TOO_SMALL);
+  double p[2] = {0.5, 0.5};
+  size_t f[1];
+  EXPECT(igaparam_spline_basis_at(s, p, &n, f, NULL, NULL, 1), IGAPARAM_STATUS_BUFFER_TOO_SMALL);
+  EXPECT(igaparam_spline_element_function_count(s, ne, &n), IGAPARAM_STATUS_INVALID_ARGUMENT);
+  EXPECT(igaparam_spline_copy_elements(s, NULL, small, 0), IGAPARAM_STATUS_BUFFER_TOO_SMALL);
+
+  /* A failed refinement leaves the spline as it was. */
+  size_t marked[1] = {ne};
+  EXPECT(igaparam_spline_refine(s, 1, marked, NULL), IGAPARAM_STATUS_INVALID_ARGUMENT);
+  EXPECT(igaparam_spline_refine(s, 1, NULL, NULL), IGAPARAM_STATUS_NULL_ARGUMENT);
+  size_t still = 0;
+  EXPECT(igaparam_spline_basis_count(s, &still), IGAPARAM_STATUS_OK);
+  CHECK(still == nb, "a failed refinement changed the basis: %zu -> %zu", nb, still);
+
+  igaparam_validity_options vo = igaparam_validity_options_default();
+  vo.samples = 1;
+  igaparam_validity_report vr;
+  EXPECT(igaparam_spline_check_validity(s, &vo, &vr, NULL, NULL, 0),
+         IGAPARAM_STATUS_INVALID_ARGUMENT);
+  EXPECT(igaparam_spline_check_validity(s, NULL, NULL, NULL, NULL, 0),
+         IGAPARAM_STATUS_NULL_ARGUMENT);
+  EXPECT(igaparam_spline_write_vtu(s, joined(out_dir, "x.vtu"), 0), IGAPARAM_STATUS_INVALID_ARGUMENT);
+  EXPECT(igaparam_spline_write_gismo(s, "/nonexistent-dir/x.xml"), IGAPARAM_STATUS_IO);
+  EXPECT(igaparam_spline_write_gismo(s, ""), IGAPARAM_STATUS_INVALID_ARGUMENT);
+
+  /* Reading: missing file, a file that holds no THB spline (a format error, as for every reader). */
+  igaparam_spline *r = (igaparam_spline *)(uintptr_t)0x1234;
+  EXPECT(igaparam_spline_read_gismo(joined(out_dir, "missing.xml"), &r), IGAPARAM_STATUS_IO);
+  EXPECT(igaparam_spline_read_gismo(joined(data_dir, "male_bdry.xml"), &r), IGAPARAM_STATUS_IO);
+  CHECK(r == (igaparam_spline *)(uintptr_t)0x1234, "a failed read wrote the handle");
+  igaparam_spline_free(NULL);
+}
+
+int main(int argc, char **argv) {
+  if (argc != 3) {
+    fprintf(stderr, "usage: %s DATA_DIR OUT_DIR\n", argv[0]);
+    return 2;
+  }
+  snprintf(data_dir, sizeof data_dir, "%s", argv[1]);
+  snprintf(out_dir, sizeof out_dir, "%s", argv[2]);
+  igaparam_spline *s = fit_male();
+  if (s) {
+    test_basis_agrees_with_evaluation(s);
+    test_extraction(s);
+    test_greville(s);
+    test_inverse(s);
+    test_validity(s);
+    test_refine_and_files(s);
+    test_errors(s);
+    igaparam_spline_free(s);
+  }
+  printf("%d passed, %d failed\n", passed, failed);
+  return failed == 0 ? 0 : 1;
+}

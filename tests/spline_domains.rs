@@ -1,0 +1,117 @@
+//! THB-spline fits of the optimized T-meshes of the shared planar domains: basis size,
+//! interpolation residual, mean-ratio quality and certified validity (`--nocapture` prints the
+//! table).
+
+use std::path::{Path, PathBuf};
+use std::time::Instant;
+
+use igaparam::boundary::{BoundaryLoop2, Coastline};
+use igaparam::domain::{PlanarDomain, PlanarOptions};
+use igaparam::spline::{QuadraticMap, SplineMap, SplineSpace, ThbSpace, ValidityOptions};
+
+fn data(name: &str) -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("tests/data/boundary")
+        .join(name)
+}
+
+fn boundary(name: &str) -> BoundaryLoop2 {
+    if name.ends_with(".txt") {
+        BoundaryLoop2::from_coastline(&Coastline::read(data(name)).unwrap()).unwrap()
+    } else {
+        BoundaryLoop2::from_gismo_file(data(name)).unwrap()
+    }
+}
+
+/// Builds the domain, fits the spline to its piecewise quadratic map, certifies it — refining
+/// the spline space (not the T-mesh) at uncertified elements, at most `rounds` times; prints one
+/// table row and returns whether the map is certified positive.
+fn fit_domain(name: &str, rounds: usize) -> bool {
+    let (domain, report) =
+        PlanarDomain::build(boundary(name), &PlanarOptions::default(), &mut |_, _| true)
+            .expect("domain");
+    assert_eq!(report.invalid_cells, 0, "{name}: {report:?}");
+    let size = domain
+        .positions()
+        .iter()
+        .flatten()
+        .fold(0.0f64, |m, v| m.max(v.abs()));
+    let start = Instant::now();
+    let source = QuadraticMap::new(domain.mesh(), domain.positions()).unwrap();
+    let options = ValidityOptions::default();
+    let mut space = ThbSpace::new(domain.mesh().tree().clone()).unwrap();
+    let mut refinements = 0;
+    let (fit, validity) = loop {
+        let (map, fit) = SplineMap::fit(space.clone(), |x| source.eval(x)).unwrap();
+        let validity = map.validity(&options);
+        if !fit.least_squares {
+            assert!(fit.residual < 1e-12 * size, "{name}: {fit:?}");
+        }
+        for v in &validity.elements {
+            let tolerance = 1e-9 * v.sampled_min_det.abs().max(size * size * 1e-6);
+            assert!(
+                v.det_lower_bound <= v.sampled_min_det + tolerance,
+                "{name}: {v:?}"
+            );
+        }
+        println!(
+            "| {name} | {} | {} | {} | {:.1e} ({}) | {} | {:.3} | {:.3} | {} ({} uncertified) | {:.2} |",
+            report.cells,
+            map.element_count(),
+            fit.basis_count,
+            fit.residual / size,
+            if fit.least_squares { "least squares" } else { "interpolation" },
+            refinements,
+            validity.min_quality,
+            validity.mean_quality,
+            validity.certified_positive,
+            validity.uncertified,
+            start.elapsed().as_secs_f64()
+        );
+        let marked: Vec<usize> = (0..map.element_count())
+            .filter(|&e| !validity.elements[e].certified_positive)
+            .collect();
+        if marked.is_empty() || refinements == rounds {
+            break (fit, validity);
+        }
+        space = space.refine(&marked).unwrap();
+        refinements += 1;
+    };
+    let _ = fit;
+    validity.certified_positive
+}
+
+fn header() {
+    println!("| domain | T-mesh cells | spline elements | basis | relative residual (fit) | spline refinements | min q_S | mean q_S | certified | seconds (cumulative fit + certify) |");
+    println!("|---|---|---|---|---|---|---|---|---|---|");
+}
+
+#[test]
+fn shared_domains_give_certified_spline_maps() {
+    header();
+    // puzzle3 and tenerife fold at a few elements next to sharp boundary features until the
+    // spline space is refined there (1 and 2 rounds).
+    let failed: Vec<&str> = [
+        "puzzle3_bdry.xml",
+        "rotor_bdry.xml",
+        "male_bdry.xml",
+        "duck2d_BRep.xml",
+        "tenerife.txt",
+    ]
+    .into_iter()
+    .filter(|name| !fit_domain(name, 3))
+    .collect();
+    assert!(failed.is_empty(), "not certified positive: {failed:?}");
+}
+
+/// Gran Canaria's coastline is a dense polyline: the optimized T-mesh map is only C0 across
+/// the many kinks of its boundary, and the C2 spline fitted to it folds next to the coast; three
+/// rounds of refinement of the spline space (least-squares fits, the interpolation being
+/// singular on those trees) still leave elements uncertified (and negative at samples). The
+/// fix belongs to the adaptive loop with the domain (refine the T-mesh and re-optimize).
+#[test]
+#[ignore]
+fn gran_canaria_gives_a_certified_spline_map() {
+    header();
+    assert!(fit_domain("gran_canaria.txt", 3));
+}
