@@ -12,6 +12,9 @@ use crate::error::{check_finite, Error, Result};
 use crate::optimize::metric::mean_ratio;
 use crate::optimize::small::{det, inverse, Matrix};
 
+/// Per fit point: the data and the sparse row of basis values.
+type FitRow<const D: usize> = ([f64; D], Vec<(usize, f64)>);
+
 /// Smallest relative pivot for which [`SplineMap::fit`] keeps the interpolation.
 const WELL_CONDITIONED: f64 = 1e-3;
 
@@ -51,7 +54,7 @@ impl<const D: usize, S: SplineSpace<D>> SplineMap<D, S> {
                 space.basis_count()
             )));
         }
-        check_finite("control", control.as_flattened())?;
+        check_finite("control", &control.concat())?;
         Ok(SplineMap { space, control })
     }
 
@@ -114,7 +117,7 @@ impl<const D: usize, S: SplineSpace<D>> SplineMap<D, S> {
     ) -> Result<(Self, FitReport)> {
         let start = Instant::now();
         let n = space.basis_count();
-        let data: Vec<([f64; D], Vec<(usize, f64)>)> = points
+        let data: Vec<FitRow<D>> = points
             .par_iter()
             .map(|&x| {
                 let y = f(x).ok_or_else(|| {
@@ -134,7 +137,8 @@ impl<const D: usize, S: SplineSpace<D>> SplineMap<D, S> {
                 Ok((y, row))
             })
             .collect::<Result<_>>()?;
-        let (rows, rhs): (Vec<Vec<(usize, f64)>>, Vec<[f64; D]>) = if least_squares {
+        type System<const D: usize> = (Vec<Vec<(usize, f64)>>, Vec<[f64; D]>);
+        let (rows, rhs): System<D> = if least_squares {
             let mut normal: Vec<std::collections::BTreeMap<usize, f64>> =
                 vec![Default::default(); n];
             let mut rhs = vec![[0.0; D]; n];
@@ -170,7 +174,7 @@ impl<const D: usize, S: SplineSpace<D>> SplineMap<D, S> {
                 c[k] = v;
             }
         }
-        check_finite("control", control.as_flattened())?;
+        check_finite("control", &control.concat())?;
         let residual = data
             .iter()
             .map(|(y, row)| {
