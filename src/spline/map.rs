@@ -60,7 +60,8 @@ impl<const D: usize, S: SplineSpace<D>> SplineMap<D, S> {
 
     /// Fits `f`: interpolation at the space's interpolation points (see
     /// [`SplineMap::fit_collocation`]), or, when that square system is singular or badly
-    /// conditioned (a relative LU pivot under 10⁻³) — Greville-type
+    /// conditioned (a relative LU pivot under 10⁻³, or a residual above 10⁻⁹ of the map's
+    /// extent) — Greville-type
     /// points of hierarchical spaces are not unisolvent on every tree — the least-squares fit
     /// of [`SplineMap::fit_least_squares`]. The report says which was used.
     pub fn fit(
@@ -68,7 +69,12 @@ impl<const D: usize, S: SplineSpace<D>> SplineMap<D, S> {
         f: impl Fn([f64; D]) -> Option<[f64; D]> + Sync,
     ) -> Result<(Self, FitReport)> {
         match Self::fit_collocation(space.clone(), &f) {
-            Ok(fit) if fit.1.smallest_pivot >= WELL_CONDITIONED => Ok(fit),
+            Ok(fit)
+                if fit.1.smallest_pivot >= WELL_CONDITIONED
+                    && fit.1.residual <= 1e-9 * fit.0.extent().max(f64::MIN_POSITIVE) =>
+            {
+                Ok(fit)
+            }
             Ok(_) => Self::fit_least_squares(space, &f),
             Err(e) if e.message.contains("singular") => Self::fit_least_squares(space, &f),
             Err(e) => Err(e),
@@ -196,6 +202,14 @@ impl<const D: usize, S: SplineSpace<D>> SplineMap<D, S> {
             seconds: start.elapsed().as_secs_f64(),
         };
         Ok((SplineMap { space, control }, report))
+    }
+
+    /// Largest absolute coordinate of the control points (a scale for tolerances).
+    pub fn extent(&self) -> f64 {
+        self.control
+            .iter()
+            .flatten()
+            .fold(0.0, |m: f64, v| m.max(v.abs()))
     }
 
     /// The space.
