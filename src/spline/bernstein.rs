@@ -3,10 +3,10 @@
 //! polynomials of any degree with products and subdivision.
 
 /// Spline degree in every direction.
-pub const DEGREE: usize = 3;
+pub(crate) const DEGREE: usize = 3;
 
 /// Functions (and Bernstein polynomials) of one direction that are non-zero on one knot span.
-pub const SPAN_FUNCTIONS: usize = DEGREE + 1;
+pub(crate) const SPAN_FUNCTIONS: usize = DEGREE + 1;
 
 /// Number of cubic B-splines of one direction at `level`: `2^level + 3`.
 pub fn function_count(level: u8) -> usize {
