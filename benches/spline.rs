@@ -8,7 +8,7 @@ use std::time::Instant;
 
 use igaparam::boundary::BoundaryLoop2;
 use igaparam::domain::{PlanarDomain, PlanarOptions};
-use igaparam::spline::{QuadraticMap, SplineMap, SplineSpace, ThbSpace, ValidityOptions};
+use igaparam::spline::{QuadraticMap, SplineMap, ThbSpace, ValidityOptions};
 use igaparam::tmesh::{TMesh, Tree};
 
 fn median(mut v: Vec<f64>) -> f64 {
