@@ -3,10 +3,10 @@
 //! polynomials of any degree with products and subdivision.
 
 /// Spline degree in every direction.
-pub const DEGREE: usize = 3;
+pub(crate) const DEGREE: usize = 3;
 
 /// Functions (and Bernstein polynomials) of one direction that are non-zero on one knot span.
-pub const SPAN_FUNCTIONS: usize = DEGREE + 1;
+pub(crate) const SPAN_FUNCTIONS: usize = DEGREE + 1;
 
 /// Number of cubic B-splines of one direction at `level`: `2^level + 3`.
 pub fn function_count(level: u8) -> usize {
@@ -258,28 +258,29 @@ mod tests {
             for span in 0..1usize << level {
                 let e = extraction(level, span);
                 for b in 0..4 {
-                    let s: f64 = (0..4).map(|i| e[i][b]).sum();
+                    let s: f64 = e.iter().map(|row| row[b]).sum();
                     assert!((s - 1.0).abs() < 1e-14);
                 }
             }
         }
         // Level 0 is the Bernstein basis itself.
         let e = extraction(0, 0);
-        for i in 0..4 {
-            for b in 0..4 {
-                assert_eq!(e[i][b], if i == b { 1.0 } else { 0.0 });
+        for (i, row) in e.iter().enumerate() {
+            for (b, &v) in row.iter().enumerate() {
+                assert_eq!(v, if i == b { 1.0 } else { 0.0 });
             }
         }
     }
 
     #[test]
-    fn two_scale_of_level_zero_is_de_casteljau() {
+    fn two_scale_of_level_zero_is_midpoint_knot_insertion() {
+        // Inserting ½ once into [0,0,0,0,1,1,1,1]: c'_i = ½(c_{i−1} + c_i) for i = 1, 2, 3.
         let r = two_scale(0, 0, 0);
         let expected = [
-            [1.0, 0.5, 0.25, 0.125],
-            [0.0, 0.5, 0.5, 0.375],
-            [0.0, 0.0, 0.25, 0.375],
-            [0.0, 0.0, 0.0, 0.125],
+            [1.0, 0.5, 0.0, 0.0],
+            [0.0, 0.5, 0.5, 0.0],
+            [0.0, 0.0, 0.5, 0.5],
+            [0.0, 0.0, 0.0, 0.5],
         ];
         for j in 0..4 {
             for q in 0..4 {

@@ -12,6 +12,9 @@ use crate::error::{check_finite, Error, Result};
 use crate::optimize::metric::mean_ratio;
 use crate::optimize::small::{det, inverse, Matrix};
 
+/// Per fit point: the data and the sparse row of basis values.
+type FitRow<const D: usize> = ([f64; D], Vec<(usize, f64)>);
+
 /// Smallest relative pivot for which [`SplineMap::fit`] keeps the interpolation.
 const WELL_CONDITIONED: f64 = 1e-3;
 
@@ -51,13 +54,14 @@ impl<const D: usize, S: SplineSpace<D>> SplineMap<D, S> {
                 space.basis_count()
             )));
         }
-        check_finite("control", control.as_flattened())?;
+        check_finite("control", &control.concat())?;
         Ok(SplineMap { space, control })
     }
 
     /// Fits `f`: interpolation at the space's interpolation points (see
     /// [`SplineMap::fit_collocation`]), or, when that square system is singular or badly
-    /// conditioned (a relative LU pivot under 10⁻³) — Greville-type
+    /// conditioned (a relative LU pivot under 10⁻³, or a residual above 10⁻⁹ of the map's
+    /// extent) — Greville-type
     /// points of hierarchical spaces are not unisolvent on every tree — the least-squares fit
     /// of [`SplineMap::fit_least_squares`]. The report says which was used.
     pub fn fit(
@@ -65,7 +69,12 @@ impl<const D: usize, S: SplineSpace<D>> SplineMap<D, S> {
         f: impl Fn([f64; D]) -> Option<[f64; D]> + Sync,
     ) -> Result<(Self, FitReport)> {
         match Self::fit_collocation(space.clone(), &f) {
-            Ok(fit) if fit.1.smallest_pivot >= WELL_CONDITIONED => Ok(fit),
+            Ok(fit)
+                if fit.1.smallest_pivot >= WELL_CONDITIONED
+                    && fit.1.residual <= 1e-9 * fit.0.extent().max(f64::MIN_POSITIVE) =>
+            {
+                Ok(fit)
+            }
             Ok(_) => Self::fit_least_squares(space, &f),
             Err(e) if e.message.contains("singular") => Self::fit_least_squares(space, &f),
             Err(e) => Err(e),
@@ -114,7 +123,7 @@ impl<const D: usize, S: SplineSpace<D>> SplineMap<D, S> {
     ) -> Result<(Self, FitReport)> {
         let start = Instant::now();
         let n = space.basis_count();
-        let data: Vec<([f64; D], Vec<(usize, f64)>)> = points
+        let data: Vec<FitRow<D>> = points
             .par_iter()
             .map(|&x| {
                 let y = f(x).ok_or_else(|| {
@@ -134,7 +143,8 @@ impl<const D: usize, S: SplineSpace<D>> SplineMap<D, S> {
                 Ok((y, row))
             })
             .collect::<Result<_>>()?;
-        let (rows, rhs): (Vec<Vec<(usize, f64)>>, Vec<[f64; D]>) = if least_squares {
+        type System<const D: usize> = (Vec<Vec<(usize, f64)>>, Vec<[f64; D]>);
+        let (rows, rhs): System<D> = if least_squares {
             let mut normal: Vec<std::collections::BTreeMap<usize, f64>> =
                 vec![Default::default(); n];
             let mut rhs = vec![[0.0; D]; n];
@@ -170,7 +180,7 @@ impl<const D: usize, S: SplineSpace<D>> SplineMap<D, S> {
                 c[k] = v;
             }
         }
-        check_finite("control", control.as_flattened())?;
+        check_finite("control", &control.concat())?;
         let residual = data
             .iter()
             .map(|(y, row)| {
@@ -192,6 +202,14 @@ impl<const D: usize, S: SplineSpace<D>> SplineMap<D, S> {
             seconds: start.elapsed().as_secs_f64(),
         };
         Ok((SplineMap { space, control }, report))
+    }
+
+    /// Largest absolute coordinate of the control points (a scale for tolerances).
+    pub fn extent(&self) -> f64 {
+        self.control
+            .iter()
+            .flatten()
+            .fold(0.0, |m: f64, v| m.max(v.abs()))
     }
 
     /// The space.

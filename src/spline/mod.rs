@@ -24,4 +24,4 @@ pub use quadratic::QuadraticMap;
 pub use solve::SparseLu;
 pub use space::{BasisValues, SplineSpace};
 pub use thb::ThbSpace;
-pub use validity::{ElementValidity, ValidityOptions, ValidityReport, HISTOGRAM_BINS};
+pub use validity::{ElementValidity, ValidityOptions, ValidityReport};

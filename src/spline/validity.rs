@@ -15,7 +15,7 @@ use crate::optimize::metric::mean_ratio;
 use crate::optimize::small::det;
 
 /// Number of bins of the quality histogram over [0, 1].
-pub const HISTOGRAM_BINS: usize = 10;
+pub(crate) const HISTOGRAM_BINS: usize = 10;
 
 /// Options of [`SplineMap::validity`].
 #[derive(Clone, Copy, Debug, PartialEq)]

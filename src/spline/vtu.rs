@@ -38,9 +38,8 @@ impl<const D: usize, S: SplineSpace<D>> SplineMap<D, S> {
                 let (y, j) = self
                     .eval_with_jacobian(x)
                     .unwrap_or(([f64::NAN; D], [[f64::NAN; D]; D]));
-                for k in 0..3 {
-                    grid.points.push(if k < D { y[k] } else { 0.0 });
-                }
+                grid.points.extend(y);
+                grid.points.extend(std::iter::repeat(0.0).take(3 - D));
                 quality.push(mean_ratio(&j));
                 dets.push(det(&j));
             }
