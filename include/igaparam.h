@@ -34,24 +34,9 @@
 /**
  * Number of bins of the quality histogram of `igaparam_validity_report`.
  */
-#define IGAPARAM_HISTOGRAM_BINS HISTOGRAM_BINS
+#define IGAPARAM_HISTOGRAM_BINS 10
 
 
-
-/**
- * Spline degree in every direction.
- */
-#define DEGREE 3
-
-/**
- * Functions (and Bernstein polynomials) of one direction that are non-zero on one knot span.
- */
-#define SPAN_FUNCTIONS (DEGREE + 1)
-
-/**
- * Number of bins of the quality histogram over [0, 1].
- */
-#define HISTOGRAM_BINS 10
 
 /**
  * A stage of long work, passed to the progress callback.

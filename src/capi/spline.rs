@@ -68,7 +68,8 @@ pub struct igaparam_validity_options {
 }
 
 /// Number of bins of the quality histogram of `igaparam_validity_report`.
-pub const IGAPARAM_HISTOGRAM_BINS: usize = HISTOGRAM_BINS;
+pub const IGAPARAM_HISTOGRAM_BINS: usize = 10;
+const _: () = assert!(IGAPARAM_HISTOGRAM_BINS == HISTOGRAM_BINS);
 
 /// Certified validity and quality of a spline map.
 #[repr(C)]

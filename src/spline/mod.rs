@@ -25,3 +25,4 @@ pub use solve::SparseLu;
 pub use space::{BasisValues, SplineSpace};
 pub use thb::ThbSpace;
 pub use validity::{ElementValidity, ValidityOptions, ValidityReport};
+pub(crate) use validity::HISTOGRAM_BINS;
