@@ -3,6 +3,7 @@
 // - igaparam::Error (a std::runtime_error) carries the status and message of a failed call.
 // - igaparam::Mesh is a move-only owner of an igaparam_mesh*, with methods that check sizes,
 //   throw on failure and return std::vector for the arrays the C API copies out.
+// - igaparam::Spline likewise owns an igaparam_spline* (a cubic THB-spline map).
 //
 // Every C call goes through `detail::check`, so a method either succeeds or throws; as in the C
 // API, a method that throws leaves the mesh unchanged.
@@ -218,6 +219,193 @@ class Mesh {
   }
 
   igaparam_mesh* mesh_ = nullptr;
+};
+
+/// The Bézier extraction of one element: N_functions[i] = Σ_k op[i·4^d + k] B_k on the element.
+struct Extraction {
+  std::vector<std::size_t> functions;  ///< global indices of the functions non-zero on it
+  std::vector<double> op;              ///< functions.size() × 4^d, row-major
+};
+
+/// The basis functions non-zero at a point.
+struct BasisValues {
+  std::vector<std::size_t> functions;  ///< global indices
+  std::vector<double> values;          ///< one per function
+  std::vector<double> gradients;       ///< d per function, with respect to the parameters
+};
+
+/// A cubic THB-spline map S: [0,1]^d → Ω (owner of an igaparam_spline*). Move-only; clone() copies.
+/// Points are flat arrays, d doubles each.
+class Spline {
+ public:
+  /// Fits the spline map of a built domain; `report` may be NULL.
+  static Spline fit(const igaparam_domain* domain, igaparam_fit_report* report = nullptr) {
+    igaparam_spline* handle = nullptr;
+    detail::check(igaparam_spline_fit_domain(domain, &handle, report));
+    return Spline(handle);
+  }
+
+  /// Reads a map written by write_gismo.
+  static Spline read_gismo(const std::string& path) {
+    igaparam_spline* handle = nullptr;
+    detail::check(igaparam_spline_read_gismo(path.c_str(), &handle));
+    return Spline(handle);
+  }
+
+  /// Takes ownership of a handle (may be NULL).
+  explicit Spline(igaparam_spline* handle) noexcept : spline_(handle) {}
+  ~Spline() { igaparam_spline_free(spline_); }
+  Spline(const Spline&) = delete;
+  Spline& operator=(const Spline&) = delete;
+  Spline(Spline&& other) noexcept : spline_(std::exchange(other.spline_, nullptr)) {}
+  Spline& operator=(Spline&& other) noexcept {
+    if (this != &other) {
+      igaparam_spline_free(spline_);
+      spline_ = std::exchange(other.spline_, nullptr);
+    }
+    return *this;
+  }
+
+  /// An independent copy.
+  Spline clone() const {
+    igaparam_spline* handle = nullptr;
+    detail::check(igaparam_spline_clone(spline_, &handle));
+    return Spline(handle);
+  }
+
+  /// The C handle (still owned by this object).
+  igaparam_spline* get() const noexcept { return spline_; }
+
+  std::size_t dimension() const { return query(igaparam_spline_dimension); }
+  std::size_t basis_count() const { return query(igaparam_spline_basis_count); }
+  std::size_t element_count() const { return query(igaparam_spline_element_count); }
+
+  /// Control points, basis_count() × d.
+  std::vector<double> control_points() const {
+    return copied(basis_count() * dimension(), igaparam_spline_copy_control_points);
+  }
+
+  /// Greville points of the basis functions, basis_count() × d.
+  std::vector<double> greville_points() const {
+    return copied(basis_count() * dimension(), igaparam_spline_copy_greville_points);
+  }
+
+  /// Level of every element.
+  std::vector<std::uint8_t> element_levels() const {
+    std::vector<std::uint8_t> levels(element_count());
+    detail::check(igaparam_spline_copy_elements(spline_, levels.data(), nullptr, levels.size()));
+    return levels;
+  }
+
+  /// Box of every element, element_count() × 2d (lower corner, then upper corner).
+  std::vector<double> element_bounds() const {
+    const std::size_t n = element_count();
+    std::vector<double> bounds(2 * dimension() * n);
+    detail::check(igaparam_spline_copy_elements(spline_, nullptr, bounds.data(), n));
+    return bounds;
+  }
+
+  /// The Bézier extraction of element `e`.
+  Extraction extraction(std::size_t e) const {
+    std::size_t m = 0;
+    detail::check(igaparam_spline_element_function_count(spline_, e, &m));
+    Extraction x{std::vector<std::size_t>(m), std::vector<double>(m * bernstein_count())};
+    detail::check(igaparam_spline_copy_element_extraction(spline_, e, x.functions.data(), m, x.op.data(),
+                                                          x.op.size()));
+    return x;
+  }
+
+  /// S at the parametric points `params` (n × d in [0,1]^d); `jacobians`, if given, receives
+  /// n × d × d row-major entries ∂S_i/∂u_j.
+  std::vector<double> evaluate(const std::vector<double>& params, std::vector<double>* jacobians = nullptr) const {
+    const std::size_t d = dimension(), n = count(params, d);
+    std::vector<double> points(n * d);
+    if (jacobians) jacobians->assign(n * d * d, 0.0);
+    detail::check(igaparam_spline_evaluate(spline_, n, params.data(), points.data(),
+                                           jacobians ? jacobians->data() : nullptr));
+    return points;
+  }
+
+  /// Mean ratio of the Jacobian at the parametric points `params` (n × d).
+  std::vector<double> mean_ratio(const std::vector<double>& params) const {
+    const std::size_t n = count(params, dimension());
+    std::vector<double> q(n);
+    detail::check(igaparam_spline_mean_ratio(spline_, n, params.data(), q.data()));
+    return q;
+  }
+
+  /// Parametric points of the physical points `points` (n × d): NaN where `found` is 0.
+  std::vector<double> invert(const std::vector<double>& points, std::vector<int>* found = nullptr,
+                             std::uint32_t samples = 4) const {
+    const std::size_t d = dimension(), n = count(points, d);
+    std::vector<double> params(n * d);
+    if (found) found->assign(n, 0);
+    detail::check(igaparam_spline_invert(spline_, n, points.data(), samples, params.data(),
+                                         found ? found->data() : nullptr));
+    return params;
+  }
+
+  /// The basis functions non-zero at the parametric point `param` (d values).
+  BasisValues basis_at(const std::vector<double>& param) const {
+    const std::size_t d = dimension();
+    detail::require(param.size() == d, "igaparam::Spline::basis_at: param must hold d values");
+    std::size_t m = 0;
+    detail::check(igaparam_spline_basis_count_at(spline_, param.data(), &m));
+    BasisValues b{std::vector<std::size_t>(m), std::vector<double>(m), std::vector<double>(m * d)};
+    detail::check(igaparam_spline_basis_at(spline_, param.data(), &m, b.functions.data(), b.values.data(),
+                                           b.gradients.data(), m));
+    return b;
+  }
+
+  /// Refines the marked elements (all when empty), the map staying the same.
+  igaparam_fit_report refine(const std::vector<std::size_t>& elements = {}) {
+    igaparam_fit_report report{};
+    detail::check(igaparam_spline_refine(spline_, elements.size(), elements.empty() ? nullptr : elements.data(),
+                                         &report));
+    return report;
+  }
+
+  /// Certified validity and quality; `element_quality`, if given, receives each element's
+  /// smallest sampled mean ratio.
+  igaparam_validity_report check_validity(const igaparam_validity_options& options = igaparam_validity_options_default(),
+                                          std::vector<double>* element_quality = nullptr) const {
+    igaparam_validity_report report{};
+    const std::size_t n = element_quality ? element_count() : 0;
+    if (element_quality) element_quality->assign(n, 0.0);
+    detail::check(igaparam_spline_check_validity(spline_, &options, &report, nullptr,
+                                                 element_quality ? element_quality->data() : nullptr, n));
+    return report;
+  }
+
+  /// Writes the map sampled on `samples`^d sub-cells per element as .vtu.
+  void write_vtu(const std::string& path, std::uint32_t samples = 4) const {
+    detail::check(igaparam_spline_write_vtu(spline_, path.c_str(), samples));
+  }
+
+  /// Writes the map as G+Smo XML.
+  void write_gismo(const std::string& path) const { detail::check(igaparam_spline_write_gismo(spline_, path.c_str())); }
+
+ private:
+  std::size_t query(igaparam_status (*getter)(const igaparam_spline*, std::size_t*)) const {
+    std::size_t value = 0;
+    detail::check(getter(spline_, &value));
+    return value;
+  }
+
+  std::vector<double> copied(std::size_t n, igaparam_status (*copy)(const igaparam_spline*, double*, std::size_t)) const {
+    std::vector<double> values(n);
+    detail::check(copy(spline_, values.data(), values.size()));
+    return values;
+  }
+
+  std::size_t bernstein_count() const { return dimension() == 2 ? 16 : 64; }
+
+  static std::size_t count(const std::vector<double>& points, std::size_t d) {
+    detail::require(points.size() % d == 0, "igaparam::Spline: point arrays must hold d values per point");
+    return points.size() / d;
+  }
+
+  igaparam_spline* spline_ = nullptr;
 };
 
 }  // namespace igaparam

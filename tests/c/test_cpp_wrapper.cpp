@@ -2,6 +2,7 @@
 // status and the library's message, Mesh owns and moves its handle, vectors have the right sizes,
 // and a progress function can cancel or throw through the C callback.
 
+#include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <stdexcept>
@@ -56,6 +57,70 @@ igaparam_relocate_options from_current() {
   igaparam_relocate_options o = igaparam::default_options();
   o.placement = IGAPARAM_PLACEMENT_CURRENT;
   return o;
+}
+
+/// The spline map of a quarter annulus (radii 1 and 2) built from four polylines: Spline's sizes,
+/// the agreement of its basis with its evaluation, refinement keeping the map, errors.
+void test_spline() {
+  const double pi = 3.14159265358979323846;
+  const int n = 33;
+  std::vector<std::vector<double>> sides(4);
+  for (int i = 0; i < n; i++) {
+    const double t = double(i) / (n - 1), a = 0.5 * pi * t;
+    sides[0].insert(sides[0].end(), {0.0, 2.0 - t});                        // x = 0, from (0,2) to (0,1)
+    sides[1].insert(sides[1].end(), {1.0 + t, 0.0});                        // y = 0
+    sides[2].insert(sides[2].end(), {2.0 * std::cos(a), 2.0 * std::sin(a)});  // outer arc
+    sides[3].insert(sides[3].end(), {std::sin(a), std::cos(a)});             // inner arc, from (0,1)
+  }
+  // The reader matches the curves by their end points and orients them.
+  const double* points[4] = {sides[0].data(), sides[1].data(), sides[2].data(), sides[3].data()};
+  const std::size_t counts[4] = {std::size_t(n), std::size_t(n), std::size_t(n), std::size_t(n)};
+  igaparam_domain* domain = nullptr;
+  igaparam::detail::check(igaparam_domain_new_from_polylines(counts, points, &domain));
+  igaparam::detail::check(igaparam_domain_build(domain, nullptr, nullptr));
+  igaparam_fit_report fit{};
+  igaparam::Spline spline = igaparam::Spline::fit(domain, &fit);
+  igaparam_domain_free(domain);
+  CHECK(spline.dimension() == 2 && spline.basis_count() == fit.basis_count);
+  CHECK(spline.control_points().size() == 2 * spline.basis_count());
+  CHECK(spline.greville_points().size() == 2 * spline.basis_count());
+  CHECK(spline.element_bounds().size() == 4 * spline.element_count());
+  CHECK(spline.element_levels().size() == spline.element_count());
+  const igaparam::Extraction x = spline.extraction(0);
+  CHECK(!x.functions.empty() && x.op.size() == 16 * x.functions.size());
+
+  // Σ N_i P_i = S at a point; the image lies in the annulus.
+  const std::vector<double> uv = {0.3, 0.6};
+  std::vector<double> jac;
+  const std::vector<double> xy = spline.evaluate(uv, &jac);
+  const igaparam::BasisValues b = spline.basis_at(uv);
+  const std::vector<double> control = spline.control_points();
+  double sx = 0, sy = 0, sum = 0;
+  for (std::size_t i = 0; i < b.functions.size(); i++) {
+    sx += b.values[i] * control[2 * b.functions[i]];
+    sy += b.values[i] * control[2 * b.functions[i] + 1];
+    sum += b.values[i];
+  }
+  CHECK(std::fabs(sx - xy[0]) < 1e-12 && std::fabs(sy - xy[1]) < 1e-12 && std::fabs(sum - 1) < 1e-13);
+  const double r = std::hypot(xy[0], xy[1]);
+  CHECK(r > 1.0 && r < 2.0 && jac.size() == 4);
+  const std::vector<double> back = spline.invert(xy);
+  CHECK(std::fabs(back[0] - uv[0]) < 1e-9 && std::fabs(back[1] - uv[1]) < 1e-9);
+  CHECK(spline.mean_ratio(uv)[0] > 0.0);
+
+  // Refining a copy keeps the map; the original is untouched.
+  igaparam::Spline finer = spline.clone();
+  const igaparam_fit_report refined = finer.refine();
+  CHECK(refined.basis_count > spline.basis_count() && finer.basis_count() == refined.basis_count);
+  const std::vector<double> again = finer.evaluate(uv);
+  CHECK(std::fabs(again[0] - xy[0]) < 1e-9 && std::fabs(again[1] - xy[1]) < 1e-9);
+  const igaparam_validity_report v = finer.check_validity();
+  CHECK(v.certified_positive == 1 && v.min_quality > 0.2);
+
+  EXPECT_ERROR(IGAPARAM_STATUS_INVALID_ARGUMENT, spline.evaluate({0.5, 1.5}));
+  EXPECT_ERROR(IGAPARAM_STATUS_INVALID_ARGUMENT, spline.evaluate({0.5}));
+  EXPECT_ERROR(IGAPARAM_STATUS_INVALID_ARGUMENT, spline.extraction(spline.element_count()));
+  EXPECT_ERROR(IGAPARAM_STATUS_IO, igaparam::Spline::read_gismo("/nonexistent/spline.xml"));
 }
 
 }  // namespace
@@ -115,6 +180,8 @@ int main() {
   });
   CHECK(calls > 0 && r.invalid_after == 0 && mesh.invalid_cell_count() == 0);
   CHECK(mesh.relocate().invalid_after == 0);
+
+  test_spline();
 
   structured_grid_free(&g);
   std::printf("%d passed, %d failed\n", passed, failed);
