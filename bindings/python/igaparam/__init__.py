@@ -1,6 +1,6 @@
 """igaparam: relocation of the free nodes of quadrilateral/hexahedral finite-element meshes
-after their boundary moves, and T-mesh parameterizations of planar domains from their boundary
-(ctypes bindings of the C API, with numpy arrays).
+after their boundary moves, T-mesh parameterizations of planar domains from their boundary, and
+their cubic THB-spline maps (ctypes bindings of the C API, with numpy arrays).
 
 Example::
 
@@ -11,9 +11,12 @@ Example::
         report = mesh.relocate()
         xyz = mesh.positions                           # (n, 3)
 
-    with igaparam.Domain.from_file("puzzle3_bdry.xml") as domain:
+    with igaparam.Domain.from_file("male_bdry.xml") as domain:
         report = domain.build()                        # report.invalid_cells == 0
         xy, quality = domain.physical_vertices, domain.cell_quality
+        with igaparam.Spline.fit(domain) as spline:    # cubic THB spline map of [0,1]^2
+            xy = spline.evaluate(domain.parametric_vertices)   # (n, 2) -> (n, 2)
+            assert spline.check_validity().certified_positive
 
 The shared library is found through the environment variable ``IGAPARAM_LIBRARY`` (its path),
 else next to this package, else with ``ctypes.util.find_library("igaparam")``.
@@ -22,6 +25,7 @@ else next to this package, else with ``ctypes.util.find_library("igaparam")``.
 from ._capi import CellType, Stage, Status
 from ._domain import Domain, DomainReport
 from ._mesh import IgaparamError, Mesh, RelocateReport, cell_type_code, nodes_per_cell, version
+from ._spline import FitReport, Spline, ValidityReport
 
 __version__ = "0.1.0"
 
@@ -29,11 +33,14 @@ __all__ = [
     "CellType",
     "Domain",
     "DomainReport",
+    "FitReport",
     "IgaparamError",
     "Mesh",
     "RelocateReport",
+    "Spline",
     "Stage",
     "Status",
+    "ValidityReport",
     "cell_type_code",
     "nodes_per_cell",
     "version",

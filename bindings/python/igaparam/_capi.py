@@ -19,6 +19,10 @@ __all__ = [
     "RelocateReport",
     "DomainOptions",
     "DomainReport",
+    "ValidityOptions",
+    "FitReport",
+    "ValidityReport",
+    "HISTOGRAM_BINS",
     "PROGRESS_FN",
     "load_library",
     "library",
@@ -134,13 +138,53 @@ class DomainReport(ctypes.Structure):
     ]
 
 
+# IGAPARAM_HISTOGRAM_BINS: bins of the quality histogram of igaparam_validity_report.
+HISTOGRAM_BINS = 10
+
+
+class ValidityOptions(ctypes.Structure):
+    """``igaparam_validity_options``."""
+
+    _fields_ = [
+        ("max_depth", ctypes.c_uint32),
+        ("samples", ctypes.c_uint32),
+    ]
+
+
+class FitReport(ctypes.Structure):
+    """``igaparam_fit_report``."""
+
+    _fields_ = [
+        ("basis_count", ctypes.c_size_t),
+        ("element_count", ctypes.c_size_t),
+        ("residual", ctypes.c_double),
+        ("least_squares", ctypes.c_int32),
+        ("seconds", ctypes.c_double),
+    ]
+
+
+class ValidityReport(ctypes.Structure):
+    """``igaparam_validity_report``."""
+
+    _fields_ = [
+        ("certified_positive", ctypes.c_int32),
+        ("uncertified", ctypes.c_size_t),
+        ("det_lower_bound", ctypes.c_double),
+        ("min_quality", ctypes.c_double),
+        ("mean_quality", ctypes.c_double),
+        ("histogram", ctypes.c_size_t * HISTOGRAM_BINS),
+    ]
+
+
 _mesh_p = ctypes.c_void_p  # igaparam_mesh * (opaque)
 _domain_p = ctypes.c_void_p  # igaparam_domain * (opaque)
+_spline_p = ctypes.c_void_p  # igaparam_spline * (opaque)
 _status = ctypes.c_int
 _size_p = ctypes.POINTER(ctypes.c_size_t)
 _double_p = ctypes.POINTER(ctypes.c_double)
 _int64_p = ctypes.POINTER(ctypes.c_int64)
 _uint8_p = ctypes.POINTER(ctypes.c_uint8)
+_int32_p = ctypes.POINTER(ctypes.c_int32)
 
 # name: (restype, argtypes)
 _PROTOTYPES = {
@@ -186,6 +230,50 @@ _PROTOTYPES = {
     "igaparam_domain_copy_cells": (_status, [_domain_p, _uint8_p, _double_p, ctypes.c_size_t]),
     "igaparam_domain_write_vtu": (_status, [_domain_p, ctypes.c_char_p]),
     "igaparam_domain_is_built": (_status, [_domain_p, ctypes.POINTER(ctypes.c_int)]),
+    "igaparam_validity_options_default": (ValidityOptions, []),
+    "igaparam_spline_fit_domain": (
+        _status,
+        [_domain_p, ctypes.POINTER(_spline_p), ctypes.POINTER(FitReport)],
+    ),
+    "igaparam_spline_read_gismo": (_status, [ctypes.c_char_p, ctypes.POINTER(_spline_p)]),
+    "igaparam_spline_free": (None, [_spline_p]),
+    "igaparam_spline_clone": (_status, [_spline_p, ctypes.POINTER(_spline_p)]),
+    "igaparam_spline_dimension": (_status, [_spline_p, _size_p]),
+    "igaparam_spline_basis_count": (_status, [_spline_p, _size_p]),
+    "igaparam_spline_element_count": (_status, [_spline_p, _size_p]),
+    "igaparam_spline_copy_control_points": (_status, [_spline_p, _double_p, ctypes.c_size_t]),
+    "igaparam_spline_copy_greville_points": (_status, [_spline_p, _double_p, ctypes.c_size_t]),
+    "igaparam_spline_copy_elements": (_status, [_spline_p, _uint8_p, _double_p, ctypes.c_size_t]),
+    "igaparam_spline_element_function_count": (_status, [_spline_p, ctypes.c_size_t, _size_p]),
+    "igaparam_spline_copy_element_extraction": (
+        _status,
+        [_spline_p, ctypes.c_size_t, _size_p, ctypes.c_size_t, _double_p, ctypes.c_size_t],
+    ),
+    "igaparam_spline_evaluate": (_status, [_spline_p, ctypes.c_size_t, _double_p, _double_p, _double_p]),
+    "igaparam_spline_mean_ratio": (_status, [_spline_p, ctypes.c_size_t, _double_p, _double_p]),
+    "igaparam_spline_invert": (
+        _status,
+        [_spline_p, ctypes.c_size_t, _double_p, ctypes.c_uint32, _double_p, _int32_p],
+    ),
+    "igaparam_spline_basis_count_at": (_status, [_spline_p, _double_p, _size_p]),
+    "igaparam_spline_basis_at": (
+        _status,
+        [_spline_p, _double_p, _size_p, _size_p, _double_p, _double_p, ctypes.c_size_t],
+    ),
+    "igaparam_spline_refine": (_status, [_spline_p, ctypes.c_size_t, _size_p, ctypes.POINTER(FitReport)]),
+    "igaparam_spline_check_validity": (
+        _status,
+        [
+            _spline_p,
+            ctypes.POINTER(ValidityOptions),
+            ctypes.POINTER(ValidityReport),
+            _double_p,
+            _double_p,
+            ctypes.c_size_t,
+        ],
+    ),
+    "igaparam_spline_write_vtu": (_status, [_spline_p, ctypes.c_char_p, ctypes.c_uint32]),
+    "igaparam_spline_write_gismo": (_status, [_spline_p, ctypes.c_char_p]),
 }
 
 

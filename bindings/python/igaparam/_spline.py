@@ -1,0 +1,524 @@
+"""The :class:`Spline` class: a cubic truncated hierarchical B-spline (THB) map of [0,1]^d onto a
+domain, with its fit and validity reports."""
+
+import ctypes
+import dataclasses
+import operator
+import os
+from typing import Optional, Tuple
+
+import numpy as np
+
+from . import _capi
+from ._mesh import _check, _ptr
+
+__all__ = ["Spline", "FitReport", "ValidityReport"]
+
+# size_t as a numpy dtype, for the buffers of function indices.
+_SIZE_T = np.dtype(f"u{ctypes.sizeof(ctypes.c_size_t)}")
+
+
+@dataclasses.dataclass(frozen=True)
+class FitReport:
+    """What a fit (:meth:`Spline.fit`, :meth:`Spline.refine`) did (``igaparam_fit_report``).
+
+    Attributes:
+        basis_count: basis functions (= control points) of the spline space.
+        element_count: elements (leaves of the hierarchical mesh).
+        residual: largest coordinate difference between the spline and the data at the fit
+            points (for a refinement: between the refined and the previous map).
+        least_squares: True when a least-squares fit replaced a singular or badly conditioned
+            interpolation at the Greville points.
+        seconds: wall-clock seconds of the call.
+    """
+
+    basis_count: int
+    element_count: int
+    residual: float
+    least_squares: bool
+    seconds: float
+
+    @classmethod
+    def _from_c(cls, report):
+        return cls(
+            basis_count=report.basis_count,
+            element_count=report.element_count,
+            residual=report.residual,
+            least_squares=bool(report.least_squares),
+            seconds=report.seconds,
+        )
+
+    def as_dict(self):
+        """The report as a dict."""
+        return dataclasses.asdict(self)
+
+
+@dataclasses.dataclass(frozen=True)
+class ValidityReport:
+    """Certified validity and quality of a spline map (:meth:`Spline.check_validity`,
+    ``igaparam_validity_report`` and the per-element arrays).
+
+    Attributes:
+        certified_positive: True when ``det J_S > 0`` is proven on every element (Bernstein
+            coefficients of the determinant, with subdivision).
+        uncertified: elements where positivity is not proven.
+        det_lower_bound: smallest lower bound of ``det J_S`` over the elements (Jacobian with
+            respect to the parametric coordinates).
+        min_quality: smallest mean ratio ``q_S = d·det(J)^(2/d)/‖J‖²`` at the samples (0 where
+            det <= 0).
+        mean_quality: mean of the element means of ``q_S`` at the samples.
+        histogram: samples per quality bin ``[i/10, (i+1)/10)`` (the last bin includes 1), a
+            tuple of 10 ints.
+        element_bounds: lower bound of ``det J_S`` on every element, float64 array of shape (m,).
+        element_quality: smallest sampled mean ratio on every element, float64 array of shape
+            (m,).
+    """
+
+    certified_positive: bool
+    uncertified: int
+    det_lower_bound: float
+    min_quality: float
+    mean_quality: float
+    histogram: Tuple[int, ...]
+    element_bounds: np.ndarray = dataclasses.field(repr=False, compare=False)
+    element_quality: np.ndarray = dataclasses.field(repr=False, compare=False)
+
+    def as_dict(self):
+        """The report as a dict (the arrays included)."""
+        return {field.name: getattr(self, field.name) for field in dataclasses.fields(self)}
+
+
+def _uint32(value, name):
+    """``value`` as an int that fits a uint32 (the library checks its range)."""
+    value = operator.index(value)
+    if not 0 <= value < 2**32:
+        raise ValueError(f"{name} must be a non-negative 32-bit integer, not {value}")
+    return value
+
+
+def _index(value, name):
+    value = operator.index(value)
+    if value < 0:
+        raise ValueError(f"{name} must be >= 0, not {value}")
+    return value
+
+
+class Spline:
+    """A cubic THB-spline map ``S: [0,1]^d → Ω``, d = 2 or 3 (an ``igaparam_spline`` handle).
+
+    Parametric points are rows of d floats in [0,1]^d, physical points rows of d floats. Create
+    it with :meth:`fit` (from a built :class:`Domain`) or :meth:`read_gismo`; :meth:`clone`
+    gives an independent copy. Release the handle with :meth:`close` or a ``with`` block (it is
+    also released when the object is collected); a closed spline raises ``ValueError``.
+
+    Attributes:
+        fit_report: the :class:`FitReport` of the fit that gave the current control points
+            (:meth:`fit`, then the last :meth:`refine`); None for a spline read from a file.
+
+    Example::
+
+        with igaparam.Domain.from_file("tests/data/boundary/male_bdry.xml") as domain:
+            domain.build()
+            spline = igaparam.Spline.fit(domain)    # spline.fit_report.residual ~ 1e-15
+        with spline:
+            xy, jac = spline.evaluate([[0.5, 0.5]], jacobians=True)   # (1, 2), (1, 2, 2)
+            assert spline.check_validity().certified_positive
+    """
+
+    def __init__(self, handle, fit_report=None):
+        """Takes ownership of an ``igaparam_spline *`` (use :meth:`fit` or :meth:`read_gismo`)."""
+        self._lib = _capi.library()
+        self._handle = handle
+        self.fit_report: Optional[FitReport] = fit_report
+
+    @classmethod
+    def fit(cls, domain):
+        """Fits the cubic THB spline space of a built domain's T-mesh to its optimized map
+        (interpolation at the Greville points; least squares when that system is singular).
+        The spline does not refer to the domain afterwards.
+
+        Args:
+            domain: a :class:`Domain` on which :meth:`Domain.build` succeeded.
+
+        Returns:
+            Spline, with the fit's :class:`FitReport` in ``fit_report``.
+
+        Raises:
+            IgaparamError: ``Status.INVALID_ARGUMENT`` if the domain is not built.
+            ValueError: the domain is closed.
+        """
+        handle = ctypes.c_void_p()
+        report = _capi.FitReport()
+        lib = _capi.library()
+        _check(lib.igaparam_spline_fit_domain(domain._h(), ctypes.byref(handle), ctypes.byref(report)))
+        return cls(handle, FitReport._from_c(report))
+
+    @classmethod
+    def read_gismo(cls, path):
+        """Reads a THB-spline map written by :meth:`write_gismo` (G+Smo XML, a ``THBSpline2`` or
+        ``THBSpline3`` geometry).
+
+        Raises:
+            IgaparamError: ``Status.IO`` if the file cannot be read or holds no such map.
+        """
+        handle = ctypes.c_void_p()
+        _check(_capi.library().igaparam_spline_read_gismo(os.fsencode(path), ctypes.byref(handle)))
+        return cls(handle)
+
+    def clone(self):
+        """A new, independent copy (to refine one while keeping the other); it has the same
+        ``fit_report``."""
+        handle = ctypes.c_void_p()
+        _check(self._lib.igaparam_spline_clone(self._h(), ctypes.byref(handle)))
+        return type(self)(handle, self.fit_report)
+
+    # Lifetime.
+
+    def close(self):
+        """Releases the handle; the spline is unusable afterwards. Calling it again does nothing."""
+        handle, self._handle = getattr(self, "_handle", None), None
+        if handle is not None:
+            self._lib.igaparam_spline_free(handle)
+
+    def __del__(self):
+        self.close()
+
+    def __enter__(self):
+        return self
+
+    def __exit__(self, *exc):
+        self.close()
+        return False
+
+    @property
+    def closed(self):
+        """True once :meth:`close` was called."""
+        return self._handle is None
+
+    def _h(self):
+        if self._handle is None:
+            raise ValueError("the spline is closed")
+        return self._handle
+
+    def __repr__(self):
+        if self._handle is None:
+            return "<igaparam.Spline (closed)>"
+        return (
+            f"<igaparam.Spline d={self.dimension}, {self.basis_count} functions, "
+            f"{self.element_count} elements>"
+        )
+
+    # Sizes and read-back.
+
+    def _count(self, function):
+        out = ctypes.c_size_t()
+        _check(function(self._h(), ctypes.byref(out)))
+        return out.value
+
+    @property
+    def dimension(self):
+        """The dimension d (2 or 3) of the parametric and physical spaces."""
+        return self._count(self._lib.igaparam_spline_dimension)
+
+    @property
+    def basis_count(self):
+        """Basis functions (= control points)."""
+        return self._count(self._lib.igaparam_spline_basis_count)
+
+    @property
+    def element_count(self):
+        """Elements (boxes on which every basis function is a polynomial)."""
+        return self._count(self._lib.igaparam_spline_element_count)
+
+    def _points(self, function):
+        out = np.empty((self.basis_count, self.dimension), dtype=np.float64)
+        _check(function(self._h(), _ptr(out, ctypes.c_double), out.size))
+        return out
+
+    @property
+    def control_points(self):
+        """Control points, a new float64 array of shape (n, d), n = :attr:`basis_count`."""
+        return self._points(self._lib.igaparam_spline_copy_control_points)
+
+    @property
+    def greville_points(self):
+        """Greville points of the basis functions, a new float64 array of shape (n, d) in
+        [0,1]^d. A function whose Greville point is inside (0,1)^d vanishes on the boundary of
+        the parametric domain; those with a point on it (some coordinate 0 or 1) are the
+        degrees of freedom a Dirichlet condition sets."""
+        return self._points(self._lib.igaparam_spline_copy_greville_points)
+
+    @property
+    def element_levels(self):
+        """Refinement level of every element (side 2^-level), a new uint8 array of shape (m,),
+        m = :attr:`element_count`."""
+        out = np.empty(self.element_count, dtype=np.uint8)
+        _check(self._lib.igaparam_spline_copy_elements(self._h(), _ptr(out, ctypes.c_uint8), None, out.size))
+        return out
+
+    @property
+    def element_bounds(self):
+        """Parametric box of every element, a new float64 array of shape (m, 2d): the lower
+        corner then the upper corner (u0 v0 u1 v1 in 2D)."""
+        m, d = self.element_count, self.dimension
+        out = np.empty((m, 2 * d), dtype=np.float64)
+        _check(self._lib.igaparam_spline_copy_elements(self._h(), None, _ptr(out, ctypes.c_double), m))
+        return out
+
+    def extraction(self, element):
+        """The Bézier extraction of element ``element``.
+
+        Returns:
+            (functions, operator): ``functions``, int64 array of shape (k,), the increasing
+            global indices of the k basis functions non-zero on the element; ``operator``,
+            float64 array of shape (k, 4^d), the matrix C with ``N_functions[i] = Σ_j C[i, j] B_j``
+            on the element, ``B_j`` the tensor Bernstein polynomials of degree 3 on the
+            element's box mapped to [0,1]^d, ``j = j0 + 4 j1 (+ 16 j2)``.
+
+        Raises:
+            IgaparamError: ``Status.INVALID_ARGUMENT`` if ``element >= element_count``.
+            ValueError: a negative ``element``.
+        """
+        element = _index(element, "element")
+        h = self._h()
+        k = ctypes.c_size_t()
+        _check(self._lib.igaparam_spline_element_function_count(h, element, ctypes.byref(k)))
+        k = k.value
+        functions = np.empty(k, dtype=_SIZE_T)
+        matrix = np.empty((k, 4 ** self.dimension), dtype=np.float64)
+        _check(
+            self._lib.igaparam_spline_copy_element_extraction(
+                h, element, _ptr(functions, ctypes.c_size_t), k, _ptr(matrix, ctypes.c_double), matrix.size
+            )
+        )
+        return functions.astype(np.int64), matrix
+
+    # Evaluation.
+
+    def _as_points(self, values, name):
+        """``values`` as a C-contiguous float64 array of shape (n, d)."""
+        d = self.dimension
+        array = np.asarray(values)
+        if array.dtype.kind not in "fiu":
+            raise ValueError(f"{name} must be numeric, not {array.dtype}")
+        if array.ndim != 2 or array.shape[1] != d:
+            raise ValueError(f"{name} must have shape (n, {d}), not {array.shape}")
+        return np.ascontiguousarray(array, dtype=np.float64)
+
+    def evaluate(self, params, jacobians=False):
+        """The map at parametric points.
+
+        Args:
+            params: (n, d) points in [0,1]^d.
+            jacobians: also return the Jacobian matrices.
+
+        Returns:
+            points, float64 (n, d): ``S(params)``; with ``jacobians=True``, ``(points, jac)``
+            with ``jac`` float64 (n, d, d), ``jac[p, i, j] = ∂S_i/∂u_j``.
+
+        Raises:
+            IgaparamError: ``Status.INVALID_ARGUMENT`` for a point outside [0,1]^d,
+                ``Status.NOT_FINITE`` for NaN or infinity.
+            ValueError: not an array of shape (n, d).
+        """
+        params = self._as_points(params, "params")
+        n, d = params.shape
+        points = np.empty((n, d), dtype=np.float64)
+        jac = np.empty((n, d, d), dtype=np.float64) if jacobians else None
+        _check(
+            self._lib.igaparam_spline_evaluate(
+                self._h(),
+                n,
+                _ptr(params, ctypes.c_double),
+                _ptr(points, ctypes.c_double),
+                _ptr(jac, ctypes.c_double) if jacobians else None,
+            )
+        )
+        return (points, jac) if jacobians else points
+
+    def mean_ratio(self, params):
+        """The mean ratio of the Jacobian, ``q_S = d·det(J)^(2/d)/‖J‖²_F`` in [0, 1] (1 for a
+        conformal map, 0 where det J <= 0), at (n, d) parametric points: float64 array (n,).
+
+        Raises:
+            IgaparamError: as :meth:`evaluate`.
+        """
+        params = self._as_points(params, "params")
+        quality = np.empty(params.shape[0], dtype=np.float64)
+        _check(
+            self._lib.igaparam_spline_mean_ratio(
+                self._h(), params.shape[0], _ptr(params, ctypes.c_double), _ptr(quality, ctypes.c_double)
+            )
+        )
+        return quality
+
+    def invert(self, points, samples=4):
+        """The parametric points whose images are the physical ``points`` (n, d), by Newton's
+        method started from the nearest of ``samples^d`` samples per element (2 to 32).
+
+        Returns:
+            (params, found): ``params`` float64 (n, d), NaN where not found; ``found`` bool
+            (n,), False where the point is outside the domain (or Newton's method did not
+            converge).
+
+        Raises:
+            IgaparamError: ``Status.NOT_FINITE`` for NaN or infinite points,
+                ``Status.INVALID_ARGUMENT`` for ``samples`` out of range.
+            ValueError: not an array of shape (n, d).
+        """
+        points = self._as_points(points, "points")
+        samples = _uint32(samples, "samples")
+        n, d = points.shape
+        params = np.empty((n, d), dtype=np.float64)
+        found = np.empty(n, dtype=np.int32)
+        _check(
+            self._lib.igaparam_spline_invert(
+                self._h(),
+                n,
+                _ptr(points, ctypes.c_double),
+                samples,
+                _ptr(params, ctypes.c_double),
+                _ptr(found, ctypes.c_int32),
+            )
+        )
+        return params, found != 0
+
+    def basis_at(self, param):
+        """The basis functions non-zero on the element holding the parametric point ``param``
+        (d floats in [0,1]^d; on an element boundary, the element on the upper side).
+
+        Returns:
+            (functions, values, gradients): int64 (k,) global indices, float64 (k,) values
+            (summing to 1) and float64 (k, d) gradients with respect to the parametric
+            coordinates; ``values @ control_points[functions]`` is ``S(param)``.
+
+        Raises:
+            IgaparamError: as :meth:`evaluate`.
+            ValueError: not d numbers.
+        """
+        d = self.dimension
+        array = np.asarray(param)
+        if array.dtype.kind not in "fiu" or array.shape != (d,):
+            raise ValueError(f"param must be {d} numbers, not an array of shape {array.shape} ({array.dtype})")
+        param = np.ascontiguousarray(array, dtype=np.float64)
+        h, p = self._h(), _ptr(param, ctypes.c_double)
+        k = ctypes.c_size_t()
+        _check(self._lib.igaparam_spline_basis_count_at(h, p, ctypes.byref(k)))
+        size = k.value
+        functions = np.empty(size, dtype=_SIZE_T)
+        values = np.empty(size, dtype=np.float64)
+        gradients = np.empty((size, d), dtype=np.float64)
+        _check(
+            self._lib.igaparam_spline_basis_at(
+                h,
+                p,
+                ctypes.byref(k),
+                _ptr(functions, ctypes.c_size_t),
+                _ptr(values, ctypes.c_double),
+                _ptr(gradients, ctypes.c_double),
+                size,
+            )
+        )
+        k = k.value
+        return functions[:k].astype(np.int64), values[:k].copy(), gradients[:k].copy()
+
+    # Refinement and validity.
+
+    def refine(self, elements=None):
+        """h-refines the spline space, the map staying the same: the listed elements are split
+        into 2^d (and more where the mesh's 2:1 balance requires it); ``None`` refines every
+        element once. Element and function indices change. On failure the spline is unchanged.
+
+        Args:
+            elements: None, or a non-empty sequence of element indices (k,).
+
+        Returns:
+            FitReport of the refinement (``residual``: difference with the previous map at the
+            fit points, round-off); it also becomes ``fit_report``.
+
+        Raises:
+            IgaparamError: ``Status.INVALID_ARGUMENT`` for an index >= ``element_count``.
+            ValueError: an empty list, negative or non-integer indices.
+        """
+        h = self._h()
+        report = _capi.FitReport()
+        if elements is None:
+            _check(self._lib.igaparam_spline_refine(h, 0, None, ctypes.byref(report)))
+        else:
+            array = np.asarray(elements)
+            if array.size == 0:
+                raise ValueError("elements is empty (pass None to refine every element)")
+            if array.ndim != 1 or array.dtype.kind not in "iu":
+                raise ValueError(f"elements must be a 1-D integer array, not {array.dtype} of shape {array.shape}")
+            if array.dtype.kind == "i" and array.min() < 0:
+                raise ValueError("elements must be >= 0")
+            array = np.ascontiguousarray(array, dtype=_SIZE_T)
+            _check(
+                self._lib.igaparam_spline_refine(h, array.size, _ptr(array, ctypes.c_size_t), ctypes.byref(report))
+            )
+        self.fit_report = FitReport._from_c(report)
+        return self.fit_report
+
+    def check_validity(self, max_depth=5, samples=5):
+        """Certifies the sign of the Jacobian determinant on every element (lower bounds from
+        the Bernstein coefficients of det J_S, subdividing up to ``max_depth`` times, at most
+        12, when inconclusive) and samples the mean ratio at ``samples^d`` points per element
+        (``samples`` from 2 to 64).
+
+        Returns:
+            ValidityReport, with per-element arrays ``element_bounds`` and ``element_quality``
+            of shape (m,).
+
+        Raises:
+            IgaparamError: ``Status.INVALID_ARGUMENT`` for options out of range.
+        """
+        options = self._lib.igaparam_validity_options_default()
+        options.max_depth = _uint32(max_depth, "max_depth")
+        options.samples = _uint32(samples, "samples")
+        m = self.element_count
+        bounds = np.empty(m, dtype=np.float64)
+        quality = np.empty(m, dtype=np.float64)
+        report = _capi.ValidityReport()
+        _check(
+            self._lib.igaparam_spline_check_validity(
+                self._h(),
+                ctypes.byref(options),
+                ctypes.byref(report),
+                _ptr(bounds, ctypes.c_double),
+                _ptr(quality, ctypes.c_double),
+                m,
+            )
+        )
+        return ValidityReport(
+            certified_positive=bool(report.certified_positive),
+            uncertified=report.uncertified,
+            det_lower_bound=report.det_lower_bound,
+            min_quality=report.min_quality,
+            mean_quality=report.mean_quality,
+            histogram=tuple(int(count) for count in report.histogram),
+            element_bounds=bounds,
+            element_quality=quality,
+        )
+
+    # Output.
+
+    def write_vtu(self, path, samples=4):
+        """Writes the map sampled on ``samples^d`` sub-cells per element (1 to 32) as a VTK
+        .vtu file: quads (2D) or hexahedra (3D), point data ``quality`` (q_S) and ``det``
+        (det J_S), cell data ``level`` and ``element``.
+
+        Raises:
+            IgaparamError: ``Status.IO`` when the file cannot be written,
+                ``Status.INVALID_ARGUMENT`` for ``samples`` out of range.
+        """
+        samples = _uint32(samples, "samples")
+        _check(self._lib.igaparam_spline_write_vtu(self._h(), os.fsencode(path), samples))
+
+    def write_gismo(self, path):
+        """Writes the map as G+Smo XML (a ``THBSpline2``/``THBSpline3`` geometry), readable by
+        G+Smo's ``gsReadFile`` and :meth:`read_gismo`.
+
+        Raises:
+            IgaparamError: ``Status.IO`` when the file cannot be written.
+        """
+        _check(self._lib.igaparam_spline_write_gismo(self._h(), os.fsencode(path)))
