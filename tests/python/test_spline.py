@@ -354,3 +354,15 @@ def test_prototypes_match_header():
 
 def test_exports():
     assert {"Spline", "FitReport", "ValidityReport"} <= set(igaparam.__all__)
+
+
+def test_readme_spline_example(male, tmp_path, monkeypatch):
+    """The spline example of bindings/python/README.md runs (in a temporary directory)."""
+    text = (ROOT / "bindings" / "python" / "README.md").read_text()
+    block = next(b for b in re.findall(r"```python\n(.*?)```", text, flags=re.S) if "Spline.fit" in b)
+    code = "import numpy as np\nimport igaparam\n" + block.replace('"tests/data/boundary/', f'"{BOUNDARY}/')
+    monkeypatch.chdir(tmp_path)
+    exec(compile(code, "README.md", "exec"), {})
+    assert (tmp_path / "male_spline.vtu").exists()
+    with Spline.read_gismo(tmp_path / "male_spline.xml") as read:
+        assert read.element_count > male.element_count  # the refined map was written
