@@ -366,3 +366,79 @@ def test_readme_spline_example(male, tmp_path, monkeypatch):
     assert (tmp_path / "male_spline.vtu").exists()
     with Spline.read_gismo(tmp_path / "male_spline.xml") as read:
         assert read.element_count > male.element_count  # the refined map was written
+
+
+# A 3D map: an affine map of the unit cube written as G+Smo XML. B-splines reproduce linear
+# functions from their Greville points, so S(u) = A u + b exactly.
+
+AFFINE = np.array([[2.0, 0.3, 0.0], [-0.2, 1.5, 0.1], [0.0, 0.4, 1.0]])
+SHIFT = np.array([1.0, -2.0, 0.5])
+
+
+@pytest.fixture(scope="module")
+def cube(tmp_path_factory):
+    knots = "0 0 0 0 0.5 1 1 1 1"
+    greville_1d = np.array([0, 1 / 6, 1 / 2, 5 / 6, 1])
+    w, v, u = np.meshgrid(greville_1d, greville_1d, greville_1d, indexing="ij")
+    greville = np.column_stack([u.ravel(), v.ravel(), w.ravel()])  # direction 0 fastest
+    control = greville @ AFFINE.T + SHIFT
+    bases = "".join(
+        f'<Basis type="BSplineBasis" index="{k}"><KnotVector degree="3">{knots}</KnotVector></Basis>\n'
+        for k in range(3)
+    )
+    coefs = "\n".join(" ".join(repr(float(x)) for x in row) for row in control)
+    path = tmp_path_factory.mktemp("cube") / "cube.xml"
+    path.write_text(
+        '<?xml version="1.0" encoding="UTF-8"?>\n<xml>\n<Geometry type="THBSpline3" id="0">\n'
+        f'<Basis type="THBSplineBasis3">\n<Basis type="TensorBSplineBasis3">\n{bases}</Basis>\n</Basis>\n'
+        f'<coefs geoDim="3">\n{coefs}\n</coefs>\n</Geometry>\n</xml>\n'
+    )
+    with Spline.read_gismo(path) as spline:
+        assert np.array_equal(spline.greville_points, greville)
+        assert np.array_equal(spline.control_points, control)
+        yield spline
+
+
+def check_affine(spline, params):
+    points, jac = spline.evaluate(params, jacobians=True)
+    assert points.shape == (len(params), 3) and jac.shape == (len(params), 3, 3)
+    assert np.abs(points - (params @ AFFINE.T + SHIFT)).max() < 1e-12
+    assert np.abs(jac - AFFINE).max() < 1e-12
+    return points
+
+
+def test_3d_affine_map(cube):
+    assert (cube.dimension, cube.basis_count, cube.element_count) == (3, 125, 8)
+    assert np.array_equal(cube.element_levels, np.ones(8, dtype=np.uint8))
+    bounds = cube.element_bounds
+    assert bounds.shape == (8, 6) and np.array_equal(bounds[:, 3:] - bounds[:, :3], np.full((8, 3), 0.5))
+    params = np.random.default_rng(5).random((30, 3))
+    points = check_affine(cube, params)
+    expected_q = 3 * np.linalg.det(AFFINE) ** (2 / 3) / np.sum(AFFINE**2)
+    assert np.abs(cube.mean_ratio(params) - expected_q).max() < 1e-12
+    back, found = cube.invert(points)
+    assert found.all() and np.abs(back - params).max() < 1e-9
+    functions, values, gradients = cube.basis_at(params[0])
+    assert functions.size == 64 and gradients.shape == (64, 3)
+    assert np.abs(values @ cube.control_points[functions] - points[0]).max() < 1e-12
+    functions, operator = cube.extraction(7)
+    assert operator.shape == (functions.size, 64)
+    validity = cube.check_validity(samples=2)
+    assert validity.certified_positive and sum(validity.histogram) == 8 * 2**3
+    assert validity.det_lower_bound == pytest.approx(np.linalg.det(AFFINE), rel=1e-9)
+    assert validity.min_quality == pytest.approx(expected_q, abs=1e-12)
+
+
+def test_3d_refine_and_round_trip(cube, tmp_path):
+    params = np.random.default_rng(6).random((30, 3))
+    with cube.clone() as refined:
+        refined.refine([0])
+        assert refined.element_count == 15 and refined.element_levels.max() == 2
+        check_affine(refined, params)
+        refined.write_gismo(tmp_path / "refined.xml")
+        refined.write_vtu(tmp_path / "refined.vtu", samples=1)
+        piece = ET.parse(tmp_path / "refined.vtu").getroot().find("UnstructuredGrid/Piece")
+        assert int(piece.get("NumberOfCells")) == 15
+    with Spline.read_gismo(tmp_path / "refined.xml") as read:
+        assert read.element_count == 15
+        check_affine(read, params)
