@@ -114,6 +114,7 @@ fn planar_options(o: &igaparam_domain_options) -> Result<PlanarOptions> {
         max_level: o.max_level as u8,
         max_sweeps: o.max_sweeps,
         threads: o.threads as usize,
+        ..PlanarOptions::default()
     })
 }
 
