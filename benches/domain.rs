@@ -26,11 +26,21 @@ fn run(name: &str, options: &DomainOptions) -> (f64, DomainReport) {
         let coast = Coastline::read(&path).expect("coastline");
         let boundary = BoundaryLoop2::from_coastline(&coast).expect("boundary");
         let input = start.elapsed().as_secs_f64();
-        (input, PlanarDomain::build(boundary, options, none).expect("build").1)
+        (
+            input,
+            PlanarDomain::build(boundary, options, none)
+                .expect("build")
+                .1,
+        )
     } else if name.ends_with("2d_BRep.xml") || name.ends_with("_bdry.xml") {
         let boundary = BoundaryLoop2::from_gismo_file(&path).expect("boundary");
         let input = start.elapsed().as_secs_f64();
-        (input, PlanarDomain::build(boundary, options, none).expect("build").1)
+        (
+            input,
+            PlanarDomain::build(boundary, options, none)
+                .expect("build")
+                .1,
+        )
     } else {
         let boundary = if path.is_dir() {
             SolidBoundary::from_obj_dir(&path)
@@ -39,7 +49,12 @@ fn run(name: &str, options: &DomainOptions) -> (f64, DomainReport) {
         }
         .expect("boundary");
         let input = start.elapsed().as_secs_f64();
-        (input, SolidDomain::build(boundary, options, none).expect("build").1)
+        (
+            input,
+            SolidDomain::build(boundary, options, none)
+                .expect("build")
+                .1,
+        )
     }
 }
 
@@ -53,11 +68,10 @@ fn main() {
         max_level: 4,
         ..Default::default()
     };
-    // The Jacksboro faces are slivers with a jagged terrain edge: a coarser tree, fewer rounds.
+    // The Jacksboro faces are slivers with a jagged terrain edge: a coarser tree.
     let jacksboro = DomainOptions {
         tolerance: 1e-3,
         max_level: 3,
-        repair_rounds: 1,
         ..Default::default()
     };
     let cases: [(&str, &DomainOptions); 9] = [

@@ -18,11 +18,13 @@ use crate::io::vtu::UnstructuredGrid;
 /// `igaparam_domain_new_from_polylines`, a solid with `igaparam_domain_new_solid_from_file` or
 /// `igaparam_domain_new_solid_from_triangulations`; build with `igaparam_domain_build`, release
 /// with `igaparam_domain_free`.
+// The handle itself lives on the heap behind the C pointer; the variants' sizes do not matter.
+#[allow(clippy::large_enum_variant)]
 pub enum igaparam_domain {
     /// Bounded by four curves.
     Planar(BoundaryLoop2, Option<PlanarDomain>),
     /// Bounded by six surfaces.
-    Solid(SolidBoundary, Option<SolidDomain>),
+    Solid(Box<SolidBoundary>, Option<Box<SolidDomain>>),
 }
 
 /// What the read-back functions need of a built domain, whatever its dimension.
@@ -82,7 +84,7 @@ impl igaparam_domain {
     fn view(&self) -> Option<BuiltView> {
         match self {
             igaparam_domain::Planar(_, b) => b.as_ref().map(view_of),
-            igaparam_domain::Solid(_, b) => b.as_ref().map(view_of),
+            igaparam_domain::Solid(_, b) => b.as_deref().map(view_of),
         }
     }
 }
@@ -411,8 +413,9 @@ pub extern "C" fn igaparam_domain_build(
                 r
             }
             igaparam_domain::Solid(boundary, built) => {
-                let (solid, r) = SolidDomain::build(boundary.clone(), &opts, &mut progress)?;
-                *built = Some(solid);
+                let (solid, r) =
+                    SolidDomain::build(boundary.as_ref().clone(), &opts, &mut progress)?;
+                *built = Some(Box::new(solid));
                 r
             }
         };
@@ -609,7 +612,7 @@ pub extern "C" fn igaparam_domain_new_solid_from_file(
             ))
             .into());
         };
-        new_handle(igaparam_domain::Solid(boundary, None), out);
+        new_handle(igaparam_domain::Solid(Box::new(boundary), None), out);
         Ok(())
     })
 }
@@ -669,7 +672,7 @@ pub extern "C" fn igaparam_domain_new_solid_from_triangulations(
                 .map_err(|_| Error::invalid("six faces are needed"))?,
         };
         new_handle(
-            igaparam_domain::Solid(SolidBoundary::from_cube_faces(&cube)?, None),
+            igaparam_domain::Solid(Box::new(SolidBoundary::from_cube_faces(&cube)?), None),
             out,
         );
         Ok(())

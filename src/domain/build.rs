@@ -340,7 +340,15 @@ impl<const D: usize, B: CubeMap<D>> Domain<D, B> {
         let mut sweeps = stats.sweeps;
         let mut invalid = invalid_cells(&pool, &problem, &domain.framed);
         let mut repair_rounds = 0;
-        while !invalid.is_empty() && repair_rounds < options.repair_rounds {
+        // The repair keeps the state with the fewest invalid cells, and stops after two rounds
+        // without improvement: where the boundary itself folds at every scale (a seam of two
+        // triangulated faces meeting at a reflex angle), refining only multiplies the folds.
+        let mut best = (invalid.len(), domain.state());
+        let mut without_improvement = 0;
+        while !invalid.is_empty()
+            && repair_rounds < options.repair_rounds
+            && without_improvement < 2
+        {
             let refinable: Vec<usize> = invalid
                 .iter()
                 .copied()
@@ -356,6 +364,15 @@ impl<const D: usize, B: CubeMap<D>> Domain<D, B> {
             sweeps += s;
             invalid = still_invalid;
             repair_rounds += 1;
+            if invalid.len() < best.0 {
+                best = (invalid.len(), domain.state());
+                without_improvement = 0;
+            } else {
+                without_improvement += 1;
+            }
+        }
+        if invalid.len() > best.0 {
+            domain.restore(best.1);
         }
         stages.repair = clock.elapsed().as_secs_f64();
         let mut report = domain.report(&pool)?;
@@ -365,6 +382,23 @@ impl<const D: usize, B: CubeMap<D>> Domain<D, B> {
         report.stages = stages;
         report.seconds = start.elapsed().as_secs_f64();
         Ok((domain, report))
+    }
+
+    /// The T-mesh and its positions, to be restored by [`Domain::restore`].
+    fn state(&self) -> MeshState<D> {
+        MeshState {
+            mesh: self.mesh.clone(),
+            framed: self.framed.clone(),
+            positions: self.positions.clone(),
+            quality: self.quality.clone(),
+        }
+    }
+
+    fn restore(&mut self, state: MeshState<D>) {
+        self.mesh = state.mesh;
+        self.framed = state.framed;
+        self.positions = state.positions;
+        self.quality = state.quality;
     }
 
     /// The boundary map as the optimizer sees it: oriented, in the frame's coordinates.
@@ -478,6 +512,14 @@ impl<const D: usize, B: CubeMap<D>> Domain<D, B> {
         });
         grid
     }
+}
+
+/// A saved T-mesh with its positions.
+struct MeshState<const D: usize> {
+    mesh: TMesh<D>,
+    framed: Vec<[f64; D]>,
+    positions: Vec<[f64; D]>,
+    quality: Vec<f64>,
 }
 
 /// Deepest level the repair refines to.
