@@ -340,15 +340,12 @@ impl<const D: usize, B: CubeMap<D>> Domain<D, B> {
         let mut sweeps = stats.sweeps;
         let mut invalid = invalid_cells(&pool, &problem, &domain.framed);
         let mut repair_rounds = 0;
-        // The repair keeps the state with the fewest invalid cells, and stops after two rounds
-        // without improvement: where the boundary itself folds at every scale (a seam of two
+        // The repair keeps the state with the fewest invalid cells, and stops once two rounds in
+        // a row have increased their number: where the boundary itself folds at every scale (a seam of two
         // triangulated faces meeting at a reflex angle), refining only multiplies the folds.
         let mut best = (invalid.len(), domain.state());
-        let mut without_improvement = 0;
-        while !invalid.is_empty()
-            && repair_rounds < options.repair_rounds
-            && without_improvement < 2
-        {
+        let mut growing = 0;
+        while !invalid.is_empty() && repair_rounds < options.repair_rounds && growing < 2 {
             let refinable: Vec<usize> = invalid
                 .iter()
                 .copied()
@@ -362,13 +359,18 @@ impl<const D: usize, B: CubeMap<D>> Domain<D, B> {
                 domain
                     .refine_in_place(&refinable, options, &pool, &mut |d| progress(done + d, 0))?;
             sweeps += s;
+            // Folds on the cube's edges may open only once their chords are a few levels
+            // shorter, so a round or two with more invalid cells is no failure; a count that
+            // keeps growing is.
+            growing = if still_invalid.len() > invalid.len() {
+                growing + 1
+            } else {
+                0
+            };
             invalid = still_invalid;
             repair_rounds += 1;
             if invalid.len() < best.0 {
                 best = (invalid.len(), domain.state());
-                without_improvement = 0;
-            } else {
-                without_improvement += 1;
             }
         }
         if invalid.len() > best.0 {
