@@ -119,9 +119,11 @@ typedef int (*igaparam_progress_fn)(void *user, igaparam_stage stage, size_t don
  */
 typedef struct {
   /**
-   * Boundary tolerance, positive: a boundary cell edge is refined while the triangle formed by
-   * its end images and the image of its parametric midpoint has an area above
-   * `tolerance × (bounding-box diagonal)²` (default 1e-5).
+   * Boundary tolerance, positive: a boundary cell edge (planar domain) is refined while the
+   * triangle formed by its end images and the image of its parametric midpoint, or a boundary
+   * cell face (solid) while the four tetrahedra of consecutive corner images and the image of
+   * its centre, measured in coordinates that map the bounding box onto the unit box, exceed
+   * `tolerance × √d^d` (for a square or cube box: `tolerance × diagonal^d`; default 1e-5).
    */
   double tolerance;
   /**
@@ -169,11 +171,11 @@ typedef struct {
    */
   uint32_t max_level;
   /**
-   * Largest boundary error (triangle area over the squared bounding-box diagonal).
+   * Largest boundary error, relative as `tolerance`.
    */
   double boundary_error;
   /**
-   * Invalid cells (det J <= 0 somewhere) after the Coons placement.
+   * Invalid cells (det J <= 0 somewhere) after the transfinite (Coons) placement.
    */
   size_t invalid_after_placement;
   /**

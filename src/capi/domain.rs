@@ -130,9 +130,11 @@ where
 #[repr(C)]
 #[derive(Clone, Copy, Debug)]
 pub struct igaparam_domain_options {
-    /// Boundary tolerance, positive: a boundary cell edge is refined while the triangle formed by
-    /// its end images and the image of its parametric midpoint has an area above
-    /// `tolerance × (bounding-box diagonal)²` (default 1e-5).
+    /// Boundary tolerance, positive: a boundary cell edge (planar domain) is refined while the
+    /// triangle formed by its end images and the image of its parametric midpoint, or a boundary
+    /// cell face (solid) while the four tetrahedra of consecutive corner images and the image of
+    /// its centre, measured in coordinates that map the bounding box onto the unit box, exceed
+    /// `tolerance × √d^d` (for a square or cube box: `tolerance × diagonal^d`; default 1e-5).
     pub tolerance: f64,
     /// Level of the initial uniform refinement (default 2).
     pub min_level: u32,
@@ -160,9 +162,9 @@ pub struct igaparam_domain_report {
     pub vertices: usize,
     /// Deepest level of a cell.
     pub max_level: u32,
-    /// Largest boundary error (triangle area over the squared bounding-box diagonal).
+    /// Largest boundary error, relative as `tolerance`.
     pub boundary_error: f64,
-    /// Invalid cells (det J <= 0 somewhere) after the Coons placement.
+    /// Invalid cells (det J <= 0 somewhere) after the transfinite (Coons) placement.
     pub invalid_after_placement: usize,
     /// Invalid cells after the optimization; 0 for a usable parameterization.
     pub invalid_cells: usize,
