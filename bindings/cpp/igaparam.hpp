@@ -3,6 +3,7 @@
 // - igaparam::Error (a std::runtime_error) carries the status and message of a failed call.
 // - igaparam::Mesh is a move-only owner of an igaparam_mesh*, with methods that check sizes,
 //   throw on failure and return std::vector for the arrays the C API copies out.
+// - igaparam::Domain owns an igaparam_domain* (a planar domain or a solid and its T-mesh).
 // - igaparam::Spline likewise owns an igaparam_spline* (a cubic THB-spline map).
 //
 // Every C call goes through `detail::check`, so a method either succeeds or throws; as in the C
@@ -221,6 +222,134 @@ class Mesh {
   igaparam_mesh* mesh_ = nullptr;
 };
 
+/// A planar domain or a solid and its T-mesh parameterization (owner of an igaparam_domain*).
+/// Move-only.
+class Domain {
+ public:
+  /// A planar domain from a G+Smo XML B-rep (.xml, four curves) or a coastline (.txt).
+  static Domain planar_from_file(const std::string& path) {
+    igaparam_domain* d = nullptr;
+    detail::check(igaparam_domain_new_from_file(path.c_str(), &d));
+    return Domain(d);
+  }
+
+  /// A solid from a G+Smo XML B-rep of six surfaces (.xml) or a folder of six OBJ faces.
+  static Domain solid_from_file(const std::string& path) {
+    igaparam_domain* d = nullptr;
+    detail::check(igaparam_domain_new_solid_from_file(path.c_str(), &d));
+    return Domain(d);
+  }
+
+  /// A solid from six triangulated faces (xmin, xmax, ymin, ymax, zmin, zmax): `xyz[f]` holds 3
+  /// coordinates per vertex, `triangles[f]` 3 vertex indices per triangle. The arrays are copied.
+  static Domain solid_from_triangulations(const std::vector<std::vector<double>>& xyz,
+                                          const std::vector<std::vector<std::uint32_t>>& triangles) {
+    detail::require(xyz.size() == 6 && triangles.size() == 6,
+                    "igaparam::Domain: six faces are needed");
+    std::size_t nv[6], nt[6];
+    const double* points[6];
+    const std::uint32_t* tris[6];
+    for (int f = 0; f < 6; f++) {
+      detail::require(xyz[f].size() % 3 == 0 && triangles[f].size() % 3 == 0,
+                      "igaparam::Domain: 3 coordinates per vertex and 3 indices per triangle");
+      nv[f] = xyz[f].size() / 3;
+      nt[f] = triangles[f].size() / 3;
+      points[f] = xyz[f].data();
+      tris[f] = triangles[f].data();
+    }
+    igaparam_domain* d = nullptr;
+    detail::check(igaparam_domain_new_solid_from_triangulations(nv, points, nt, tris, &d));
+    return Domain(d);
+  }
+
+  /// Takes ownership of a handle from igaparam_domain_new_* (may be NULL).
+  explicit Domain(igaparam_domain* handle) noexcept : domain_(handle) {}
+  ~Domain() { igaparam_domain_free(domain_); }
+  Domain(const Domain&) = delete;
+  Domain& operator=(const Domain&) = delete;
+  Domain(Domain&& other) noexcept : domain_(std::exchange(other.domain_, nullptr)) {}
+  Domain& operator=(Domain&& other) noexcept {
+    if (this != &other) {
+      igaparam_domain_free(domain_);
+      domain_ = std::exchange(other.domain_, nullptr);
+    }
+    return *this;
+  }
+
+  /// The C handle (still owned by this object).
+  igaparam_domain* get() const noexcept { return domain_; }
+
+  /// 2 for a planar domain, 3 for a solid.
+  std::size_t dimension() const {
+    std::size_t d = 0;
+    detail::check(igaparam_domain_dimension(domain_, &d));
+    return d;
+  }
+
+  /// Adapts, places and optimizes the T-mesh (options from igaparam_domain_options_default).
+  igaparam_domain_report build(const igaparam_domain_options& options = igaparam_domain_options_default()) {
+    igaparam_domain_report report{};
+    detail::check(igaparam_domain_build(domain_, &options, &report));
+    return report;
+  }
+
+  /// Parametric coordinates of the vertices, dimension() per vertex.
+  std::vector<double> parametric() const { return vertices(true); }
+
+  /// Physical coordinates of the vertices, dimension() per vertex.
+  std::vector<double> physical() const { return vertices(false); }
+
+  /// Quality of every cell.
+  std::vector<double> cell_quality() const {
+    std::vector<double> q(cell_count());
+    detail::check(igaparam_domain_copy_cell_quality(domain_, q.data(), q.size()));
+    return q;
+  }
+
+  /// Level of every cell.
+  std::vector<std::uint8_t> cell_levels() const {
+    std::vector<std::uint8_t> levels(cell_count());
+    detail::check(igaparam_domain_copy_cells(domain_, levels.data(), nullptr, levels.size()));
+    return levels;
+  }
+
+  /// Corner vertices of every cell, 2^dimension() per cell (VTK quad / hexahedron order).
+  std::vector<std::size_t> cell_corners() const {
+    std::vector<std::size_t> corners(cell_count() << dimension());
+    detail::check(igaparam_domain_copy_cell_corners(domain_, corners.data(), corners.size()));
+    return corners;
+  }
+
+  /// Writes the T-mesh as a .vtu file.
+  void write_vtu(const std::string& path) const {
+    detail::check(igaparam_domain_write_vtu(domain_, path.c_str()));
+  }
+
+  /// Number of vertices of the built T-mesh, hanging ones included.
+  std::size_t vertex_count() const {
+    std::size_t n = 0;
+    detail::check(igaparam_domain_vertex_count(domain_, &n));
+    return n;
+  }
+
+  /// Number of cells of the built T-mesh.
+  std::size_t cell_count() const {
+    std::size_t n = 0;
+    detail::check(igaparam_domain_cell_count(domain_, &n));
+    return n;
+  }
+
+ private:
+  std::vector<double> vertices(bool parametric) const {
+    std::vector<double> out(vertex_count() * dimension());
+    detail::check(igaparam_domain_copy_vertices(domain_, parametric ? out.data() : nullptr,
+                                                parametric ? nullptr : out.data(), out.size()));
+    return out;
+  }
+
+  igaparam_domain* domain_ = nullptr;
+};
+
 /// The Bézier extraction of one element: N_functions[i] = Σ_k op[i·4^d + k] B_k on the element.
 struct Extraction {
   std::vector<std::size_t> functions;  ///< global indices of the functions non-zero on it
@@ -243,6 +372,11 @@ class Spline {
     igaparam_spline* handle = nullptr;
     detail::check(igaparam_spline_fit_domain(domain, &handle, report));
     return Spline(handle);
+  }
+
+  /// Fits the spline map of a built domain; `report` may be NULL.
+  static Spline fit(const Domain& domain, igaparam_fit_report* report = nullptr) {
+    return fit(domain.get(), report);
   }
 
   /// Reads a map written by write_gismo.

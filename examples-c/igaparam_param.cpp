@@ -1,0 +1,231 @@
+// igaparam_param: the optimized T-mesh parameterization of a planar domain or a solid.
+//
+//   igaparam_param INPUT OUT_PREFIX [--tol EPS] [--max-level L] [--threads N]
+//
+// INPUT is a G+Smo XML B-rep (four curves, or six surfaces), a coastline .txt, or a folder of six
+// surface files xmin, xmax, ymin, ymax, zmin, zmax (.obj, .off, .stl or .ply, read by OpenMesh).
+// Writes OUT_PREFIX_tmesh.vtu with VTK (physical T-mesh: one quad or hexahedron per cell through
+// its corners, point data `parametric`, cell data `quality` and `level`), prints a summary and,
+// as its last line, one JSON object. Exit codes: 0 success, 1 error, 2 usage.
+
+#include <OpenMesh/Core/IO/MeshIO.hh>
+#include <OpenMesh/Core/Mesh/TriMesh_ArrayKernelT.hh>
+#include <vtkCellArray.h>
+#include <vtkCellData.h>
+#include <vtkCellType.h>
+#include <vtkDoubleArray.h>
+#include <vtkNew.h>
+#include <vtkPointData.h>
+#include <vtkPoints.h>
+#include <vtkUnsignedCharArray.h>
+#include <vtkUnstructuredGrid.h>
+#include <vtkXMLUnstructuredGridWriter.h>
+
+#include <algorithm>
+#include <cstdint>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <iostream>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "igaparam.h"
+
+namespace fs = std::filesystem;
+
+namespace {
+
+using TriMesh = OpenMesh::TriMesh_ArrayKernelT<>;
+
+// The thread's last error message of the library.
+std::string last_error() {
+  char buf[1024];
+  igaparam_last_error_message(buf, sizeof buf);
+  return buf;
+}
+
+void check(igaparam_status s, const char* what) {
+  if (s != IGAPARAM_STATUS_OK) throw std::runtime_error(std::string(what) + ": " + last_error());
+}
+
+// Owns a domain handle.
+struct Domain {
+  igaparam_domain* d = nullptr;
+  Domain() = default;
+  Domain(const Domain&) = delete;
+  Domain& operator=(const Domain&) = delete;
+  ~Domain() { igaparam_domain_free(d); }
+};
+
+// A triangulated face read by OpenMesh, as flat arrays.
+struct Face {
+  std::vector<double> xyz;
+  std::vector<uint32_t> triangles;
+};
+
+Face read_face(const fs::path& path) {
+  TriMesh mesh;
+  if (!OpenMesh::IO::read_mesh(mesh, path.string()))
+    throw std::runtime_error(path.string() + ": OpenMesh cannot read it");
+  Face f;
+  for (auto v : mesh.vertices()) {
+    const auto& p = mesh.point(v);
+    f.xyz.insert(f.xyz.end(), {double(p[0]), double(p[1]), double(p[2])});
+  }
+  for (auto face : mesh.faces()) {
+    for (auto v : mesh.fv_range(face)) f.triangles.push_back(uint32_t(v.idx()));
+  }
+  return f;
+}
+
+// The face file `name.ext` of a folder, for the first extension present.
+fs::path face_file(const fs::path& dir, const std::string& name) {
+  for (const char* ext : {".obj", ".off", ".stl", ".ply"}) {
+    fs::path p = dir / (name + ext);
+    if (fs::exists(p)) return p;
+  }
+  throw std::runtime_error(dir.string() + ": no " + name + ".obj/.off/.stl/.ply");
+}
+
+void open_domain(const std::string& input, Domain& domain) {
+  fs::path path(input);
+  if (fs::is_directory(path)) {
+    std::vector<Face> faces;
+    for (const char* name : {"xmin", "xmax", "ymin", "ymax", "zmin", "zmax"})
+      faces.push_back(read_face(face_file(path, name)));
+    size_t nv[6], nt[6];
+    const double* xyz[6];
+    const uint32_t* tri[6];
+    for (int f = 0; f < 6; f++) {
+      nv[f] = faces[f].xyz.size() / 3;
+      nt[f] = faces[f].triangles.size() / 3;
+      xyz[f] = faces[f].xyz.data();
+      tri[f] = faces[f].triangles.data();
+    }
+    check(igaparam_domain_new_solid_from_triangulations(nv, xyz, nt, tri, &domain.d), input.c_str());
+    return;
+  }
+  if (!fs::exists(path)) throw std::runtime_error(input + ": no such file or folder");
+  // A .xml B-rep is planar (four curves) or solid (six surfaces): try planar first.
+  igaparam_status s = igaparam_domain_new_from_file(input.c_str(), &domain.d);
+  if (s == IGAPARAM_STATUS_OK) return;
+  std::string planar_error = last_error();
+  std::string ext = path.extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(), ::tolower);
+  if (ext == ".xml" && igaparam_domain_new_solid_from_file(input.c_str(), &domain.d) == IGAPARAM_STATUS_OK)
+    return;
+  throw std::runtime_error(planar_error + (ext == ".xml" ? " (as a solid: " + last_error() + ")" : ""));
+}
+
+// Writes the T-mesh with VTK.
+void write_vtu(const igaparam_domain* d, size_t dim, const std::string& out) {
+  size_t nv = 0, nc = 0;
+  check(igaparam_domain_vertex_count(d, &nv), "vertex count");
+  check(igaparam_domain_cell_count(d, &nc), "cell count");
+  std::vector<double> uvw(dim * nv), x(dim * nv), quality(nc);
+  std::vector<uint8_t> levels(nc);
+  size_t per_cell = dim == 2 ? 4 : 8;
+  std::vector<size_t> corners(per_cell * nc);
+  check(igaparam_domain_copy_vertices(d, uvw.data(), x.data(), dim * nv), "vertices");
+  check(igaparam_domain_copy_cell_quality(d, quality.data(), nc), "quality");
+  check(igaparam_domain_copy_cells(d, levels.data(), nullptr, nc), "cells");
+  check(igaparam_domain_copy_cell_corners(d, corners.data(), corners.size()), "corners");
+
+  vtkNew<vtkPoints> points;
+  vtkNew<vtkDoubleArray> parametric;
+  parametric->SetName("parametric");
+  parametric->SetNumberOfComponents(3);
+  for (size_t v = 0; v < nv; v++) {
+    double p[3] = {0, 0, 0}, u[3] = {0, 0, 0};
+    for (size_t k = 0; k < dim; k++) {
+      p[k] = x[dim * v + k];
+      u[k] = uvw[dim * v + k];
+    }
+    points->InsertNextPoint(p);
+    parametric->InsertNextTuple(u);
+  }
+  vtkNew<vtkUnstructuredGrid> grid;
+  grid->SetPoints(points);
+  grid->GetPointData()->AddArray(parametric);
+  vtkNew<vtkDoubleArray> q, level;
+  q->SetName("quality");
+  level->SetName("level");
+  for (size_t c = 0; c < nc; c++) {
+    std::vector<vtkIdType> ids(corners.begin() + c * per_cell, corners.begin() + (c + 1) * per_cell);
+    grid->InsertNextCell(dim == 2 ? VTK_QUAD : VTK_HEXAHEDRON, vtkIdType(per_cell), ids.data());
+    q->InsertNextValue(quality[c]);
+    level->InsertNextValue(levels[c]);
+  }
+  grid->GetCellData()->AddArray(q);
+  grid->GetCellData()->AddArray(level);
+  vtkNew<vtkXMLUnstructuredGridWriter> writer;
+  writer->SetFileName(out.c_str());
+  writer->SetInputData(grid);
+  if (writer->Write() != 1) throw std::runtime_error(out + ": VTK cannot write it");
+}
+
+int usage(const char* argv0) {
+  std::fprintf(stderr,
+               "usage: %s INPUT OUT_PREFIX [--tol EPS] [--max-level L] [--threads N]\n"
+               "  INPUT: G+Smo XML B-rep, coastline .txt, or a folder of six faces\n"
+               "         xmin xmax ymin ymax zmin zmax (.obj/.off/.stl/.ply)\n",
+               argv0);
+  return 2;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  if (argc < 3) return usage(argv[0]);
+  std::string input = argv[1], prefix = argv[2];
+  igaparam_domain_options options = igaparam_domain_options_default();
+  try {
+    for (int i = 3; i < argc; i++) {
+      std::string a = argv[i];
+      if (i + 1 >= argc) return usage(argv[0]);
+      std::string v = argv[++i];
+      size_t used = 0;
+      if (a == "--tol") {
+        options.tolerance = std::stod(v, &used);
+      } else if (a == "--max-level") {
+        options.max_level = unsigned(std::stoul(v, &used));
+        options.min_level = std::min(options.min_level, options.max_level);
+      } else if (a == "--threads") {
+        options.threads = unsigned(std::stoul(v, &used));
+      } else {
+        return usage(argv[0]);
+      }
+      if (used != v.size()) return usage(argv[0]);
+    }
+  } catch (const std::logic_error&) {
+    return usage(argv[0]);
+  }
+  try {
+    Domain domain;
+    open_domain(input, domain);
+    size_t dim = 0;
+    check(igaparam_domain_dimension(domain.d, &dim), "dimension");
+    igaparam_domain_report r;
+    check(igaparam_domain_build(domain.d, &options, &r), "build");
+    std::string out = prefix + "_tmesh.vtu";
+    write_vtu(domain.d, dim, out);
+    std::printf("%s: %zuD T-mesh, %zu cells, %zu vertices, max level %u\n", input.c_str(), dim,
+                r.cells, r.vertices, r.max_level);
+    std::printf("boundary error %.3e (tolerance %.1e), invalid cells %zu after placement, %zu after\n",
+                r.boundary_error, options.tolerance, r.invalid_after_placement, r.invalid_cells);
+    std::printf("quality min %.4f mean %.4f, %u sweeps, %.3f s; wrote %s\n", r.min_quality,
+                r.mean_quality, r.sweeps, r.seconds, out.c_str());
+    std::printf(
+        "{\"dim\":%zu,\"cells\":%zu,\"nodes\":%zu,\"max_level\":%u,\"boundary_error\":%.6e,"
+        "\"invalid_after_placement\":%zu,\"invalid_cells\":%zu,\"min_quality\":%.6f,"
+        "\"mean_quality\":%.6f,\"sweeps\":%u,\"threads\":%u,\"seconds\":%.4f}\n",
+        dim, r.cells, r.vertices, r.max_level, r.boundary_error, r.invalid_after_placement,
+        r.invalid_cells, r.min_quality, r.mean_quality, r.sweeps, options.threads, r.seconds);
+    return 0;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "igaparam_param: %s\n", e.what());
+    return 1;
+  }
+}
