@@ -98,9 +98,11 @@ typedef enum {
 } igaparam_status;
 
 /**
- * A planar domain bounded by four curves, and once built its T-mesh parameterization (opaque).
- * Create with `igaparam_domain_new_from_file` or `igaparam_domain_new_from_polylines`, build with
- * `igaparam_domain_build`, release with `igaparam_domain_free`.
+ * A planar domain bounded by four curves or a solid bounded by six surfaces, and once built its
+ * T-mesh parameterization (opaque). Create a planar one with `igaparam_domain_new_from_file` or
+ * `igaparam_domain_new_from_polylines`, a solid with `igaparam_domain_new_solid_from_file` or
+ * `igaparam_domain_new_solid_from_triangulations`; build with `igaparam_domain_build`, release
+ * with `igaparam_domain_free`.
  */
 typedef struct igaparam_domain igaparam_domain;
 
@@ -547,11 +549,12 @@ igaparam_status igaparam_domain_vertex_count(const igaparam_domain *domain, size
 igaparam_status igaparam_domain_cell_count(const igaparam_domain *domain, size_t *out);
 
 /**
- * Copies the vertices of the built T-mesh: `parametric` receives their (u, v) in [0,1]², and
- * `physical` their (x, y) in the domain, each `num_vertices × 2` doubles (u0 v0 u1 v1 ...).
- * Either may be NULL to skip it; `len_each` is the number of doubles each non-NULL buffer holds
- * (at least `2 × num_vertices`). Fails with `IGAPARAM_STATUS_INVALID_ARGUMENT` if the domain has
- * not been built.
+ * Copies the vertices of the built T-mesh: `parametric` receives their parametric coordinates
+ * in [0,1]^d (u, v; u, v, w for a solid), and `physical` their coordinates in the domain (x, y;
+ * x, y, z), each `num_vertices × d` doubles (d = 2 for a planar domain, 3 for a solid; see
+ * `igaparam_domain_dimension`). Either may be NULL to skip it; `len_each` is the number of
+ * doubles each non-NULL buffer holds (at least `d × num_vertices`). Fails with
+ * `IGAPARAM_STATUS_INVALID_ARGUMENT` if the domain has not been built.
  */
 igaparam_status igaparam_domain_copy_vertices(const igaparam_domain *domain,
                                               double *parametric,
@@ -572,10 +575,11 @@ igaparam_status igaparam_domain_copy_cell_quality(const igaparam_domain *domain,
  * Copies the cells of the built T-mesh, in the order of their qualities:
  *
  * - `levels`: the refinement level of every cell (`num_cells` bytes), or NULL to skip it;
- * - `bounds`: the parametric box of every cell, `num_cells × 4` doubles `u0 v0 u1 v1` (lower
- *   then upper corner), or NULL to skip it.
+ * - `bounds`: the parametric box of every cell, `num_cells × 2d` doubles (lower then upper
+ *   corner: `u0 v0 u1 v1` for a planar domain, `u0 v0 w0 u1 v1 w1` for a solid), or NULL to
+ *   skip it.
  *
- * `len` is the number of cells the buffers hold (`levels` has `len` bytes, `bounds` `4 × len`
+ * `len` is the number of cells the buffers hold (`levels` has `len` bytes, `bounds` `2d × len`
  * doubles), at least `num_cells`. Fails with `IGAPARAM_STATUS_INVALID_ARGUMENT` if the domain has
  * not been built.
  */
@@ -585,9 +589,64 @@ igaparam_status igaparam_domain_copy_cells(const igaparam_domain *domain,
                                            size_t len);
 
 /**
+ * Copies the corner vertices of every cell of the built T-mesh into `corners`: `num_cells × 2^d`
+ * vertex indices (4 per cell for a planar domain, counter-clockwise from the lower-left corner;
+ * 8 per cell for a solid, in VTK's hexahedron order), indices into the vertices of
+ * `igaparam_domain_copy_vertices`. Hanging vertices on a cell's edges or faces are not listed.
+ * `len` is the number of entries `corners` holds, at least `2^d × num_cells`. Fails with
+ * `IGAPARAM_STATUS_INVALID_ARGUMENT` if the domain has not been built.
+ */
+igaparam_status igaparam_domain_copy_cell_corners(const igaparam_domain *domain,
+                                                  size_t *corners,
+                                                  size_t len);
+
+/**
+ * Writes to `*out` the dimension of the domain: 2 for a planar domain, 3 for a solid.
+ */
+igaparam_status igaparam_domain_dimension(const igaparam_domain *domain, size_t *out);
+
+/**
+ * Creates a solid from a boundary file or folder:
+ *
+ * - a `.xml` file: a G+Smo XML B-rep of six B-spline surfaces (found and oriented from their
+ *   shared edges and corners);
+ * - a folder: six triangulated faces `xmin, xmax, ymin, ymax, zmin, zmax` (`.obj`), each mapped
+ *   onto its face of the unit cube by Floater's mean-value parameterization.
+ *
+ * `path` is a NUL-terminated UTF-8 path. `out` receives the new handle, to be released with
+ * `igaparam_domain_free`. Errors: `IGAPARAM_STATUS_IO` when a file cannot be read or parsed,
+ * `IGAPARAM_STATUS_INVALID_ARGUMENT` for another kind of path, `IGAPARAM_STATUS_INVALID_MESH` when
+ * the surfaces do not share their edges and corners (the message says which).
+ */
+igaparam_status igaparam_domain_new_solid_from_file(const char *path, igaparam_domain **out);
+
+/**
+ * Creates a solid bounded by six triangulated faces, in the order `xmin, xmax, ymin, ymax, zmin,
+ * zmax` of the unit cube's faces.
+ *
+ * - `vertex_counts`, `triangle_counts`: 6 entries each;
+ * - `xyz`: 6 pointers; `xyz[f]` holds `vertex_counts[f] × 3` doubles (x0 y0 z0 x1 ...);
+ * - `triangles`: 6 pointers; `triangles[f]` holds `triangle_counts[f] × 3` vertex indices of
+ *   face f, counting from 0;
+ * - `out`: receives the new handle, to be released with `igaparam_domain_free`.
+ *
+ * Each face must be a disk; faces that touch share their edge vertices with identical
+ * coordinates, and the vertex shared by three faces is a cube corner. Errors:
+ * `IGAPARAM_STATUS_NOT_FINITE` for a NaN or infinite coordinate,
+ * `IGAPARAM_STATUS_INVALID_ARGUMENT` for an index out of range, `IGAPARAM_STATUS_INVALID_MESH` for
+ * faces that do not match on their edges or corners. The arrays are copied.
+ */
+igaparam_status igaparam_domain_new_solid_from_triangulations(const size_t *vertex_counts,
+                                                              const double *const *xyz,
+                                                              const size_t *triangle_counts,
+                                                              const uint32_t *const *triangles,
+                                                              igaparam_domain **out);
+
+/**
  * Writes the built T-mesh to a VTK XML unstructured grid (`.vtu`) at `path` (NUL-terminated
- * UTF-8): one polygon per cell through its corners and hanging vertices, at the physical
- * positions; point data `parametric` (u, v, 0), cell data `quality` and `level`. Fails with
+ * UTF-8): for a planar domain one polygon per cell through its corners and hanging vertices,
+ * for a solid one hexahedron per cell through its corners, at the physical positions; point data
+ * `parametric` (u, v, 0 or u, v, w), cell data `quality` and `level`. Fails with
  * `IGAPARAM_STATUS_IO` if the file cannot be written, `IGAPARAM_STATUS_INVALID_ARGUMENT` if the
  * domain has not been built.
  */

@@ -155,3 +155,175 @@ fn a_curved_solid_gets_a_valid_adapted_octree() {
         }
     }
 }
+
+/// The largest distance between the physical vertices and the image of their parametric ones by
+/// `f`.
+fn distance_from<const D: usize, B: igaparam::domain::CubeMap<D>>(
+    domain: &igaparam::domain::Domain<D, B>,
+    f: impl Fn([f64; D]) -> [f64; D],
+) -> f64 {
+    domain
+        .mesh()
+        .parametric()
+        .iter()
+        .zip(domain.positions())
+        .map(|(p, x)| {
+            let y = f(*p);
+            (0..D).map(|k| (x[k] - y[k]).abs()).fold(0.0, f64::max)
+        })
+        .fold(0.0, f64::max)
+}
+
+/// An affine map that is not a similarity: shear and unequal stretch.
+fn affine2([u, v]: [f64; 2]) -> [f64; 2] {
+    [3.0 + 2.0 * u + 0.7 * v, -1.0 + 0.2 * u + 0.9 * v]
+}
+
+fn affine3([u, v, w]: [f64; 3]) -> [f64; 3] {
+    [
+        1.0 + 2.0 * u + 0.5 * v - 0.3 * w,
+        0.4 * u + 1.2 * v + 0.2 * w,
+        -2.0 + 0.1 * u - 0.3 * v + 0.8 * w,
+    ]
+}
+
+/// On a uniform mesh an affine image of the square or cube is reproduced exactly: every cell has
+/// the same Jacobian, and by symmetry each vertex's objective is stationary there. (On a T-mesh
+/// it is not exactly: the cells around a hanging vertex are not symmetric and coarser ones weigh
+/// 2, so the affine map is only near the optimum; the identity is exact there, see below.)
+#[test]
+fn an_affine_image_gives_the_affine_map_on_uniform_meshes() {
+    let uniform = |level| igaparam::domain::DomainOptions {
+        min_level: level,
+        max_level: level,
+        ..Default::default()
+    };
+    let (planar, report) = build(mapped_square(affine2, 4), &uniform(3));
+    assert_eq!(report.invalid_cells, 0);
+    let worst = distance_from(&planar, affine2);
+    assert!(worst < 1e-12, "2D: moved by {worst}");
+    let (solid, report) =
+        igaparam::domain::Domain::build(MappedCube(affine3), &uniform(2), &mut |_, _| true)
+            .unwrap();
+    assert_eq!(report.invalid_cells, 0);
+    let worst = distance_from(&solid, affine3);
+    assert!(worst < 1e-12, "3D: moved by {worst}");
+}
+
+/// The identity on T-meshes (hanging vertices, cells of two levels): refining cells of the unit
+/// square or cube keeps the identity exactly; an affine image stays close to the affine map.
+#[test]
+fn refined_t_meshes_keep_the_identity() {
+    let options = igaparam::domain::DomainOptions {
+        min_level: 2,
+        max_level: 2,
+        ..Default::default()
+    };
+    let (mut square, _) = build(mapped_square(|p| p, 4), &options);
+    let report = square
+        .refine_cells(&[0, 5], &options, &mut |_, _| true)
+        .unwrap();
+    assert!(report.cells > 16 && report.max_level == 3, "{report:?}");
+    let worst = distance_from_parametric(&square);
+    assert!(worst < 1e-12, "2D: moved by {worst}");
+    let (mut cube, _) =
+        igaparam::domain::Domain::build(MappedCube(|p: [f64; 3]| p), &options, &mut |_, _| true)
+            .unwrap();
+    cube.refine_cells(&[0, 21], &options, &mut |_, _| true)
+        .unwrap();
+    let worst = distance_from_parametric(&cube);
+    assert!(worst < 1e-12, "3D: moved by {worst}");
+    let (mut affine, _) = build(mapped_square(affine2, 4), &options);
+    affine
+        .refine_cells(&[0, 5], &options, &mut |_, _| true)
+        .unwrap();
+    let worst = distance_from(&affine, affine2);
+    println!("affine image on a T-mesh: largest deviation from the affine map {worst:.2e}");
+    assert!(worst < 0.05, "2D affine on a T-mesh: moved by {worst}");
+}
+
+/// Refining cells: all cells valid after, the tree still balanced, the refined cells split,
+/// vertices far from them barely moved.
+#[test]
+fn refining_cells_keeps_validity_and_balance_and_is_local() {
+    let boundary = BoundaryLoop2::from_gismo_file(data("male_bdry.xml")).unwrap();
+    let options = PlanarOptions::default();
+    let (mut domain, before) = build(boundary, &options);
+    assert_eq!(before.invalid_cells, 0);
+    // The cells touching the parametric corner (0, 0).
+    let near: Vec<usize> = (0..domain.mesh().cell_count())
+        .filter(|&c| {
+            let (lo, _) = domain.mesh().cell_bounds(c);
+            lo[0] < 0.2 && lo[1] < 0.2
+        })
+        .collect();
+    assert!(!near.is_empty());
+    let old: std::collections::HashMap<[u64; 2], [f64; 2]> = domain
+        .mesh()
+        .parametric()
+        .iter()
+        .zip(domain.positions())
+        .map(|(p, x)| (p.map(f64::to_bits), *x))
+        .collect();
+    let report = domain
+        .refine_cells(&near, &options, &mut |_, _| true)
+        .unwrap();
+    println!("refined {} cells: {before:?} -> {report:?}", near.len());
+    assert_eq!(report.invalid_cells, 0, "{report:?}");
+    assert!(report.cells >= before.cells + 3 * near.len(), "{report:?}");
+    assert!(domain.mesh().tree().is_balanced());
+    let size = domain.frame().diagonal();
+    let mut far_moves = 0.0f64;
+    for (p, x) in domain.mesh().parametric().iter().zip(domain.positions()) {
+        if p[0] > 0.6 || p[1] > 0.6 {
+            let y = old[&p.map(f64::to_bits)];
+            far_moves = far_moves.max(((x[0] - y[0]).powi(2) + (x[1] - y[1]).powi(2)).sqrt());
+        }
+    }
+    println!(
+        "largest move of a far vertex: {:.2e} of the diagonal",
+        far_moves / size
+    );
+    assert!(far_moves < 1e-2 * size, "{far_moves}");
+    // A cell that does not exist.
+    let e = domain
+        .refine_cells(&[report.cells], &options, &mut |_, _| true)
+        .unwrap_err();
+    assert_eq!(e.kind, igaparam::ErrorKind::InvalidArgument);
+}
+
+/// The 3D duck (G+Smo B-rep): valid after the repair refines the cells whose Gauss–Lobatto
+/// points on the cube's edges fold (the seams of the smooth surface are nearly flat there, and
+/// only shorter chords open them).
+#[test]
+fn duck_brep_gives_a_valid_t_mesh() {
+    let boundary =
+        igaparam::boundary::SolidBoundary::from_gismo_file(data("duck3d_BRep.xml")).unwrap();
+    let options = igaparam::domain::SolidOptions {
+        tolerance: 1e-4,
+        max_level: 4,
+        ..Default::default()
+    };
+    let (domain, report) =
+        igaparam::domain::SolidDomain::build(boundary, &options, &mut |_, _| true).unwrap();
+    println!("duck3d_BRep.xml: {report:?}");
+    assert_eq!(report.invalid_cells, 0, "{report:?}");
+    assert!(report.boundary_error <= options.tolerance, "{report:?}");
+    assert!(domain.mesh().tree().is_balanced());
+}
+
+/// Triangulated faces that do not share their edges are refused with the faces named.
+#[test]
+fn solid_faces_that_do_not_match_are_refused() {
+    let mut cube = igaparam::boundary::CubeFaces::read_dir(data("duck_faces")).unwrap();
+    for v in cube.faces[5].vertices.iter_mut() {
+        v[2] += 0.01;
+    }
+    let e = igaparam::boundary::SolidBoundary::from_cube_faces(&cube).unwrap_err();
+    assert!(
+        e.kind == igaparam::ErrorKind::InvalidMesh
+            || e.kind == igaparam::ErrorKind::InvalidArgument,
+        "{e:?}"
+    );
+    assert!(!e.message.is_empty());
+}

@@ -403,8 +403,15 @@ impl SolidBoundary {
     /// shared edges (checked at 21 points an edge, within 1e-9 of the bounding-box diagonal).
     pub fn from_obj_dir(dir: impl AsRef<Path>) -> Result<Self> {
         let dir = dir.as_ref();
-        let wrap = |e: Error| Error::new(e.kind, format!("{}: {}", dir.display(), e.message));
         let cube = CubeFaces::read_dir(dir)?;
+        Self::from_cube_faces(&cube)
+            .map_err(|e| Error::new(e.kind, format!("{}: {}", dir.display(), e.message)))
+    }
+
+    /// The solid bounded by six triangulated faces, in the order `xmin, xmax, ymin, ymax, zmin,
+    /// zmax`, parameterized as by [`SolidBoundary::from_obj_dir`] (same rules and errors, without
+    /// the I/O).
+    pub fn from_cube_faces(cube: &CubeFaces) -> Result<Self> {
         let bbox = box_of(cube.faces.iter().flat_map(|m| m.vertices.iter().copied()));
         let params = match cube.parameterize() {
             Ok(p) => p,
@@ -424,13 +431,13 @@ impl SolidBoundary {
                     }
                 }
                 scaled.parameterize().map_err(|e| {
-                    wrap(Error::new(
+                    Error::new(
                         e.kind,
                         format!(
                             "{} (and in coordinates normalized to the bounding box: {})",
                             first.message, e.message
                         ),
-                    ))
+                    )
                 })?
             }
         };
@@ -442,22 +449,18 @@ impl SolidBoundary {
             if let Some(i) = uv.iter().position(|p| p.iter().any(|x| !x.is_finite())) {
                 return Err(Error::new(
                     ErrorKind::NotFinite,
-                    format!(
-                        "{}: face {name}: vertex {i} has parameter {:?}",
-                        dir.display(),
-                        uv[i]
-                    ),
+                    format!("face {name}: vertex {i} has parameter {:?}", uv[i]),
                 ));
             }
             let areas = signed_areas(mesh, &uv);
             let pos = areas.iter().filter(|&&a| a > 0.0).count();
             let neg = areas.iter().filter(|&&a| a < 0.0).count();
             if (pos != 0 && neg != 0) || pos + neg != areas.len() || areas.is_empty() {
-                return Err(wrap(Error::mesh(format!(
+                return Err(Error::mesh(format!(
                     "face {name}: the parameterization has {} degenerate and {} folded triangles",
                     areas.len() - pos - neg,
                     pos.min(neg)
-                ))));
+                )));
             }
             faces.push(Face::Mesh(MeshFace::new(
                 uv,
@@ -470,7 +473,7 @@ impl SolidBoundary {
             let face = c & 1; // x = 0 or x = 1: in-plane (y, z)
             corners[c] = faces[face].eval(((c >> 1) & 1) as f64, (c >> 2) as f64);
         }
-        Self::finish(faces, corners, bbox).map_err(wrap)
+        Self::finish(faces, corners, bbox)
     }
 
     /// Checks that the faces agree on the cube's edges and corners, and assembles the map.

@@ -1,5 +1,5 @@
-//! The domain handle: a planar domain bounded by four curves, its adapted and optimized T-mesh
-//! parameterization, and read-back of that T-mesh.
+//! The domain handle: a planar domain bounded by four curves or a solid bounded by six surfaces,
+//! its adapted and optimized T-mesh parameterization, and read-back of that T-mesh.
 
 use std::ffi::{c_char, c_int, c_void, CStr};
 use std::path::Path;
@@ -7,16 +7,122 @@ use std::path::Path;
 use super::boundary::{check_capacity, non_null, non_null_mut, run, slice, slice_mut, Failure};
 use super::spline::AnyMap;
 use super::{igaparam_progress_fn, igaparam_stage, igaparam_status};
-use crate::boundary::{BoundaryLoop2, Coastline, Curve2, Point2};
-use crate::domain::{PlanarDomain, PlanarOptions};
+use crate::boundary::{
+    BoundaryLoop2, Coastline, CubeFaces, Curve2, Point2, SolidBoundary, TriMesh,
+};
+use crate::domain::{DomainReport, PlanarDomain, PlanarOptions, SolidDomain};
 use crate::error::{check_finite, Error, Result};
+use crate::io::vtu::UnstructuredGrid;
 
-/// A planar domain bounded by four curves, and once built its T-mesh parameterization (opaque).
-/// Create with `igaparam_domain_new_from_file` or `igaparam_domain_new_from_polylines`, build with
-/// `igaparam_domain_build`, release with `igaparam_domain_free`.
-pub struct igaparam_domain {
-    boundary: BoundaryLoop2,
-    built: Option<PlanarDomain>,
+/// A planar domain bounded by four curves or a solid bounded by six surfaces, and once built its
+/// T-mesh parameterization (opaque). Create a planar one with `igaparam_domain_new_from_file` or
+/// `igaparam_domain_new_from_polylines`, a solid with `igaparam_domain_new_solid_from_file` or
+/// `igaparam_domain_new_solid_from_triangulations`; build with `igaparam_domain_build`, release
+/// with `igaparam_domain_free`.
+pub enum igaparam_domain {
+    /// Bounded by four curves.
+    Planar(BoundaryLoop2, Option<PlanarDomain>),
+    /// Bounded by six surfaces.
+    Solid(SolidBoundary, Option<SolidDomain>),
+}
+
+/// What the read-back functions need of a built domain, whatever its dimension.
+struct BuiltView {
+    dim: usize,
+    vertices: usize,
+    parametric: Vec<f64>,
+    physical: Vec<f64>,
+    levels: Vec<u8>,
+    bounds: Vec<f64>,
+    corners: Vec<usize>,
+}
+
+impl igaparam_domain {
+    fn dim(&self) -> usize {
+        match self {
+            igaparam_domain::Planar(..) => 2,
+            igaparam_domain::Solid(..) => 3,
+        }
+    }
+
+    fn is_built(&self) -> bool {
+        match self {
+            igaparam_domain::Planar(_, b) => b.is_some(),
+            igaparam_domain::Solid(_, b) => b.is_some(),
+        }
+    }
+
+    fn quality(&self) -> Option<&[f64]> {
+        match self {
+            igaparam_domain::Planar(_, b) => b.as_ref().map(|d| d.quality()),
+            igaparam_domain::Solid(_, b) => b.as_ref().map(|d| d.quality()),
+        }
+    }
+
+    fn grid(&self) -> Option<UnstructuredGrid> {
+        match self {
+            igaparam_domain::Planar(_, b) => b.as_ref().map(|d| d.to_grid()),
+            igaparam_domain::Solid(_, b) => b.as_ref().map(|d| d.to_grid()),
+        }
+    }
+
+    fn cell_count(&self) -> Option<usize> {
+        match self {
+            igaparam_domain::Planar(_, b) => b.as_ref().map(|d| d.mesh().cell_count()),
+            igaparam_domain::Solid(_, b) => b.as_ref().map(|d| d.mesh().cell_count()),
+        }
+    }
+
+    fn vertex_count(&self) -> Option<usize> {
+        match self {
+            igaparam_domain::Planar(_, b) => b.as_ref().map(|d| d.mesh().vertex_count()),
+            igaparam_domain::Solid(_, b) => b.as_ref().map(|d| d.mesh().vertex_count()),
+        }
+    }
+
+    fn view(&self) -> Option<BuiltView> {
+        match self {
+            igaparam_domain::Planar(_, b) => b.as_ref().map(view_of),
+            igaparam_domain::Solid(_, b) => b.as_ref().map(view_of),
+        }
+    }
+}
+
+/// The flat arrays of a built domain.
+fn view_of<const D: usize, B>(d: &crate::domain::Domain<D, B>) -> BuiltView
+where
+    B: crate::domain::CubeMap<D>,
+{
+    let mesh = d.mesh();
+    let mut bounds = Vec::with_capacity(2 * D * mesh.cell_count());
+    for c in 0..mesh.cell_count() {
+        let (lo, hi) = mesh.cell_bounds(c);
+        bounds.extend_from_slice(&lo);
+        bounds.extend_from_slice(&hi);
+    }
+    // Corners: 2D polygons also list hanging vertices, so take the corner vertices directly.
+    let corner_lattice: &[usize] = if D == 2 {
+        &[0, 2, 8, 6]
+    } else {
+        &[0, 2, 8, 6, 18, 20, 26, 24]
+    };
+    let mut corners = Vec::with_capacity(corner_lattice.len() * mesh.cell_count());
+    for c in 0..mesh.cell_count() {
+        let (lattice_points, vertices) = mesh.cell_vertices(c);
+        for l in corner_lattice {
+            let i = lattice_points.iter().position(|x| x == l).unwrap_or(0);
+            corners.push(vertices[i] as usize);
+        }
+    }
+    BuiltView {
+        dim: D,
+        vertices: mesh.vertex_count(),
+        parametric: mesh.parametric().iter().flatten().copied().collect(),
+        physical: d.positions().iter().flatten().copied().collect(),
+        levels: (0..mesh.cell_count()).map(|c| mesh.cell_level(c)).collect(),
+        bounds,
+        corners,
+    }
 }
 
 /// Options of `igaparam_domain_build`; get the defaults from `igaparam_domain_options_default`.
@@ -115,6 +221,7 @@ fn planar_options(o: &igaparam_domain_options) -> Result<PlanarOptions> {
         max_level: o.max_level as u8,
         max_sweeps: o.max_sweeps,
         threads: o.threads as usize,
+        ..PlanarOptions::default()
     })
 }
 
@@ -136,11 +243,8 @@ pub(super) fn c_path<'a>(
     Ok(Path::new(s))
 }
 
-fn new_handle(boundary: BoundaryLoop2, out: &mut *mut igaparam_domain) {
-    *out = Box::into_raw(Box::new(igaparam_domain {
-        boundary,
-        built: None,
-    }));
+fn new_handle(domain: igaparam_domain, out: &mut *mut igaparam_domain) {
+    *out = Box::into_raw(Box::new(domain));
 }
 
 /// Creates a domain from a boundary file, chosen by its extension (case-insensitive):
@@ -179,7 +283,7 @@ pub extern "C" fn igaparam_domain_new_from_file(
                 .into())
             }
         };
-        new_handle(boundary, out);
+        new_handle(igaparam_domain::Planar(boundary, None), out);
         Ok(())
     })
 }
@@ -225,7 +329,10 @@ pub extern "C" fn igaparam_domain_new_from_polylines(
                     .map_err(|e| Error::new(e.kind, format!("polyline {i}: {}", e.message)))?,
             );
         }
-        new_handle(BoundaryLoop2::from_curves(curves)?, out);
+        new_handle(
+            igaparam_domain::Planar(BoundaryLoop2::from_curves(curves)?, None),
+            out,
+        );
         Ok(())
     })
 }
@@ -240,10 +347,32 @@ pub extern "C" fn igaparam_domain_free(domain: *mut igaparam_domain) {
 }
 
 /// The built domain, or an error if `igaparam_domain_build` has not succeeded yet.
-fn built<'a>(domain: *const igaparam_domain) -> std::result::Result<&'a PlanarDomain, Failure> {
-    non_null(domain, "domain")?.built.as_ref().ok_or_else(|| {
-        Error::invalid("the domain has not been built: call igaparam_domain_build first").into()
-    })
+fn built<'a>(domain: *const igaparam_domain) -> std::result::Result<&'a igaparam_domain, Failure> {
+    let d = non_null(domain, "domain")?;
+    if d.is_built() {
+        Ok(d)
+    } else {
+        Err(
+            Error::invalid("the domain has not been built: call igaparam_domain_build first")
+                .into(),
+        )
+    }
+}
+
+/// The C form of a build report.
+fn c_report(r: &DomainReport) -> igaparam_domain_report {
+    igaparam_domain_report {
+        cells: r.cells,
+        vertices: r.vertices,
+        max_level: r.max_level as u32,
+        boundary_error: r.boundary_error,
+        invalid_after_placement: r.invalid_after_placement,
+        invalid_cells: r.invalid_cells,
+        min_quality: r.min_quality,
+        mean_quality: r.mean_quality,
+        sweeps: r.sweeps,
+        seconds: r.seconds,
+    }
 }
 
 /// Fits the spline map of the built domain (see `igaparam_spline_fit_domain`).
@@ -288,21 +417,20 @@ pub extern "C" fn igaparam_domain_build(
                 }
             }
         };
-        let (planar, r) = PlanarDomain::build(d.boundary.clone(), &opts, &mut progress)?;
-        d.built = Some(planar);
+        let r = match d {
+            igaparam_domain::Planar(boundary, built) => {
+                let (planar, r) = PlanarDomain::build(boundary.clone(), &opts, &mut progress)?;
+                *built = Some(planar);
+                r
+            }
+            igaparam_domain::Solid(boundary, built) => {
+                let (solid, r) = SolidDomain::build(boundary.clone(), &opts, &mut progress)?;
+                *built = Some(solid);
+                r
+            }
+        };
         if !report.is_null() {
-            *non_null_mut(report, "report")? = igaparam_domain_report {
-                cells: r.cells,
-                vertices: r.vertices,
-                max_level: r.max_level as u32,
-                boundary_error: r.boundary_error,
-                invalid_after_placement: r.invalid_after_placement,
-                invalid_cells: r.invalid_cells,
-                min_quality: r.min_quality,
-                mean_quality: r.mean_quality,
-                sweeps: r.sweeps,
-                seconds: r.seconds,
-            };
+            *non_null_mut(report, "report")? = c_report(&r);
         }
         Ok(())
     })
@@ -316,7 +444,7 @@ pub extern "C" fn igaparam_domain_vertex_count(
     out: *mut usize,
 ) -> igaparam_status {
     run("igaparam_domain_vertex_count", || {
-        let n = built(domain)?.mesh().vertex_count();
+        let n = built(domain)?.vertex_count().unwrap_or(0);
         *non_null_mut(out, "out")? = n;
         Ok(())
     })
@@ -330,17 +458,18 @@ pub extern "C" fn igaparam_domain_cell_count(
     out: *mut usize,
 ) -> igaparam_status {
     run("igaparam_domain_cell_count", || {
-        let n = built(domain)?.mesh().cell_count();
+        let n = built(domain)?.cell_count().unwrap_or(0);
         *non_null_mut(out, "out")? = n;
         Ok(())
     })
 }
 
-/// Copies the vertices of the built T-mesh: `parametric` receives their (u, v) in [0,1]², and
-/// `physical` their (x, y) in the domain, each `num_vertices × 2` doubles (u0 v0 u1 v1 ...).
-/// Either may be NULL to skip it; `len_each` is the number of doubles each non-NULL buffer holds
-/// (at least `2 × num_vertices`). Fails with `IGAPARAM_STATUS_INVALID_ARGUMENT` if the domain has
-/// not been built.
+/// Copies the vertices of the built T-mesh: `parametric` receives their parametric coordinates
+/// in [0,1]^d (u, v; u, v, w for a solid), and `physical` their coordinates in the domain (x, y;
+/// x, y, z), each `num_vertices × d` doubles (d = 2 for a planar domain, 3 for a solid; see
+/// `igaparam_domain_dimension`). Either may be NULL to skip it; `len_each` is the number of
+/// doubles each non-NULL buffer holds (at least `d × num_vertices`). Fails with
+/// `IGAPARAM_STATUS_INVALID_ARGUMENT` if the domain has not been built.
 #[no_mangle]
 pub extern "C" fn igaparam_domain_copy_vertices(
     domain: *const igaparam_domain,
@@ -349,24 +478,21 @@ pub extern "C" fn igaparam_domain_copy_vertices(
     len_each: usize,
 ) -> igaparam_status {
     run("igaparam_domain_copy_vertices", || {
-        let d = built(domain)?;
-        let needed = 2 * d.mesh().vertex_count();
-        if !parametric.is_null() {
-            check_capacity("parametric", len_each, needed)?;
-        }
-        if !physical.is_null() {
-            check_capacity("physical", len_each, needed)?;
-        }
-        if !parametric.is_null() {
-            let out = slice_mut(parametric, len_each, "parametric")?;
-            for (o, p) in out.chunks_mut(2).zip(d.mesh().parametric()) {
-                o.copy_from_slice(&p);
+        let v = built(domain)?
+            .view()
+            .ok_or_else(|| Error::invalid("the domain has not been built"))?;
+        let needed = v.dim * v.vertices;
+        for (ptr, name) in [(parametric, "parametric"), (physical, "physical")] {
+            if !ptr.is_null() {
+                check_capacity(name, len_each, needed)?;
             }
         }
-        if !physical.is_null() {
-            let out = slice_mut(physical, len_each, "physical")?;
-            for (o, p) in out.chunks_mut(2).zip(d.positions()) {
-                o.copy_from_slice(p);
+        for (ptr, name, values) in [
+            (parametric, "parametric", &v.parametric),
+            (physical, "physical", &v.physical),
+        ] {
+            if !ptr.is_null() {
+                slice_mut(ptr, len_each, name)?[..needed].copy_from_slice(values);
             }
         }
         Ok(())
@@ -384,8 +510,7 @@ pub extern "C" fn igaparam_domain_copy_cell_quality(
     len: usize,
 ) -> igaparam_status {
     run("igaparam_domain_copy_cell_quality", || {
-        let d = built(domain)?;
-        let q = d.quality();
+        let q = built(domain)?.quality().unwrap_or_default();
         check_capacity("quality", len, q.len())?;
         slice_mut(quality, len, "quality")?[..q.len()].copy_from_slice(q);
         Ok(())
@@ -395,10 +520,11 @@ pub extern "C" fn igaparam_domain_copy_cell_quality(
 /// Copies the cells of the built T-mesh, in the order of their qualities:
 ///
 /// - `levels`: the refinement level of every cell (`num_cells` bytes), or NULL to skip it;
-/// - `bounds`: the parametric box of every cell, `num_cells × 4` doubles `u0 v0 u1 v1` (lower
-///   then upper corner), or NULL to skip it.
+/// - `bounds`: the parametric box of every cell, `num_cells × 2d` doubles (lower then upper
+///   corner: `u0 v0 u1 v1` for a planar domain, `u0 v0 w0 u1 v1 w1` for a solid), or NULL to
+///   skip it.
 ///
-/// `len` is the number of cells the buffers hold (`levels` has `len` bytes, `bounds` `4 × len`
+/// `len` is the number of cells the buffers hold (`levels` has `len` bytes, `bounds` `2d × len`
 /// doubles), at least `num_cells`. Fails with `IGAPARAM_STATUS_INVALID_ARGUMENT` if the domain has
 /// not been built.
 #[no_mangle]
@@ -409,32 +535,164 @@ pub extern "C" fn igaparam_domain_copy_cells(
     len: usize,
 ) -> igaparam_status {
     run("igaparam_domain_copy_cells", || {
-        let mesh = built(domain)?.mesh();
-        let n = mesh.cell_count();
+        let v = built(domain)?
+            .view()
+            .ok_or_else(|| Error::invalid("the domain has not been built"))?;
+        let n = v.levels.len();
         check_capacity("levels/bounds (cells)", len, n)?;
         if !levels.is_null() {
-            let out = slice_mut(levels, len, "levels")?;
-            for (c, o) in out[..n].iter_mut().enumerate() {
-                *o = mesh.cell_level(c);
-            }
+            slice_mut(levels, len, "levels")?[..n].copy_from_slice(&v.levels);
         }
         if !bounds.is_null() {
             let total = len
-                .checked_mul(4)
+                .checked_mul(2 * v.dim)
                 .ok_or_else(|| Error::invalid("len is too large"))?;
-            let out = slice_mut(bounds, total, "bounds")?;
-            for (c, o) in out.chunks_mut(4).take(n).enumerate() {
-                let (lo, hi) = mesh.cell_bounds(c);
-                o.copy_from_slice(&[lo[0], lo[1], hi[0], hi[1]]);
-            }
+            slice_mut(bounds, total, "bounds")?[..v.bounds.len()].copy_from_slice(&v.bounds);
         }
         Ok(())
     })
 }
 
+/// Copies the corner vertices of every cell of the built T-mesh into `corners`: `num_cells × 2^d`
+/// vertex indices (4 per cell for a planar domain, counter-clockwise from the lower-left corner;
+/// 8 per cell for a solid, in VTK's hexahedron order), indices into the vertices of
+/// `igaparam_domain_copy_vertices`. Hanging vertices on a cell's edges or faces are not listed.
+/// `len` is the number of entries `corners` holds, at least `2^d × num_cells`. Fails with
+/// `IGAPARAM_STATUS_INVALID_ARGUMENT` if the domain has not been built.
+#[no_mangle]
+pub extern "C" fn igaparam_domain_copy_cell_corners(
+    domain: *const igaparam_domain,
+    corners: *mut usize,
+    len: usize,
+) -> igaparam_status {
+    run("igaparam_domain_copy_cell_corners", || {
+        let v = built(domain)?
+            .view()
+            .ok_or_else(|| Error::invalid("the domain has not been built"))?;
+        check_capacity("corners", len, v.corners.len())?;
+        slice_mut(corners, len, "corners")?[..v.corners.len()].copy_from_slice(&v.corners);
+        Ok(())
+    })
+}
+
+/// Writes to `*out` the dimension of the domain: 2 for a planar domain, 3 for a solid.
+#[no_mangle]
+pub extern "C" fn igaparam_domain_dimension(
+    domain: *const igaparam_domain,
+    out: *mut usize,
+) -> igaparam_status {
+    run("igaparam_domain_dimension", || {
+        let d = non_null(domain, "domain")?.dim();
+        *non_null_mut(out, "out")? = d;
+        Ok(())
+    })
+}
+
+/// Creates a solid from a boundary file or folder:
+///
+/// - a `.xml` file: a G+Smo XML B-rep of six B-spline surfaces (found and oriented from their
+///   shared edges and corners);
+/// - a folder: six triangulated faces `xmin, xmax, ymin, ymax, zmin, zmax` (`.obj`), each mapped
+///   onto its face of the unit cube by Floater's mean-value parameterization.
+///
+/// `path` is a NUL-terminated UTF-8 path. `out` receives the new handle, to be released with
+/// `igaparam_domain_free`. Errors: `IGAPARAM_STATUS_IO` when a file cannot be read or parsed,
+/// `IGAPARAM_STATUS_INVALID_ARGUMENT` for another kind of path, `IGAPARAM_STATUS_INVALID_MESH` when
+/// the surfaces do not share their edges and corners (the message says which).
+#[no_mangle]
+pub extern "C" fn igaparam_domain_new_solid_from_file(
+    path: *const c_char,
+    out: *mut *mut igaparam_domain,
+) -> igaparam_status {
+    run("igaparam_domain_new_solid_from_file", || {
+        let out = non_null_mut(out, "out")?;
+        let path = c_path(path, "path")?;
+        let is_xml = path
+            .extension()
+            .and_then(|e| e.to_str())
+            .is_some_and(|e| e.eq_ignore_ascii_case("xml"));
+        let boundary = if path.is_dir() {
+            SolidBoundary::from_obj_dir(path)?
+        } else if is_xml {
+            SolidBoundary::from_gismo_file(path)?
+        } else {
+            return Err(Error::invalid(format!(
+                "{}: not a folder of six .obj faces nor a .xml G+Smo B-rep",
+                path.display()
+            ))
+            .into());
+        };
+        new_handle(igaparam_domain::Solid(boundary, None), out);
+        Ok(())
+    })
+}
+
+/// Creates a solid bounded by six triangulated faces, in the order `xmin, xmax, ymin, ymax, zmin,
+/// zmax` of the unit cube's faces.
+///
+/// - `vertex_counts`, `triangle_counts`: 6 entries each;
+/// - `xyz`: 6 pointers; `xyz[f]` holds `vertex_counts[f] × 3` doubles (x0 y0 z0 x1 ...);
+/// - `triangles`: 6 pointers; `triangles[f]` holds `triangle_counts[f] × 3` vertex indices of
+///   face f, counting from 0;
+/// - `out`: receives the new handle, to be released with `igaparam_domain_free`.
+///
+/// Each face must be a disk; faces that touch share their edge vertices with identical
+/// coordinates, and the vertex shared by three faces is a cube corner. Errors:
+/// `IGAPARAM_STATUS_NOT_FINITE` for a NaN or infinite coordinate,
+/// `IGAPARAM_STATUS_INVALID_ARGUMENT` for an index out of range, `IGAPARAM_STATUS_INVALID_MESH` for
+/// faces that do not match on their edges or corners. The arrays are copied.
+#[no_mangle]
+pub extern "C" fn igaparam_domain_new_solid_from_triangulations(
+    vertex_counts: *const usize,
+    xyz: *const *const f64,
+    triangle_counts: *const usize,
+    triangles: *const *const u32,
+    out: *mut *mut igaparam_domain,
+) -> igaparam_status {
+    run("igaparam_domain_new_solid_from_triangulations", || {
+        let out = non_null_mut(out, "out")?;
+        let vertex_counts = slice(vertex_counts, 6, "vertex_counts")?;
+        let triangle_counts = slice(triangle_counts, 6, "triangle_counts")?;
+        let xyz = slice(xyz, 6, "xyz")?;
+        let triangles = slice(triangles, 6, "triangles")?;
+        let mut faces = Vec::with_capacity(6);
+        for f in 0..6 {
+            let name = crate::boundary::CUBE_FACE_NAMES[f];
+            let nv = vertex_counts[f]
+                .checked_mul(3)
+                .ok_or_else(|| Error::invalid(format!("vertex_counts[{f}] is too large")))?;
+            let nt = triangle_counts[f]
+                .checked_mul(3)
+                .ok_or_else(|| Error::invalid(format!("triangle_counts[{f}] is too large")))?;
+            let points = slice(xyz[f], nv, "xyz[f]")?;
+            check_finite(&format!("xyz[{f}] ({name})"), points)?;
+            let tri = slice(triangles[f], nt, "triangles[f]")?;
+            let mesh = TriMesh::new(
+                points.chunks_exact(3).map(|p| [p[0], p[1], p[2]]).collect(),
+                tri.chunks_exact(3)
+                    .map(|t| [t[0] as usize, t[1] as usize, t[2] as usize])
+                    .collect(),
+            )
+            .map_err(|e| Error::new(e.kind, format!("face {name}: {}", e.message)))?;
+            faces.push(mesh);
+        }
+        let cube = CubeFaces {
+            faces: faces
+                .try_into()
+                .map_err(|_| Error::invalid("six faces are needed"))?,
+        };
+        new_handle(
+            igaparam_domain::Solid(SolidBoundary::from_cube_faces(&cube)?, None),
+            out,
+        );
+        Ok(())
+    })
+}
+
 /// Writes the built T-mesh to a VTK XML unstructured grid (`.vtu`) at `path` (NUL-terminated
-/// UTF-8): one polygon per cell through its corners and hanging vertices, at the physical
-/// positions; point data `parametric` (u, v, 0), cell data `quality` and `level`. Fails with
+/// UTF-8): for a planar domain one polygon per cell through its corners and hanging vertices,
+/// for a solid one hexahedron per cell through its corners, at the physical positions; point data
+/// `parametric` (u, v, 0 or u, v, w), cell data `quality` and `level`. Fails with
 /// `IGAPARAM_STATUS_IO` if the file cannot be written, `IGAPARAM_STATUS_INVALID_ARGUMENT` if the
 /// domain has not been built.
 #[no_mangle]
@@ -443,9 +701,9 @@ pub extern "C" fn igaparam_domain_write_vtu(
     path: *const c_char,
 ) -> igaparam_status {
     run("igaparam_domain_write_vtu", || {
-        let d = built(domain)?;
+        let grid = built(domain)?.grid().unwrap_or_default();
         let path = c_path(path, "path")?;
-        crate::io::vtu::write(path, &d.to_grid())?;
+        crate::io::vtu::write(path, &grid)?;
         Ok(())
     })
 }
@@ -458,7 +716,7 @@ pub extern "C" fn igaparam_domain_is_built(
     out: *mut c_int,
 ) -> igaparam_status {
     run("igaparam_domain_is_built", || {
-        let b = non_null(domain, "domain")?.built.is_some();
+        let b = non_null(domain, "domain")?.is_built();
         *non_null_mut(out, "out")? = b as c_int;
         Ok(())
     })

@@ -4,6 +4,7 @@
 
 use std::time::Instant;
 
+use super::frame::{signed_measure, Frame, Framed};
 use crate::error::{Error, Result};
 use crate::io::vtu::{DataArray, UnstructuredGrid};
 use crate::optimize::laplace::MeshGraph;
@@ -19,46 +20,14 @@ pub trait CubeMap<const D: usize> {
     fn boundary_point(&self, p: [f64; D]) -> [f64; D];
 }
 
-/// A boundary map seen with its first two parametric coordinates swapped when `swap` is set: a
-/// left-handed boundary parameterization becomes right-handed, so the cells are not inverted.
-struct Oriented<'a, B> {
-    inner: &'a B,
-    swap: bool,
-}
-
-impl<const D: usize, B: CubeMap<D>> CubeMap<D> for Oriented<'_, B> {
-    fn boundary_point(&self, mut p: [f64; D]) -> [f64; D] {
-        if self.swap {
-            p.swap(0, 1);
-        }
-        self.inner.boundary_point(p)
-    }
-}
-
-/// Whether the transfinite interpolation of the boundary reverses orientation (negative Jacobian
-/// determinant, by central differences, at the centre of the parametric domain).
-fn is_left_handed<const D: usize>(boundary: &impl CubeMap<D>) -> bool {
-    const H: f64 = 1e-3;
-    let jacobian: Matrix<D> = std::array::from_fn(|i| {
-        let column: [f64; D] = {
-            let (mut plus, mut minus) = ([0.5; D], [0.5; D]);
-            plus[i] += H;
-            minus[i] -= H;
-            let (a, b) = (transfinite(boundary, plus), transfinite(boundary, minus));
-            std::array::from_fn(|k| (a[k] - b[k]) / (2.0 * H))
-        };
-        column
-    });
-    det(&jacobian) < 0.0
-}
-
 /// Options of [`Domain::build`].
 #[derive(Clone, Copy, Debug)]
 pub struct DomainOptions {
-    /// Boundary tolerance, relative to the bounding-box diagonal `L`: a boundary facet of a cell
-    /// is refined while the triangle (2D: its end images and the image of its midpoint) or the
-    /// four tetrahedra (3D: consecutive corner images and the image of the face centre) measure
-    /// more than `tolerance × L^d`.
+    /// Boundary tolerance, relative to the bounding box: a boundary facet of a cell is refined
+    /// while the triangle (2D: its end images and the image of its midpoint) or the four
+    /// tetrahedra (3D: consecutive corner images and the image of the face centre), measured in
+    /// coordinates that map the bounding box onto a unit box (see [`Frame`]), exceed
+    /// `tolerance × √d^d` (for a square or cube box: `tolerance × diagonal^d`).
     pub tolerance: f64,
     /// Level of the initial uniform refinement.
     pub min_level: u8,
@@ -68,6 +37,9 @@ pub struct DomainOptions {
     pub max_sweeps: u32,
     /// Worker threads; 0 uses one per core.
     pub threads: usize,
+    /// Rounds of repair after the optimization: while cells stay invalid, they are refined (as
+    /// by [`Domain::refine_cells`], past `max_level` up to level 16) and the mesh re-optimized.
+    pub repair_rounds: u32,
 }
 
 impl Default for DomainOptions {
@@ -78,6 +50,7 @@ impl Default for DomainOptions {
             max_level: 9,
             max_sweeps: 200,
             threads: 0,
+            repair_rounds: 6,
         }
     }
 }
@@ -101,23 +74,46 @@ pub struct DomainReport {
     pub min_quality: f64,
     /// Mean cell quality.
     pub mean_quality: f64,
-    /// Optimization sweeps (with those of the fallback growth from the bounding box).
+    /// Optimization sweeps (with those of the fallback growth from the bounding box and of the
+    /// repair).
     pub sweeps: u32,
+    /// Repair rounds that refined invalid cells.
+    pub repair_rounds: u32,
     /// Wall-clock seconds.
     pub seconds: f64,
+    /// Wall-clock seconds of each stage.
+    pub stages: StageSeconds,
     /// Whether the boundary's parameterization is left-handed, so that the T-mesh's first two
     /// parametric coordinates are swapped relative to it.
     pub swapped: bool,
+}
+
+/// Wall-clock seconds of the stages of [`Domain::build`].
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct StageSeconds {
+    /// Adapting the tree to the boundary and building the T-mesh.
+    pub adaptation: f64,
+    /// Placing the vertices (boundary and transfinite interpolation).
+    pub placement: f64,
+    /// Optimizing, with the fallback growth from the bounding box.
+    pub optimization: f64,
+    /// Refining the cells left invalid and optimizing again.
+    pub repair: f64,
 }
 
 /// A domain with its optimized T-mesh: parametric vertices in [0,1]^d, physical ones in the
 /// domain.
 #[derive(Clone, Debug)]
 pub struct Domain<const D: usize, B> {
-    boundary: B,
-    mesh: TMesh<D>,
-    positions: Vec<[f64; D]>,
-    quality: Vec<f64>,
+    pub(super) boundary: B,
+    /// Whether the boundary map's first two parametric coordinates are swapped.
+    pub(super) swapped: bool,
+    pub(super) frame: Frame<D>,
+    pub(super) mesh: TMesh<D>,
+    /// Vertex positions in the frame's coordinates.
+    pub(super) framed: Vec<[f64; D]>,
+    pub(super) positions: Vec<[f64; D]>,
+    pub(super) quality: Vec<f64>,
 }
 
 /// The transfinite interpolation of the boundary at `p` (Coons patch in 2D, Boolean sum of the
@@ -175,7 +171,7 @@ fn facet_error<const D: usize>(corners: &[[f64; D]], centre: [f64; D]) -> f64 {
 }
 
 /// Largest boundary error over the facets of leaf `c` that lie on the boundary of [0,1]^d.
-fn cell_boundary_error<const D: usize>(
+pub(super) fn cell_boundary_error<const D: usize>(
     tree: &Tree<D>,
     c: usize,
     boundary: &impl CubeMap<D>,
@@ -220,7 +216,7 @@ fn cell_boundary_error<const D: usize>(
 }
 
 /// Corners of the box around the points.
-fn bounding_box<const D: usize>(points: &[[f64; D]]) -> ([f64; D], [f64; D]) {
+pub(super) fn bounding_box<const D: usize>(points: &[[f64; D]]) -> ([f64; D], [f64; D]) {
     points.iter().fold(
         ([f64::INFINITY; D], [f64::NEG_INFINITY; D]),
         |(lo, hi), p| {
@@ -232,23 +228,6 @@ fn bounding_box<const D: usize>(points: &[[f64; D]]) -> ([f64; D], [f64; D]) {
     )
 }
 
-/// Centre and diagonal of the box around the boundary images of a grid of boundary points.
-fn extent<const D: usize>(boundary: &impl CubeMap<D>) -> ([f64; D], f64) {
-    const N: usize = 16;
-    let mut samples = Vec::new();
-    for i in 0..(N + 1).pow(D as u32) {
-        let p: [f64; D] =
-            std::array::from_fn(|k| (i / (N + 1).pow(k as u32) % (N + 1)) as f64 / N as f64);
-        if p.iter().any(|&v| v == 0.0 || v == 1.0) {
-            samples.push(boundary.boundary_point(p));
-        }
-    }
-    let (lo, hi) = bounding_box(&samples);
-    let centre = std::array::from_fn(|k| 0.5 * (lo[k] + hi[k]));
-    let diagonal = (0..D).map(|k| (hi[k] - lo[k]).powi(2)).sum::<f64>().sqrt();
-    (centre, diagonal)
-}
-
 impl<const D: usize, B: CubeMap<D>> Domain<D, B> {
     /// Adapts a T-mesh to the boundary, places its vertices and optimizes them.
     /// `progress(sweeps, 0)` is called after every sweep; returning false cancels.
@@ -258,27 +237,22 @@ impl<const D: usize, B: CubeMap<D>> Domain<D, B> {
         progress: &mut dyn FnMut(usize, usize) -> bool,
     ) -> Result<(Self, DomainReport)> {
         let start = Instant::now();
-        if !(options.tolerance.is_finite() && options.tolerance > 0.0) {
-            return Err(Error::invalid(format!(
-                "tolerance = {} must be positive",
-                options.tolerance
-            )));
-        }
-        if options.min_level > options.max_level || options.max_level > 16 {
-            return Err(Error::invalid(
-                "levels must satisfy min_level <= max_level <= 16",
-            ));
-        }
-        let swapped = is_left_handed(&boundary);
-        let oriented = Oriented {
+        check_options(options)?;
+        let swapped = signed_measure(&boundary) < 0.0;
+        let frame = Frame::of(&Framed {
             inner: &boundary,
             swap: swapped,
+            frame: Frame::IDENTITY,
+        })
+        .ok_or_else(|| {
+            Error::invalid("the boundary has no extent: its bounding box is flat or not finite")
+        })?;
+        let framed_boundary = Framed {
+            inner: &boundary,
+            swap: swapped,
+            frame,
         };
-        let (centre, diagonal) = extent(&oriented);
-        if !(diagonal.is_finite() && diagonal > 0.0) {
-            return Err(Error::invalid("the boundary has no extent"));
-        }
-        let scale = diagonal.powi(D as i32);
+        let limit = options.tolerance * facet_scale::<D>();
         let mut tree = Tree::<D>::new();
         tree.refine_uniformly(options.min_level)?;
         loop {
@@ -287,7 +261,7 @@ impl<const D: usize, B: CubeMap<D>> Domain<D, B> {
                 .into_iter()
                 .filter(|&c| {
                     tree.cells()[c].level < options.max_level
-                        && cell_boundary_error(&tree, c, &oriented) > options.tolerance * scale
+                        && cell_boundary_error(&tree, c, &framed_boundary) > limit
                 })
                 .collect();
             if marked.is_empty() {
@@ -299,43 +273,29 @@ impl<const D: usize, B: CubeMap<D>> Domain<D, B> {
             tree.balance()?;
         }
         let mesh = TMesh::new(tree)?;
-        let boundary_error = mesh
-            .tree()
-            .leaves()
-            .into_iter()
-            .map(|c| cell_boundary_error(mesh.tree(), c, &oriented))
-            .fold(0.0, f64::max)
-            / scale;
-        // Optimize in coordinates normalised by the bounding box, so tolerances are dimensionless.
-        let normalise =
-            |p: [f64; D]| -> [f64; D] { std::array::from_fn(|k| (p[k] - centre[k]) / diagonal) };
+        let mut stages = StageSeconds {
+            adaptation: start.elapsed().as_secs_f64(),
+            ..Default::default()
+        };
+        let clock = Instant::now();
         let mut x: Vec<[f64; D]> = mesh
             .parametric()
             .into_iter()
             .enumerate()
             .map(|(v, p)| {
-                normalise(if mesh.on_boundary(v) {
-                    oriented.boundary_point(p)
+                if mesh.on_boundary(v) {
+                    framed_boundary.boundary_point(p)
                 } else {
-                    transfinite(&oriented, p)
-                })
+                    transfinite(&framed_boundary, p)
+                }
             })
             .collect();
         let problem = mesh.problem()?;
-        let pool = rayon::ThreadPoolBuilder::new()
-            .num_threads(options.threads)
-            .build()
-            .map_err(|e| Error::invalid(format!("cannot start threads: {e}")))?;
+        let pool = thread_pool(options)?;
         let invalid_after_placement = invalid_cells(&pool, &problem, &x).len();
-        let sweep_options = SweepOptions {
-            max_sweeps: options.max_sweeps,
-            move_tolerance: 1e-3,
-            node: NodeSolverOptions {
-                gradient_tolerance: 1e-3,
-                max_iterations: 150,
-                relaxation: 1.8,
-            },
-        };
+        stages.placement = clock.elapsed().as_secs_f64();
+        let clock = Instant::now();
+        let sweep_options = sweep_options(options);
         let mut stats = optimize_in_place(&pool, &problem, &mut x, &sweep_options, &mut |d| {
             progress(d, 0)
         })?;
@@ -366,36 +326,89 @@ impl<const D: usize, B: CubeMap<D>> Domain<D, B> {
                 x = grown;
             }
         }
-        let quality = QualitySummary::of(&pool, &problem, &x);
-        let report = DomainReport {
-            cells: mesh.cell_count(),
-            vertices: mesh.vertex_count(),
-            max_level: (0..mesh.cell_count())
-                .map(|c| mesh.cell_level(c))
+        stages.optimization = clock.elapsed().as_secs_f64();
+        let clock = Instant::now();
+        let mut domain = Domain {
+            boundary,
+            swapped,
+            frame,
+            mesh,
+            positions: x.iter().map(|&p| frame.to_physical(p)).collect(),
+            quality: QualitySummary::of(&pool, &problem, &x).quality,
+            framed: x,
+        };
+        let mut sweeps = stats.sweeps;
+        let mut invalid = invalid_cells(&pool, &problem, &domain.framed);
+        let mut repair_rounds = 0;
+        while !invalid.is_empty() && repair_rounds < options.repair_rounds {
+            let refinable: Vec<usize> = invalid
+                .iter()
+                .copied()
+                .filter(|&c| domain.mesh.cell_level(c) < MAX_REPAIR_LEVEL)
+                .collect();
+            if refinable.is_empty() {
+                break;
+            }
+            let done = sweeps as usize;
+            let (still_invalid, s) =
+                domain
+                    .refine_in_place(&refinable, options, &pool, &mut |d| progress(done + d, 0))?;
+            sweeps += s;
+            invalid = still_invalid;
+            repair_rounds += 1;
+        }
+        stages.repair = clock.elapsed().as_secs_f64();
+        let mut report = domain.report(&pool)?;
+        report.invalid_after_placement = invalid_after_placement;
+        report.sweeps = sweeps;
+        report.repair_rounds = repair_rounds;
+        report.stages = stages;
+        report.seconds = start.elapsed().as_secs_f64();
+        Ok((domain, report))
+    }
+
+    /// The boundary map as the optimizer sees it: oriented, in the frame's coordinates.
+    pub(super) fn framed_boundary(&self) -> Framed<'_, B, D> {
+        Framed {
+            inner: &self.boundary,
+            swap: self.swapped,
+            frame: self.frame,
+        }
+    }
+
+    /// The report of the current T-mesh (`invalid_after_placement`, `sweeps`, `seconds` and the
+    /// stage times left 0).
+    pub(super) fn report(&self, pool: &rayon::ThreadPool) -> Result<DomainReport> {
+        let problem = self.mesh.problem()?;
+        let framed = self.framed_boundary();
+        let boundary_error = self
+            .mesh
+            .tree()
+            .leaves()
+            .into_iter()
+            .map(|c| cell_boundary_error(self.mesh.tree(), c, &framed))
+            .fold(0.0, f64::max)
+            / facet_scale::<D>();
+        let quality = QualitySummary::of(pool, &problem, &self.framed);
+        Ok(DomainReport {
+            cells: self.mesh.cell_count(),
+            vertices: self.mesh.vertex_count(),
+            max_level: (0..self.mesh.cell_count())
+                .map(|c| self.mesh.cell_level(c))
                 .max()
                 .unwrap_or(0),
             boundary_error,
-            invalid_after_placement,
-            invalid_cells: invalid_cells(&pool, &problem, &x).len(),
+            invalid_cells: quality.invalid.len(),
             min_quality: quality.min,
             mean_quality: quality.mean,
-            sweeps: stats.sweeps,
-            seconds: start.elapsed().as_secs_f64(),
-            swapped,
-        };
-        let positions = x
-            .into_iter()
-            .map(|p| std::array::from_fn(|k| p[k] * diagonal + centre[k]))
-            .collect();
-        Ok((
-            Domain {
-                boundary,
-                mesh,
-                positions,
-                quality: quality.quality,
-            },
-            report,
-        ))
+            swapped: self.swapped,
+            ..Default::default()
+        })
+    }
+
+    /// The affine frame in which the T-mesh is optimized.
+    pub fn frame(&self) -> Frame<D> {
+        self.frame
     }
 
     /// The boundary.
@@ -464,6 +477,52 @@ impl<const D: usize, B: CubeMap<D>> Domain<D, B> {
                 .collect(),
         });
         grid
+    }
+}
+
+/// Deepest level the repair refines to.
+pub(super) const MAX_REPAIR_LEVEL: u8 = 16;
+
+/// `√d^d`: the measure of a facet error equal to the tolerance, in frame coordinates (the
+/// diagonal of the unit box to the power d).
+fn facet_scale<const D: usize>() -> f64 {
+    (D as f64).powf(D as f64 / 2.0)
+}
+
+/// Checks the options shared by [`Domain::build`] and [`Domain::refine_cells`].
+pub(super) fn check_options(options: &DomainOptions) -> Result<()> {
+    if !(options.tolerance.is_finite() && options.tolerance > 0.0) {
+        return Err(Error::invalid(format!(
+            "tolerance = {} must be positive",
+            options.tolerance
+        )));
+    }
+    if options.min_level > options.max_level || options.max_level > MAX_REPAIR_LEVEL {
+        return Err(Error::invalid(
+            "levels must satisfy min_level <= max_level <= 16",
+        ));
+    }
+    Ok(())
+}
+
+/// The worker threads of the options.
+pub(super) fn thread_pool(options: &DomainOptions) -> Result<rayon::ThreadPool> {
+    rayon::ThreadPoolBuilder::new()
+        .num_threads(options.threads)
+        .build()
+        .map_err(|e| Error::invalid(format!("cannot start threads: {e}")))
+}
+
+/// The sweep options of a domain's optimization.
+pub(super) fn sweep_options(options: &DomainOptions) -> SweepOptions {
+    SweepOptions {
+        max_sweeps: options.max_sweeps,
+        move_tolerance: 1e-3,
+        node: NodeSolverOptions {
+            gradient_tolerance: 1e-3,
+            max_iterations: 150,
+            relaxation: 1.8,
+        },
     }
 }
 

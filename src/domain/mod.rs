@@ -4,9 +4,12 @@
 //! optimizer.
 
 mod build;
+mod frame;
 mod planar;
+mod refine;
 mod solid;
 
-pub use build::{transfinite, CubeMap, Domain, DomainOptions, DomainReport};
+pub use build::{transfinite, CubeMap, Domain, DomainOptions, DomainReport, StageSeconds};
+pub use frame::Frame;
 pub use planar::{PlanarDomain, PlanarOptions, PlanarReport};
 pub use solid::{SolidDomain, SolidOptions, SolidReport};

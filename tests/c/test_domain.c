@@ -1,6 +1,6 @@
 /*
- * Tests of the planar-domain part of the C API (include/igaparam.h) through its C ABI.
- *
+ * Tests of the domain part of the C API (include/igaparam.h), planar domains and solids, through its
+ * C ABI.
  * Usage: test_domain DATA_DIR OUT_DIR, where DATA_DIR holds male_bdry.xml and gran_canaria.txt
  * and OUT_DIR receives the .vtu files. Builds the bundled domains and a unit square from four
  * polylines; calls every entry point with NULL, wrong sizes, non-finite values, an unbuilt domain
@@ -360,6 +360,120 @@ static void test_file(const char *name, const char *vtu) {
   igaparam_domain_free(d);
 }
 
+/* The unit cube's faces xmin ... zmax, each a 3 x 3 grid of vertices in 8 triangles. */
+static void cube_faces(double xyz[6][27], uint32_t tri[6][24]) {
+  for (int f = 0; f < 6; f++) {
+    int k = f / 2, a = k == 0 ? 1 : 0, b = k == 2 ? 1 : 2;
+    for (int j = 0; j < 3; j++)
+      for (int i = 0; i < 3; i++) {
+        double *p = xyz[f] + 3 * (i + 3 * j);
+        p[k] = f % 2;
+        p[a] = i / 2.0;
+        p[b] = j / 2.0;
+      }
+    int t = 0;
+    for (int j = 0; j < 2; j++)
+      for (int i = 0; i < 2; i++) {
+        uint32_t v = (uint32_t)(i + 3 * j);
+        uint32_t quad[6] = {v, v + 1, v + 4, v, v + 4, v + 3};
+        for (int m = 0; m < 6; m++) tri[f][t++] = quad[m];
+      }
+  }
+}
+
+static void test_solid(void) {
+  static double xyz[6][27];
+  static uint32_t tri[6][24];
+  cube_faces(xyz, tri);
+  size_t nv[6], nt[6];
+  const double *pts[6];
+  const uint32_t *tris[6];
+  for (int f = 0; f < 6; f++) {
+    nv[f] = 9;
+    nt[f] = 8;
+    pts[f] = xyz[f];
+    tris[f] = tri[f];
+  }
+  igaparam_domain *d = UNTOUCHED;
+  /* Errors: NaN, an index out of range, faces that do not share their edges, bad paths. */
+  xyz[2][13] = NAN;
+  EXPECT(igaparam_domain_new_solid_from_triangulations(nv, pts, nt, tris, &d),
+         IGAPARAM_STATUS_NOT_FINITE);
+  CHECK(strstr(message(), "ymin") != NULL, "NaN: message '%s' does not name the face", message());
+  xyz[2][13] = 0;
+  tri[4][5] = 9;
+  CHECK(igaparam_domain_new_solid_from_triangulations(nv, pts, nt, tris, &d) != IGAPARAM_STATUS_OK &&
+            message()[0] != '\0',
+        "an index out of range was accepted");
+  tri[4][5] = 3;
+  for (int v = 0; v < 9; v++) xyz[5][3 * v + 2] = 1.25; /* zmax lifted off the sides */
+  EXPECT(igaparam_domain_new_solid_from_triangulations(nv, pts, nt, tris, &d),
+         IGAPARAM_STATUS_INVALID_MESH);
+  for (int v = 0; v < 9; v++) xyz[5][3 * v + 2] = 1;
+  EXPECT(igaparam_domain_new_solid_from_triangulations(nv, NULL, nt, tris, &d),
+         IGAPARAM_STATUS_NULL_ARGUMENT);
+  EXPECT(igaparam_domain_new_solid_from_file(joined(data_dir, "no_such_file.xml"), &d),
+         IGAPARAM_STATUS_IO);
+  EXPECT(igaparam_domain_new_solid_from_file(joined(data_dir, "README.md"), &d),
+         IGAPARAM_STATUS_INVALID_ARGUMENT);
+  CHECK(d == UNTOUCHED, "a failed constructor wrote its handle");
+
+  /* The unit cube gives the identity. */
+  d = NULL;
+  EXPECT(igaparam_domain_new_solid_from_triangulations(nv, pts, nt, tris, &d), IGAPARAM_STATUS_OK);
+  if (!d) return;
+  size_t dim = 0;
+  EXPECT(igaparam_domain_dimension(d, &dim), IGAPARAM_STATUS_OK);
+  CHECK(dim == 3, "cube: dimension %zu", dim);
+  igaparam_domain_options o = igaparam_domain_options_default();
+  o.min_level = 2;
+  o.max_level = 2;
+  igaparam_domain_report r;
+  EXPECT(igaparam_domain_build(d, &o, &r), IGAPARAM_STATUS_OK);
+  CHECK(r.cells == 64 && r.vertices == 125 && r.invalid_cells == 0, "cube: %zu cells, %zu vertices, %zu invalid",
+        r.cells, r.vertices, r.invalid_cells);
+  size_t n = r.vertices, nc = r.cells;
+  double *uvw = malloc(3 * n * sizeof *uvw), *x = malloc(3 * n * sizeof *x);
+  EXPECT(igaparam_domain_copy_vertices(d, uvw, x, 3 * n - 1), IGAPARAM_STATUS_BUFFER_TOO_SMALL);
+  EXPECT(igaparam_domain_copy_vertices(d, uvw, x, 3 * n), IGAPARAM_STATUS_OK);
+  double worst = 0;
+  for (size_t i = 0; i < 3 * n; i++) worst = fmax(worst, fabs(uvw[i] - x[i]));
+  CHECK(worst < 1e-9, "cube: physical differs from parametric by %g", worst);
+  size_t *corners = malloc(8 * nc * sizeof *corners);
+  double *bounds = malloc(6 * nc * sizeof *bounds);
+  EXPECT(igaparam_domain_copy_cell_corners(d, corners, 8 * nc - 1), IGAPARAM_STATUS_BUFFER_TOO_SMALL);
+  EXPECT(igaparam_domain_copy_cell_corners(d, corners, 8 * nc), IGAPARAM_STATUS_OK);
+  EXPECT(igaparam_domain_copy_cells(d, NULL, bounds, nc), IGAPARAM_STATUS_OK);
+  int corners_ok = 1;
+  for (size_t c = 0; c < nc; c++) {
+    const double *b = bounds + 6 * c;
+    const size_t *k = corners + 8 * c;
+    /* VTK order: corner 0 at the lower bound, corner 6 at the upper one. */
+    corners_ok &= k[0] < n && k[6] < n;
+    if (!corners_ok) break;
+    for (int m = 0; m < 3; m++)
+      corners_ok &= uvw[3 * k[0] + m] == b[m] && uvw[3 * k[6] + m] == b[3 + m];
+  }
+  CHECK(corners_ok, "cube: cell corners do not match the cell bounds");
+  EXPECT(igaparam_domain_write_vtu(d, joined(out_dir, "domain_cube.vtu")), IGAPARAM_STATUS_OK);
+  free(bounds);
+  free(corners);
+  free(uvw);
+  free(x);
+  igaparam_domain_free(d);
+
+  /* The files of a solid: a G+Smo B-rep and a folder of OBJ faces. */
+  const char *files[2] = {"duck3d_BRep.xml", "duck_faces"};
+  for (int i = 0; i < 2; i++) {
+    d = NULL;
+    EXPECT(igaparam_domain_new_solid_from_file(joined(data_dir, files[i]), &d), IGAPARAM_STATUS_OK);
+    dim = 0;
+    EXPECT(igaparam_domain_dimension(d, &dim), IGAPARAM_STATUS_OK);
+    CHECK(dim == 3, "%s: dimension %zu", files[i], dim);
+    igaparam_domain_free(d);
+  }
+}
+
 int main(int argc, char **argv) {
   if (argc != 3) {
     fprintf(stderr, "usage: %s DATA_DIR OUT_DIR\n", argv[0]);
@@ -369,6 +483,7 @@ int main(int argc, char **argv) {
   snprintf(out_dir, sizeof out_dir, "%s", argv[2]);
   test_constructor_errors();
   test_unit_square();
+  test_solid();
   test_file("male_bdry.xml", "domain_male.vtu");
   test_file("gran_canaria.txt", "domain_gran_canaria.vtu");
   printf("%d passed, %d failed\n", passed, failed);
