@@ -51,6 +51,11 @@ typedef enum {
    * advance, as large motions may be split into more steps).
    */
   IGAPARAM_STAGE_OPTIMIZATION = 1,
+  /**
+   * Adaptive refinement of a domain's T-mesh from the quality of its spline map: `done`
+   * rounds of `total` at most.
+   */
+  IGAPARAM_STAGE_ADAPTATION = 2,
 } igaparam_stage;
 
 /**
@@ -381,6 +386,85 @@ typedef struct {
    */
   double seconds;
 } igaparam_fit_report;
+
+/**
+ * Options of `igaparam_domain_fit_adaptive`; get the defaults from
+ * `igaparam_adapt_options_default`.
+ */
+typedef struct {
+  /**
+   * Target: every element certified valid with a smallest sampled mean ratio of at least
+   * this, in [0, 1) (default 0.1). Elements below it or not certified are refined.
+   */
+  double target_quality;
+  /**
+   * Largest number of refinement rounds (default 4).
+   */
+  uint32_t max_rounds;
+  /**
+   * Cells at this level are not refined further, at most 16 (default 10).
+   */
+  uint32_t max_level;
+  /**
+   * Largest number of optimization sweeps after each refinement (default 200).
+   */
+  uint32_t max_sweeps;
+  /**
+   * Worker threads, at most 4096; 0 (default) uses one per core.
+   */
+  uint32_t threads;
+  /**
+   * Progress callback, or NULL (default). Called with `IGAPARAM_STAGE_ADAPTATION`, `done`
+   * rounds and `total` = `max_rounds` before each refinement; returning non-zero cancels.
+   */
+  igaparam_progress_fn progress;
+  /**
+   * Passed to `progress` as its first argument.
+   */
+  void *progress_user;
+} igaparam_adapt_options;
+
+/**
+ * What `igaparam_domain_fit_adaptive` did.
+ */
+typedef struct {
+  /**
+   * Refinement rounds done (0 when the first fit met the target).
+   */
+  uint32_t rounds;
+  /**
+   * 1 when the map returned meets the target, else 0 (the round or level limit stopped it).
+   */
+  int32_t reached;
+  /**
+   * T-mesh cells refined over all rounds.
+   */
+  size_t refined_cells;
+  /**
+   * Elements of the map returned (= cells of the domain's final T-mesh).
+   */
+  size_t elements;
+  /**
+   * Basis functions of the map returned.
+   */
+  size_t basis;
+  /**
+   * 1 when every element of the map returned is certified valid.
+   */
+  int32_t certified_positive;
+  /**
+   * Smallest sampled mean ratio of the map returned.
+   */
+  double min_quality;
+  /**
+   * Mean sampled mean ratio of the map returned.
+   */
+  double mean_quality;
+  /**
+   * Wall-clock seconds.
+   */
+  double seconds;
+} igaparam_adapt_report;
 
 /**
  * Certified validity and quality of a spline map.
@@ -789,6 +873,25 @@ igaparam_validity_options igaparam_validity_options_default(void);
 igaparam_status igaparam_spline_fit_domain(const igaparam_domain *domain,
                                            igaparam_spline **out,
                                            igaparam_fit_report *report);
+
+/**
+ * The default adaptation options.
+ */
+igaparam_adapt_options igaparam_adapt_options_default(void);
+
+/**
+ * The adaptive loop of the method: fits the spline map of the built domain, refines the T-mesh
+ * cells whose spline element is not certified valid or has a sampled mean ratio under
+ * `options->target_quality`, optimizes the T-mesh again and refits, for at most
+ * `options->max_rounds` rounds. On success the domain keeps its refined T-mesh and `*out`
+ * receives the spline of that T-mesh (`report` may be NULL; `options` may be NULL for the
+ * defaults). On failure or cancellation (`IGAPARAM_STATUS_CANCELLED`) the domain is unchanged and
+ * `*out` is not written.
+ */
+igaparam_status igaparam_domain_fit_adaptive(igaparam_domain *domain,
+                                             const igaparam_adapt_options *options,
+                                             igaparam_spline **out,
+                                             igaparam_adapt_report *report);
 
 /**
  * Reads a THB-spline map written by `igaparam_spline_write_gismo` (G+Smo XML, a

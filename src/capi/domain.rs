@@ -379,13 +379,48 @@ fn c_report(r: &DomainReport) -> igaparam_domain_report {
     }
 }
 
+/// Runs the adaptive loop on a copy of the built domain and, on success, keeps the refined
+/// T-mesh in the handle (see `igaparam_domain_fit_adaptive`): a failed or cancelled call leaves
+/// the handle as it was.
+pub(super) fn adapt_domain(
+    domain: *mut igaparam_domain,
+    options: &crate::spline::AdaptOptions,
+    progress: &mut dyn FnMut(usize, usize) -> bool,
+) -> std::result::Result<(AnyMap, crate::spline::AdaptReport), Failure> {
+    use crate::spline::adapt;
+    built(domain)?;
+    match non_null_mut(domain, "domain")? {
+        igaparam_domain::Planar(_, Some(d)) => {
+            let mut copy = d.clone();
+            let (map, report) = adapt(&mut copy, options, progress)?;
+            *d = copy;
+            Ok((AnyMap::Two(map), report))
+        }
+        igaparam_domain::Solid(_, Some(d)) => {
+            let mut copy = d.clone();
+            let (map, report) = adapt(&mut copy, options, progress)?;
+            *d = copy;
+            Ok((AnyMap::Three(map), report))
+        }
+        _ => Err(Error::invalid("the domain has not been built").into()),
+    }
+}
 /// Fits the spline map of the built domain (see `igaparam_spline_fit_domain`).
 pub(super) fn fit_domain(
     domain: *const igaparam_domain,
 ) -> std::result::Result<(AnyMap, crate::spline::FitReport), Failure> {
-    let d = built(domain)?;
-    let (map, report) = crate::spline::SplineMap::fit_tmesh(d.mesh(), d.positions())?;
-    Ok((AnyMap::Two(map), report))
+    use crate::spline::SplineMap;
+    match built(domain)? {
+        igaparam_domain::Planar(_, Some(d)) => {
+            let (map, report) = SplineMap::fit_tmesh(d.mesh(), d.positions())?;
+            Ok((AnyMap::Two(map), report))
+        }
+        igaparam_domain::Solid(_, Some(d)) => {
+            let (map, report) = SplineMap::fit_tmesh(d.mesh(), d.positions())?;
+            Ok((AnyMap::Three(map), report))
+        }
+        _ => Err(Error::invalid("the domain has not been built").into()),
+    }
 }
 
 /// Adapts a T-mesh to the boundary (refining boundary cells until `options.tolerance` or

@@ -55,6 +55,9 @@ pub enum igaparam_stage {
     /// Optimization sweeps: `done` sweeps so far over all steps; `total` is 0 (not known in
     /// advance, as large motions may be split into more steps).
     IGAPARAM_STAGE_OPTIMIZATION = 1,
+    /// Adaptive refinement of a domain's T-mesh from the quality of its spline map: `done`
+    /// rounds of `total` at most.
+    IGAPARAM_STAGE_ADAPTATION = 2,
 }
 
 /// Progress callback: `user` is the options' `progress_user`; `done` of `total` steps of `stage`

@@ -8,6 +8,7 @@
 //! with `B^e` the tensor Bernstein polynomials of degree 3 on the element), so another basis over
 //! the same elements can be added by implementing it.
 
+mod adapt;
 pub mod bernstein;
 mod gismo;
 mod map;
@@ -18,11 +19,12 @@ mod thb;
 mod validity;
 mod vtu;
 
+pub use adapt::{adapt, AdaptOptions, AdaptReport, AdaptRound};
 pub use gismo::{read_gismo_thb, write_gismo_thb};
 pub use map::{FitReport, InverseMap, SplineMap};
 pub use quadratic::QuadraticMap;
 pub use solve::SparseLu;
 pub use space::{BasisValues, SplineSpace};
 pub use thb::ThbSpace;
-pub use validity::{ElementValidity, ValidityOptions, ValidityReport};
 pub(crate) use validity::HISTOGRAM_BINS;
+pub use validity::{ElementValidity, ValidityOptions, ValidityReport};

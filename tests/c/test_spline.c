@@ -1,14 +1,15 @@
 /*
  * Tests of the spline part of the C API (include/igaparam.h) through its C ABI.
  *
- * Usage: test_spline DATA_DIR OUT_DIR, where DATA_DIR holds male_bdry.xml and OUT_DIR receives
- * the output files. Builds the male rotor domain, fits its spline map, and checks that the basis
+ * Usage: test_spline DATA_DIR OUT_DIR, where DATA_DIR holds male_bdry.xml and puzzle3_bdry.xml
+ * and OUT_DIR receives the output files. Builds the male rotor domain, fits its spline map, and
+ * checks that the basis
  * queries agree with the evaluation (Σ N_i P_i = S, Σ ∇N_i P_i = J, Σ N_i = 1, N_i ≥ 0), that the
  * Bézier extraction reproduces the basis values, that inversion undoes evaluation, that the map
  * is certified valid, that refinement keeps the map and that the G+Smo XML round trip keeps it;
  * calls the entry points with NULL, out-of-range and non-finite arguments, checking the status,
  * the message and that a failed call leaves the handle as it was. Prints "N passed, M failed";
- * exits non-zero if any check failed.
+ * exits non-zero if any check failed. Runs the adaptive loop on the puzzle piece.
  */
 
 #include <math.h>
@@ -359,6 +360,68 @@ static void test_errors(igaparam_spline *s) {
   igaparam_spline_free(NULL);
 }
 
+static int cancel(void *user, igaparam_stage stage, size_t done, size_t total) {
+  (void)done;
+  (void)total;
+  *(int *)user += stage == IGAPARAM_STAGE_ADAPTATION;
+  return 1;
+}
+
+/* The adaptive loop on the puzzle piece, whose first spline folds next to its necks. */
+static void test_adapt(void) {
+  igaparam_domain *domain = NULL;
+  EXPECT(igaparam_domain_new_from_file(joined(data_dir, "puzzle3_bdry.xml"), &domain),
+         IGAPARAM_STATUS_OK);
+  EXPECT(igaparam_domain_build(domain, NULL, NULL), IGAPARAM_STATUS_OK);
+  size_t cells = 0, after = 0;
+  EXPECT(igaparam_domain_cell_count(domain, &cells), IGAPARAM_STATUS_OK);
+
+  /* Cancelled at the first refinement: the domain is unchanged, no handle written. */
+  igaparam_adapt_options options = igaparam_adapt_options_default();
+  int calls = 0;
+  options.progress = cancel;
+  options.progress_user = &calls;
+  igaparam_spline *s = (igaparam_spline *)(uintptr_t)0x1234;
+  EXPECT(igaparam_domain_fit_adaptive(domain, &options, &s, NULL), IGAPARAM_STATUS_CANCELLED);
+  EXPECT(igaparam_domain_cell_count(domain, &after), IGAPARAM_STATUS_OK);
+  CHECK(calls == 1 && after == cells && s == (igaparam_spline *)(uintptr_t)0x1234,
+        "cancellation: %d calls, %zu -> %zu cells", calls, cells, after);
+
+  options = igaparam_adapt_options_default();
+  options.target_quality = 2.0;
+  EXPECT(igaparam_domain_fit_adaptive(domain, &options, &s, NULL), IGAPARAM_STATUS_INVALID_ARGUMENT);
+  options.target_quality = NAN;
+  EXPECT(igaparam_domain_fit_adaptive(domain, &options, &s, NULL), IGAPARAM_STATUS_NOT_FINITE);
+  EXPECT(igaparam_domain_fit_adaptive(domain, NULL, NULL, NULL), IGAPARAM_STATUS_NULL_ARGUMENT);
+
+  igaparam_adapt_report r;
+  memset(&r, 0, sizeof r);
+  s = NULL;
+  EXPECT(igaparam_domain_fit_adaptive(domain, NULL, &s, &r), IGAPARAM_STATUS_OK);
+  EXPECT(igaparam_domain_cell_count(domain, &after), IGAPARAM_STATUS_OK);
+  CHECK(r.reached == 1 && r.certified_positive == 1 && r.min_quality >= 0.1,
+        "adaptation: reached %d, certified %d, min q %g", r.reached, r.certified_positive,
+        r.min_quality);
+  CHECK(r.rounds >= 1 && r.refined_cells > 0 && after > cells && r.elements == after,
+        "adaptation: %u rounds, %zu refined, %zu -> %zu cells, %zu elements", r.rounds,
+        r.refined_cells, cells, after, r.elements);
+  igaparam_validity_report v;
+  EXPECT(igaparam_spline_check_validity(s, NULL, &v, NULL, NULL, 0), IGAPARAM_STATUS_OK);
+  CHECK(v.certified_positive == 1 && v.min_quality == r.min_quality,
+        "the spline returned: certified %d, min q %g", v.certified_positive, v.min_quality);
+  printf("puzzle adaptation: %u rounds, %zu -> %zu cells, min q %.3f, mean q %.3f\n", r.rounds,
+         cells, after, r.min_quality, r.mean_quality);
+  igaparam_spline_free(s);
+
+  /* Unbuilt domain. */
+  igaparam_domain *fresh = NULL;
+  EXPECT(igaparam_domain_new_from_file(joined(data_dir, "puzzle3_bdry.xml"), &fresh),
+         IGAPARAM_STATUS_OK);
+  EXPECT(igaparam_domain_fit_adaptive(fresh, NULL, &s, NULL), IGAPARAM_STATUS_INVALID_ARGUMENT);
+  igaparam_domain_free(fresh);
+  igaparam_domain_free(domain);
+}
+
 int main(int argc, char **argv) {
   if (argc != 3) {
     fprintf(stderr, "usage: %s DATA_DIR OUT_DIR\n", argv[0]);
@@ -377,6 +440,7 @@ int main(int argc, char **argv) {
     test_errors(s);
     igaparam_spline_free(s);
   }
+  test_adapt();
   printf("%d passed, %d failed\n", passed, failed);
   return failed == 0 ? 0 : 1;
 }

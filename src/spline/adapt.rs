@@ -1,0 +1,168 @@
+//! The adaptive loop of the method (stage 5): fit the spline map of a domain's T-mesh, assess the
+//! mean-ratio Jacobian of the map per element, refine the T-mesh cells of poor or uncertified
+//! quality, optimize the T-mesh again and refit, until the target quality or the level limit.
+
+use std::time::Instant;
+
+use super::map::{FitReport, SplineMap};
+use super::validity::{ValidityOptions, ValidityReport};
+use crate::domain::{CubeMap, Domain, DomainOptions};
+use crate::error::{Error, Result};
+use crate::tmesh::MAX_LEVEL;
+
+/// Options of [`adapt`].
+#[derive(Clone, Copy, Debug)]
+pub struct AdaptOptions {
+    /// The loop stops once every element is certified valid and its smallest sampled mean ratio
+    /// `q_S` reaches this (in [0, 1); default 0.1). Elements below it, or not certified, are
+    /// refined.
+    pub target_quality: f64,
+    /// Largest number of refinement rounds (default 4).
+    pub max_rounds: u32,
+    /// Cells at this level are not refined further (default 10, at most 16).
+    pub max_level: u8,
+    /// Certification and sampling of the spline map.
+    pub validity: ValidityOptions,
+    /// Options of the T-mesh optimization after each refinement (its tolerance and levels are
+    /// not used).
+    pub domain: DomainOptions,
+}
+
+impl Default for AdaptOptions {
+    fn default() -> Self {
+        AdaptOptions {
+            target_quality: 0.1,
+            max_rounds: 4,
+            max_level: 10,
+            validity: ValidityOptions::default(),
+            domain: DomainOptions::default(),
+        }
+    }
+}
+
+/// One round of [`adapt`]: the map fitted and assessed, and the cells then refined.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct AdaptRound {
+    /// Elements (= T-mesh cells) of the map.
+    pub elements: usize,
+    /// Basis functions.
+    pub basis: usize,
+    /// Whether every element is certified valid.
+    pub certified_positive: bool,
+    /// Elements not certified valid.
+    pub uncertified: usize,
+    /// Smallest sampled mean ratio of the map.
+    pub min_quality: f64,
+    /// Mean sampled mean ratio of the map.
+    pub mean_quality: f64,
+    /// Cells refined after this round (0 in the last round).
+    pub refined: usize,
+    /// Invalid T-mesh cells after the optimization that followed the refinement.
+    pub invalid_cells: usize,
+}
+
+/// What [`adapt`] did.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct AdaptReport {
+    /// One entry per fit, the last one being the map returned.
+    pub rounds: Vec<AdaptRound>,
+    /// The fit of the map returned.
+    pub fit: FitReport,
+    /// Whether the map returned meets the target (certified, and min quality at least the
+    /// target).
+    pub reached: bool,
+    /// Wall-clock seconds.
+    pub seconds: f64,
+}
+
+/// Checks the options of [`adapt`].
+fn check(options: &AdaptOptions) -> Result<()> {
+    if !(0.0..1.0).contains(&options.target_quality) {
+        return Err(Error::invalid(format!(
+            "target_quality = {} must be in [0, 1)",
+            options.target_quality
+        )));
+    }
+    if options.max_level > 16 || options.max_level > MAX_LEVEL {
+        return Err(Error::invalid(format!(
+            "max_level = {} must be at most 16",
+            options.max_level
+        )));
+    }
+    if options.validity.samples < 2 || options.validity.max_depth > 12 {
+        return Err(Error::invalid(
+            "validity: samples must be at least 2 and max_depth at most 12",
+        ));
+    }
+    Ok(())
+}
+
+/// The cells to refine: not certified, or of smallest sampled quality under the target, and
+/// below the level limit.
+fn marked<const D: usize>(
+    map: &SplineMap<D>,
+    validity: &ValidityReport,
+    options: &AdaptOptions,
+) -> Vec<usize> {
+    validity
+        .elements
+        .iter()
+        .enumerate()
+        .filter(|(e, v)| {
+            (!v.certified_positive || v.min_quality < options.target_quality)
+                && map.element_level(*e) < options.max_level
+        })
+        .map(|(e, _)| e)
+        .collect()
+}
+
+/// Fits the spline map of a built domain, then refines the T-mesh where the map is of poor
+/// quality (elements not certified valid or whose smallest sampled mean ratio is under
+/// `options.target_quality`), optimizes the T-mesh again and refits, for at most
+/// `options.max_rounds` rounds. The domain keeps its last T-mesh; the map returned is the fit of
+/// that T-mesh. `progress(round, max_rounds)` is called before each refinement; returning false
+/// cancels (`Error` of kind `Cancelled`), the domain keeping the T-mesh of the round reached.
+pub fn adapt<const D: usize, B: CubeMap<D>>(
+    domain: &mut Domain<D, B>,
+    options: &AdaptOptions,
+    progress: &mut dyn FnMut(usize, usize) -> bool,
+) -> Result<(SplineMap<D>, AdaptReport)> {
+    let start = Instant::now();
+    check(options)?;
+    let mut report = AdaptReport::default();
+    let mut round = 0u32;
+    loop {
+        let (map, fit) = SplineMap::fit_tmesh(domain.mesh(), domain.positions())?;
+        let validity = map.validity(&options.validity);
+        let reached = validity.certified_positive && validity.min_quality >= options.target_quality;
+        let cells = if reached || round == options.max_rounds {
+            Vec::new()
+        } else {
+            marked(&map, &validity, options)
+        };
+        report.rounds.push(AdaptRound {
+            elements: map.element_count(),
+            basis: map.basis_count(),
+            certified_positive: validity.certified_positive,
+            uncertified: validity.uncertified,
+            min_quality: validity.min_quality,
+            mean_quality: validity.mean_quality,
+            refined: cells.len(),
+            invalid_cells: 0,
+        });
+        if cells.is_empty() {
+            report.fit = fit;
+            report.reached = reached;
+            report.seconds = start.elapsed().as_secs_f64();
+            return Ok((map, report));
+        }
+        if !progress(round as usize, options.max_rounds as usize) {
+            return Err(Error::cancelled());
+        }
+        let refined = domain.refine_cells(&cells, &options.domain, &mut |_, _| true)?;
+        if let Some(last) = report.rounds.last_mut() {
+            last.invalid_cells = refined.invalid_cells;
+        }
+        round += 1;
+    }
+}
