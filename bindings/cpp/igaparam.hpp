@@ -379,6 +379,17 @@ class Spline {
     return fit(domain.get(), report);
   }
 
+  /// The adaptive loop: fits the map of a built domain, refines its T-mesh where the map is of
+  /// poor quality, optimizes and refits (igaparam_domain_fit_adaptive); the domain keeps the
+  /// refined T-mesh. `report` may be NULL.
+  static Spline fit_adaptive(Domain& domain,
+                             const igaparam_adapt_options& options = igaparam_adapt_options_default(),
+                             igaparam_adapt_report* report = nullptr) {
+    igaparam_spline* handle = nullptr;
+    detail::check(igaparam_domain_fit_adaptive(domain.get(), &options, &handle, report));
+    return Spline(handle);
+  }
+
   /// Reads a map written by write_gismo.
   static Spline read_gismo(const std::string& path) {
     igaparam_spline* handle = nullptr;
