@@ -1,12 +1,17 @@
 // igaparam_param: the optimized T-mesh parameterization of a planar domain or a solid.
 //
 //   igaparam_param INPUT OUT_PREFIX [--tol EPS] [--max-level L] [--threads N]
+//                  [--adapt] [--target-quality Q] [--rounds R] [--no-spline]
 //
 // INPUT is a G+Smo XML B-rep (four curves, or six surfaces), a coastline .txt, or a folder of six
 // surface files xmin, xmax, ymin, ymax, zmin, zmax (.obj, .off, .stl or .ply, read by OpenMesh).
-// Writes OUT_PREFIX_tmesh.vtu with VTK (physical T-mesh: one quad or hexahedron per cell through
-// its corners, point data `parametric`, cell data `quality` and `level`), prints a summary and,
-// as its last line, one JSON object. Exit codes: 0 success, 1 error, 2 usage.
+// Builds the optimized T-mesh, fits its cubic THB-spline map and certifies it (with --adapt, the
+// adaptive loop refines the T-mesh where the map's mean ratio is under Q or not certified, for
+// at most R rounds). Writes OUT_PREFIX_tmesh.vtu with VTK (physical T-mesh: one quad or
+// hexahedron per cell through its corners, point data `parametric`, cell data `quality` and
+// `level`), OUT_PREFIX_spline.vtu (the spline map sampled per element, point data `quality` =
+// q_S and `det`) and OUT_PREFIX.xml (the map as G+Smo XML), prints a summary and, as its last
+// line, one JSON object. Exit codes: 0 success, 1 error, 2 usage.
 
 #include <OpenMesh/Core/IO/MeshIO.hh>
 #include <OpenMesh/Core/Mesh/TriMesh_ArrayKernelT.hh>
@@ -49,6 +54,15 @@ std::string last_error() {
 void check(igaparam_status s, const char* what) {
   if (s != IGAPARAM_STATUS_OK) throw std::runtime_error(std::string(what) + ": " + last_error());
 }
+
+// Owns a spline handle.
+struct Spline {
+  igaparam_spline* s = nullptr;
+  Spline() = default;
+  Spline(const Spline&) = delete;
+  Spline& operator=(const Spline&) = delete;
+  ~Spline() { igaparam_spline_free(s); }
+};
 
 // Owns a domain handle.
 struct Domain {
@@ -169,6 +183,7 @@ void write_vtu(const igaparam_domain* d, size_t dim, const std::string& out) {
 int usage(const char* argv0) {
   std::fprintf(stderr,
                "usage: %s INPUT OUT_PREFIX [--tol EPS] [--max-level L] [--threads N]\n"
+               "         [--adapt] [--target-quality Q] [--rounds R] [--no-spline]\n"
                "  INPUT: G+Smo XML B-rep, coastline .txt, or a folder of six faces\n"
                "         xmin xmax ymin ymax zmin zmax (.obj/.off/.stl/.ply)\n",
                argv0);
@@ -181,9 +196,15 @@ int main(int argc, char** argv) {
   if (argc < 3) return usage(argv[0]);
   std::string input = argv[1], prefix = argv[2];
   igaparam_domain_options options = igaparam_domain_options_default();
+  igaparam_adapt_options adapt = igaparam_adapt_options_default();
+  bool adaptive = false, spline_wanted = true;
   try {
     for (int i = 3; i < argc; i++) {
       std::string a = argv[i];
+      if (a == "--adapt" || a == "--no-spline") {
+        (a == "--adapt" ? adaptive : spline_wanted) = a == "--adapt";
+        continue;
+      }
       if (i + 1 >= argc) return usage(argv[0]);
       std::string v = argv[++i];
       size_t used = 0;
@@ -194,6 +215,11 @@ int main(int argc, char** argv) {
         options.min_level = std::min(options.min_level, options.max_level);
       } else if (a == "--threads") {
         options.threads = unsigned(std::stoul(v, &used));
+        adapt.threads = options.threads;
+      } else if (a == "--target-quality") {
+        adapt.target_quality = std::stod(v, &used);
+      } else if (a == "--rounds") {
+        adapt.max_rounds = unsigned(std::stoul(v, &used));
       } else {
         return usage(argv[0]);
       }
@@ -209,20 +235,64 @@ int main(int argc, char** argv) {
     check(igaparam_domain_dimension(domain.d, &dim), "dimension");
     igaparam_domain_report r;
     check(igaparam_domain_build(domain.d, &options, &r), "build");
-    std::string out = prefix + "_tmesh.vtu";
-    write_vtu(domain.d, dim, out);
     std::printf("%s: %zuD T-mesh, %zu cells, %zu vertices, max level %u\n", input.c_str(), dim,
                 r.cells, r.vertices, r.max_level);
     std::printf("boundary error %.3e (tolerance %.1e), invalid cells %zu after placement, %zu after\n",
                 r.boundary_error, options.tolerance, r.invalid_after_placement, r.invalid_cells);
-    std::printf("quality min %.4f mean %.4f, %u sweeps, %.3f s; wrote %s\n", r.min_quality,
-                r.mean_quality, r.sweeps, r.seconds, out.c_str());
+    std::printf("quality min %.4f mean %.4f, %u sweeps, %.3f s\n", r.min_quality, r.mean_quality,
+                r.sweeps, r.seconds);
+    std::string spline_json;
+    if (spline_wanted) {
+      Spline spline;
+      igaparam_fit_report fit{};
+      igaparam_adapt_report ar{};
+      if (adaptive) {
+        check(igaparam_domain_fit_adaptive(domain.d, &adapt, &spline.s, &ar), "adaptive fit");
+        check(igaparam_domain_cell_count(domain.d, &r.cells), "cell count");
+        check(igaparam_domain_vertex_count(domain.d, &r.vertices), "vertex count");
+        // The T-mesh figures after the refinements (an invalid cell has quality 0).
+        std::vector<double> q(r.cells);
+        check(igaparam_domain_copy_cell_quality(domain.d, q.data(), q.size()), "quality");
+        r.invalid_cells = size_t(std::count(q.begin(), q.end(), 0.0));
+        r.min_quality = *std::min_element(q.begin(), q.end());
+        r.mean_quality = 0;
+        for (double x : q) r.mean_quality += x / double(q.size());
+        std::printf("adaptation: %u rounds, %zu cells refined, now %zu cells; target %s\n", ar.rounds,
+                    ar.refined_cells, r.cells, ar.reached ? "reached" : "not reached");
+      } else {
+        check(igaparam_spline_fit_domain(domain.d, &spline.s, &fit), "spline fit");
+      }
+      size_t basis = 0, elements = 0;
+      check(igaparam_spline_basis_count(spline.s, &basis), "basis count");
+      check(igaparam_spline_element_count(spline.s, &elements), "element count");
+      igaparam_validity_report v{};
+      check(igaparam_spline_check_validity(spline.s, nullptr, &v, nullptr, nullptr, 0), "validity");
+      const std::string spline_vtu = prefix + "_spline.vtu", xml = prefix + ".xml";
+      check(igaparam_spline_write_vtu(spline.s, spline_vtu.c_str(), dim == 2 ? 4 : 2), spline_vtu.c_str());
+      check(igaparam_spline_write_gismo(spline.s, xml.c_str()), xml.c_str());
+      std::printf("spline: %zu functions on %zu elements, q_S min %.4f mean %.4f, det J %s (bound %.3e); "
+                  "wrote %s, %s\n",
+                  basis, elements, v.min_quality, v.mean_quality,
+                  v.certified_positive ? "certified positive" : "not certified", v.det_lower_bound,
+                  spline_vtu.c_str(), xml.c_str());
+      char buf[512];
+      std::snprintf(buf, sizeof buf,
+                    ",\"basis\":%zu,\"elements\":%zu,\"min_q_spline\":%.6f,\"mean_q_spline\":%.6f,"
+                    "\"certified_positive\":%s,\"uncertified\":%zu,\"adapt_rounds\":%u",
+                    basis, elements, v.min_quality, v.mean_quality,
+                    v.certified_positive ? "true" : "false", v.uncertified, ar.rounds);
+      spline_json = buf;
+    }
+    std::string out = prefix + "_tmesh.vtu";
+    write_vtu(domain.d, dim, out);
+    std::printf("wrote %s\n", out.c_str());
     std::printf(
         "{\"dim\":%zu,\"cells\":%zu,\"nodes\":%zu,\"max_level\":%u,\"boundary_error\":%.6e,"
         "\"invalid_after_placement\":%zu,\"invalid_cells\":%zu,\"min_quality\":%.6f,"
-        "\"mean_quality\":%.6f,\"sweeps\":%u,\"threads\":%u,\"seconds\":%.4f}\n",
+        "\"mean_quality\":%.6f,\"sweeps\":%u,\"threads\":%u,\"seconds\":%.4f%s}\n",
         dim, r.cells, r.vertices, r.max_level, r.boundary_error, r.invalid_after_placement,
-        r.invalid_cells, r.min_quality, r.mean_quality, r.sweeps, options.threads, r.seconds);
+        r.invalid_cells, r.min_quality, r.mean_quality, r.sweeps, options.threads, r.seconds,
+        spline_json.c_str());
     return 0;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "igaparam_param: %s\n", e.what());

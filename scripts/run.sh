@@ -4,10 +4,15 @@
 #   out/airfoil_laplacian.vtu   the same, harmonic placement only (no optimization)
 #   out/wing_relocated.vtu      H27 wing mesh, twisted wing (takes about half a minute)
 #   out/wing_laplacian.vtu      the same, harmonic placement only
+# parameterizes bundled domains with igaparam_param (T-mesh, spline map, G+Smo XML):
+#   out/gran_canaria_{tmesh,spline}.vtu, out/gran_canaria.xml   coastline of Gran Canaria
+#   out/puzzle_{tmesh,spline}.vtu, out/puzzle.xml               puzzle piece, adaptive loop
+#   out/duck3d_{tmesh,spline}.vtu, out/duck3d.xml               3D duck B-rep (about half a minute)
 # and draws them (cells coloured by quality) with igaparam_render:
 #   out/airfoil_relocated.png, out/airfoil_laplacian.png, out/wing_relocated.png,
 #   out/airfoil_sorted_quality.png, out/wing_sorted_quality.png (cell qualities sorted ascending,
-#   harmonic placement against optimized)
+#   harmonic placement against optimized), out/gran_canaria_spline.png, out/puzzle_spline.png
+#   (spline maps coloured by the mean ratio of their Jacobian)
 # Rendering needs an X display: the real one, else a virtual one through xvfb-run; without
 # either, the pictures are skipped with a message.
 set -euo pipefail
@@ -30,6 +35,20 @@ run tests/data/airfoil_0012_q9.vtu out/airfoil_relocated.vtu
 run tests/data/airfoil_0012_q9.vtu out/airfoil_laplacian.vtu --laplacian-only
 run tests/data/wing_0012_h27.vtu out/wing_relocated.vtu
 run tests/data/wing_0012_h27.vtu out/wing_laplacian.vtu --laplacian-only
+
+param=build/examples-c/igaparam_param
+if [[ -x $param ]]; then
+  for args in "tests/data/boundary/gran_canaria.txt out/gran_canaria" \
+    "tests/data/boundary/puzzle3_bdry.xml out/puzzle --adapt" \
+    "tests/data/boundary/duck3d_BRep.xml out/duck3d --tol 1e-4 --max-level 4"; do
+    echo
+    echo "+ $param $args"
+    # shellcheck disable=SC2086  # the arguments are split on purpose
+    "$param" $args
+  done
+else
+  echo "run.sh: $param was not built (is OpenMesh, libopenmesh-dev, installed?)" >&2
+fi
 
 render=build/examples-c/igaparam_render
 display=()
@@ -64,3 +83,9 @@ draw --sorted-quality out/airfoil_laplacian.vtu out/airfoil_relocated.vtu out/ai
   --labels "harmonic placement,optimized" --title "airfoil (490 Q9 cells): cell quality, sorted"
 draw --sorted-quality out/wing_laplacian.vtu out/wing_relocated.vtu out/wing_sorted_quality.png \
   --labels "harmonic placement,optimized" --title "wing (12,250 H27 cells): cell quality, sorted"
+if [[ -x $param ]]; then
+  draw out/gran_canaria_spline.vtu out/gran_canaria_spline.png --array quality --range 0 1 \
+    --no-edges --title "Gran Canaria: spline map, mean ratio of the Jacobian"
+  draw out/puzzle_spline.vtu out/puzzle_spline.png --array quality --range 0 1 --no-edges \
+    --title "puzzle piece after adaptation: spline map, mean ratio of the Jacobian"
+fi

@@ -5,6 +5,7 @@ use std::ffi::{c_char, c_int, c_void, CStr};
 use std::path::Path;
 
 use super::boundary::{check_capacity, non_null, non_null_mut, run, slice, slice_mut, Failure};
+use super::mesh::call_progress;
 use super::spline::AnyMap;
 use super::{igaparam_progress_fn, igaparam_stage, igaparam_status};
 use crate::boundary::{
@@ -442,19 +443,14 @@ pub extern "C" fn igaparam_domain_build(
             *non_null(options, "options")?
         };
         let opts = planar_options(&raw)?;
-        let mut progress = |done: usize, total: usize| match raw.progress {
-            None => true,
-            Some(f) => {
-                // SAFETY: the caller supplied a valid callback and its user pointer.
-                unsafe {
-                    f(
-                        raw.progress_user,
-                        igaparam_stage::IGAPARAM_STAGE_OPTIMIZATION,
-                        done,
-                        total,
-                    ) == 0
-                }
-            }
+        let mut progress = |done: usize, total: usize| {
+            call_progress(
+                raw.progress,
+                raw.progress_user,
+                igaparam_stage::IGAPARAM_STAGE_OPTIMIZATION,
+                done,
+                total,
+            )
         };
         let r = match d {
             igaparam_domain::Planar(boundary, built) => {

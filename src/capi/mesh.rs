@@ -72,6 +72,21 @@ pub type igaparam_progress_fn = Option<
     ) -> c_int,
 >;
 
+/// Calls the progress callback `f` (none: go on) with `user`; true to go on.
+pub(super) fn call_progress(
+    f: igaparam_progress_fn,
+    user: *mut c_void,
+    stage: igaparam_stage,
+    done: usize,
+    total: usize,
+) -> bool {
+    match f {
+        None => true,
+        // SAFETY: the caller supplied a valid callback and its user pointer.
+        Some(f) => unsafe { f(user, stage, done, total) == 0 },
+    }
+}
+
 /// Options of `igaparam_mesh_relocate`; get the defaults from `igaparam_relocate_options_default`.
 #[repr(C)]
 #[derive(Clone, Copy, Debug)]
@@ -368,16 +383,12 @@ pub extern "C" fn igaparam_mesh_relocate(
             *non_null(options, "options")?
         };
         let opts = relocate_options(&raw)?;
-        let mut progress = |stage: Stage, done: usize, total: usize| match raw.progress {
-            None => true,
-            Some(f) => {
-                let stage = match stage {
-                    Stage::Placement => igaparam_stage::IGAPARAM_STAGE_PLACEMENT,
-                    Stage::Optimization => igaparam_stage::IGAPARAM_STAGE_OPTIMIZATION,
-                };
-                // SAFETY: the caller supplied a valid callback and its user pointer.
-                unsafe { f(raw.progress_user, stage, done, total) == 0 }
-            }
+        let mut progress = |stage: Stage, done: usize, total: usize| {
+            let stage = match stage {
+                Stage::Placement => igaparam_stage::IGAPARAM_STAGE_PLACEMENT,
+                Stage::Optimization => igaparam_stage::IGAPARAM_STAGE_OPTIMIZATION,
+            };
+            call_progress(raw.progress, raw.progress_user, stage, done, total)
         };
         let mut candidate = m.clone();
         let r = candidate.relocate(&opts, &mut progress)?;

@@ -3,17 +3,17 @@
 //! inverse, basis functions at a point, Bézier extraction, control points), h-refinement,
 //! certified validity and output.
 
-use std::ffi::c_char;
+use std::ffi::{c_char, c_void};
 
 use super::boundary::{check_capacity, non_null, non_null_mut, run, slice, slice_mut, Failure};
 use super::domain::{adapt_domain, c_path, fit_domain, igaparam_domain};
 use super::igaparam_status;
+use super::mesh::call_progress;
 use super::{igaparam_progress_fn, igaparam_stage};
 use crate::error::{check_finite, Error, Result};
 use crate::spline::{
     AdaptOptions, FitReport, SplineMap, SplineSpace, ValidityOptions, HISTOGRAM_BINS,
 };
-use std::ffi::c_void;
 
 /// The spline map of a 2D or 3D domain.
 #[derive(Clone, Debug)]
@@ -308,19 +308,14 @@ pub extern "C" fn igaparam_domain_fit_adaptive(
             },
             ..defaults
         };
-        let mut progress = |done: usize, total: usize| match raw.progress {
-            None => true,
-            Some(f) => {
-                // SAFETY: the caller supplied a valid callback and its user pointer.
-                unsafe {
-                    f(
-                        raw.progress_user,
-                        igaparam_stage::IGAPARAM_STAGE_ADAPTATION,
-                        done,
-                        total,
-                    ) == 0
-                }
-            }
+        let mut progress = |done: usize, total: usize| {
+            call_progress(
+                raw.progress,
+                raw.progress_user,
+                igaparam_stage::IGAPARAM_STAGE_ADAPTATION,
+                done,
+                total,
+            )
         };
         let (map, r) = adapt_domain(domain, &opts, &mut progress)?;
         let last = r.rounds.last().copied().unwrap_or_default();
