@@ -2,6 +2,7 @@
 
 import importlib.util
 import os
+import re
 import subprocess
 import sys
 from pathlib import Path
@@ -22,7 +23,7 @@ def test_readme_python_example(tmp_path):
     run = subprocess.run([sys.executable, "example.py"], cwd=work, capture_output=True, text=True, env=os.environ)
     assert run.returncode == 0, run.stderr
     assert "airfoil: 63 folded cells before, 0 after" in run.stdout
-    assert "puzzle: 361 cells, 0 invalid" in run.stdout
+    assert re.search(r"^puzzle: \d+ cells, 0 invalid", run.stdout, re.MULTILINE), run.stdout
     assert (work / "airfoil_relocated.vtu").exists()
 
 
