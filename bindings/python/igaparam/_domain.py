@@ -8,6 +8,7 @@ import os
 import numpy as np
 
 from . import _capi
+from ._handle import _Handle
 from ._mesh import _check, _progress_callback, _ptr
 
 __all__ = ["Domain", "DomainReport"]
@@ -48,7 +49,7 @@ def _as_polyline(values, index):
     return np.ascontiguousarray(array, dtype=np.float64)
 
 
-class Domain:
+class Domain(_Handle):
     """A planar domain bounded by four curves (an ``igaparam_domain`` handle) and, once
     :meth:`build` succeeded, its T-mesh: a quadtree of the parameter square [0,1]² adapted to
     the boundary, with every vertex placed in the domain and optimized so that no cell folds.
@@ -63,6 +64,9 @@ class Domain:
             xy = domain.physical_vertices           # (n, 2)
             quality = domain.cell_quality           # (m,)
     """
+
+    _kind = "domain"
+    _free = "igaparam_domain_free"
 
     def __init__(self, handle):
         """Takes ownership of an ``igaparam_domain *`` (use the ``from_*`` constructors)."""
@@ -102,34 +106,6 @@ class Domain:
         handle = ctypes.c_void_p()
         _check(_capi.library().igaparam_domain_new_from_polylines(counts, points, ctypes.byref(handle)))
         return cls(handle)
-
-    # Lifetime.
-
-    def close(self):
-        """Releases the handle; the domain is unusable afterwards. Calling it again does nothing."""
-        handle, self._handle = getattr(self, "_handle", None), None
-        if handle is not None:
-            self._lib.igaparam_domain_free(handle)
-
-    def __del__(self):
-        self.close()
-
-    def __enter__(self):
-        return self
-
-    def __exit__(self, *exc):
-        self.close()
-        return False
-
-    @property
-    def closed(self):
-        """True once :meth:`close` was called."""
-        return self._handle is None
-
-    def _h(self):
-        if self._handle is None:
-            raise ValueError("the domain is closed")
-        return self._handle
 
     # Building.
 

@@ -6,6 +6,7 @@ import dataclasses
 import numpy as np
 
 from . import _capi
+from ._handle import _Handle
 from ._capi import CellType, Stage, Status
 
 __all__ = ["IgaparamError", "Mesh", "RelocateReport", "version", "nodes_per_cell", "cell_type_code"]
@@ -164,7 +165,7 @@ class RelocateReport:
         return dataclasses.asdict(self)
 
 
-class Mesh:
+class Mesh(_Handle):
     """A quadrilateral or hexahedral finite-element mesh of one cell type, owning an
     ``igaparam_mesh`` handle.
 
@@ -184,6 +185,9 @@ class Mesh:
         IgaparamError: rejected by the library, e.g. ``Status.NOT_FINITE`` for NaN coordinates,
             ``Status.INVALID_MESH`` for a node index out of range.
     """
+
+    _kind = "mesh"
+    _free = "igaparam_mesh_free"
 
     def __init__(self, cell_type, points, cells):
         self._handle = None
@@ -210,37 +214,6 @@ class Mesh:
         )
         self._handle = handle
         self._cell_type = code
-
-    # Lifetime.
-
-    def close(self):
-        """Releases the handle; the mesh is unusable afterwards. Calling it again does nothing."""
-        handle, self._handle = getattr(self, "_handle", None), None
-        if handle is not None:
-            self._lib.igaparam_mesh_free(handle)
-
-    def __enter__(self):
-        return self
-
-    def __exit__(self, *exc):
-        self.close()
-        return False
-
-    def __del__(self):
-        try:
-            self.close()
-        except Exception:
-            pass
-
-    @property
-    def closed(self):
-        """True after :meth:`close`."""
-        return self._handle is None
-
-    def _h(self):
-        if self._handle is None:
-            raise ValueError("the mesh is closed")
-        return self._handle
 
     def __repr__(self):
         if self.closed:

@@ -10,6 +10,7 @@ from typing import Optional, Tuple
 import numpy as np
 
 from . import _capi
+from ._handle import _Handle
 from ._mesh import _check, _ptr
 
 __all__ = ["Spline", "FitReport", "ValidityReport"]
@@ -103,7 +104,7 @@ def _index(value, name):
     return value
 
 
-class Spline:
+class Spline(_Handle):
     """A cubic THB-spline map ``S: [0,1]^d → Ω``, d = 2 or 3 (an ``igaparam_spline`` handle).
 
     Parametric points are rows of d floats in [0,1]^d, physical points rows of d floats. Create
@@ -124,6 +125,9 @@ class Spline:
             xy, jac = spline.evaluate([[0.5, 0.5]], jacobians=True)   # (1, 2), (1, 2, 2)
             assert spline.check_validity().certified_positive
     """
+
+    _kind = "spline"
+    _free = "igaparam_spline_free"
 
     def __init__(self, handle, fit_report=None):
         """Takes ownership of an ``igaparam_spline *`` (use :meth:`fit` or :meth:`read_gismo`)."""
@@ -171,34 +175,6 @@ class Spline:
         handle = ctypes.c_void_p()
         _check(self._lib.igaparam_spline_clone(self._h(), ctypes.byref(handle)))
         return type(self)(handle, self.fit_report)
-
-    # Lifetime.
-
-    def close(self):
-        """Releases the handle; the spline is unusable afterwards. Calling it again does nothing."""
-        handle, self._handle = getattr(self, "_handle", None), None
-        if handle is not None:
-            self._lib.igaparam_spline_free(handle)
-
-    def __del__(self):
-        self.close()
-
-    def __enter__(self):
-        return self
-
-    def __exit__(self, *exc):
-        self.close()
-        return False
-
-    @property
-    def closed(self):
-        """True once :meth:`close` was called."""
-        return self._handle is None
-
-    def _h(self):
-        if self._handle is None:
-            raise ValueError("the spline is closed")
-        return self._handle
 
     def __repr__(self):
         if self._handle is None:
