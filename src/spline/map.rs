@@ -18,6 +18,26 @@ type FitRow<const D: usize> = ([f64; D], Vec<(usize, f64)>);
 /// Smallest relative pivot for which [`SplineMap::fit`] keeps the interpolation.
 const WELL_CONDITIONED: f64 = 1e-3;
 
+/// Largest distance, relative to the extent of the data, that [`SplineMap::fit`] lets an
+/// interpolant stray from the data between the interpolation points before trying least squares.
+const STRAY: f64 = 5e-2;
+
+/// The `4^d` points `((i + ½)/4)` per direction of every element.
+fn element_samples<const D: usize, S: SplineSpace<D>>(space: &S) -> Vec<[f64; D]> {
+    let per = 4usize.pow(D as u32);
+    let mut points = Vec::with_capacity(per * space.element_count());
+    for e in 0..space.element_count() {
+        let (lo, hi) = space.element_bounds(e);
+        for s in 0..per {
+            points.push(std::array::from_fn(|k| {
+                let i = s / 4usize.pow(k as u32) % 4;
+                lo[k] + (hi[k] - lo[k]) * (i as f64 + 0.5) / 4.0
+            }));
+        }
+    }
+    points
+}
+
 /// A spline space with one control point per basis function.
 #[derive(Clone, Debug)]
 pub struct SplineMap<const D: usize, S = ThbSpace<D>> {
@@ -59,11 +79,13 @@ impl<const D: usize, S: SplineSpace<D>> SplineMap<D, S> {
     }
 
     /// Fits `f`: interpolation at the space's interpolation points (see
-    /// [`SplineMap::fit_collocation`]), or, when that square system is singular or badly
-    /// conditioned (a relative LU pivot under 10⁻³, or a residual above 10⁻⁹ of the map's
-    /// extent) — Greville-type
-    /// points of hierarchical spaces are not unisolvent on every tree — the least-squares fit
-    /// of [`SplineMap::fit_least_squares`]. The report says which was used.
+    /// [`SplineMap::fit_collocation`]), or the least-squares fit of
+    /// [`SplineMap::fit_least_squares`] when that square system is singular or badly conditioned
+    /// (a relative LU pivot under 10⁻³, or a residual above 10⁻⁹ of the map's extent) —
+    /// Greville-type points of hierarchical spaces are not unisolvent on every tree — or when
+    /// the interpolant strays from `f` between the points (by more than 5% of the extent of `f`
+    /// at the 4^d points `(i + ½)/4` of the elements) and the least-squares fit stays closer
+    /// there. The report says which was used.
     pub fn fit(
         space: S,
         f: impl Fn([f64; D]) -> Option<[f64; D]> + Sync,
@@ -73,12 +95,44 @@ impl<const D: usize, S: SplineSpace<D>> SplineMap<D, S> {
                 if fit.1.smallest_pivot >= WELL_CONDITIONED
                     && fit.1.residual <= 1e-9 * fit.0.extent().max(f64::MIN_POSITIVE) =>
             {
-                Ok(fit)
+                let samples = element_samples(&space);
+                let (error, size) = fit.0.sample_error(&samples, &f);
+                if error <= STRAY * size {
+                    return Ok(fit);
+                }
+                let least = Self::fit_least_squares(space, &f)?;
+                let (least_error, _) = least.0.sample_error(&samples, &f);
+                Ok(if least_error < error { least } else { fit })
             }
             Ok(_) => Self::fit_least_squares(space, &f),
             Err(e) if e.message.contains("singular") => Self::fit_least_squares(space, &f),
             Err(e) => Err(e),
         }
+    }
+
+    /// Largest coordinate difference between the map and `f` at `points`, and the largest
+    /// coordinate extent of `f` there.
+    fn sample_error(
+        &self,
+        points: &[[f64; D]],
+        f: impl Fn([f64; D]) -> Option<[f64; D]> + Sync,
+    ) -> (f64, f64) {
+        let pairs: Vec<([f64; D], [f64; D])> = points
+            .par_iter()
+            .filter_map(|&x| Some((self.eval(x)?, f(x)?)))
+            .collect();
+        let mut lo = [f64::INFINITY; D];
+        let mut hi = [f64::NEG_INFINITY; D];
+        let mut error = 0.0f64;
+        for (s, y) in &pairs {
+            for k in 0..D {
+                lo[k] = lo[k].min(y[k]);
+                hi[k] = hi[k].max(y[k]);
+                error = error.max((s[k] - y[k]).abs());
+            }
+        }
+        let size = (0..D).map(|k| hi[k] - lo[k]).fold(0.0, f64::max);
+        (error, size)
     }
 
     /// Interpolates `f` at the interpolation points of the space (see
@@ -102,16 +156,7 @@ impl<const D: usize, S: SplineSpace<D>> SplineMap<D, S> {
         f: impl Fn([f64; D]) -> Option<[f64; D]> + Sync,
     ) -> Result<(Self, FitReport)> {
         let mut points = space.interpolation_points();
-        let per = 4usize.pow(D as u32);
-        for e in 0..space.element_count() {
-            let (lo, hi) = space.element_bounds(e);
-            for s in 0..per {
-                points.push(std::array::from_fn(|k| {
-                    let i = s / 4usize.pow(k as u32) % 4;
-                    lo[k] + (hi[k] - lo[k]) * (i as f64 + 0.5) / 4.0
-                }));
-            }
-        }
+        points.extend(element_samples(&space));
         Self::solve_fit(space, &points, f, true)
     }
 
