@@ -3,11 +3,11 @@
 // rates.
 //
 //   igaparam_poisson [INPUT] [--problem poisson|helmholtz] [--levels N] [--threads N]
-//                    [--dim 2|3] [--quad N] [--vtu PATH] [--check-rates L2MIN H1MIN]
-//                    [--check-source]
+//                    [--dim 2|3] [--quad N] [--tolerance T] [--vtu PATH]
+//                    [--check-rates L2MIN H1MIN] [--check-source]
 //
 // INPUT is a G+Smo XML B-rep or a coastline .txt (the domain is built and its spline map
-// fitted) or a THB spline .xml written by igaparam_spline_write_gismo (read, 2D or 3D).
+// fitted; --tolerance sets the domain's boundary tolerance) or a THB spline .xml written by igaparam_spline_write_gismo (read, 2D or 3D).
 // Without INPUT: a quarter annulus (radii 1 and 2) built from four polylines (--dim 2, the
 // default) or a thick quarter annulus given as one cubic element (--dim 3), written as G+Smo
 // THB XML to a temporary file and read back.
@@ -36,6 +36,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <exception>
 #include <fstream>
 #include <functional>
 #include <memory>
@@ -309,6 +310,7 @@ struct Space {
   std::vector<Element> elements;
   std::vector<char> boundary;  // per function
   double h = 0.0;              // largest parametric element side
+  double orientation = 1.0;    // sign of det J (a map may reverse the orientation)
 
   explicit Space(const igaparam_spline *s) {
     size_t dim = 0, ne = 0;
@@ -345,6 +347,13 @@ struct Space {
       for (int k = 0; k < 2 * d; k++) el.box[k] = bounds[e * 2 * d + k];
       for (int k = 0; k < d; k++) h = std::max(h, el.box[d + k] - el.box[k]);
     }
+    double centre[3], jac[9];
+    for (int k = 0; k < d; k++) centre[k] = 0.5 * (elements[0].box[k] + elements[0].box[d + k]);
+    check(igaparam_spline_evaluate(s, 1, centre, nullptr, jac), "evaluate");
+    orientation = Eigen::Map<Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>>(jac, d, d)
+                              .determinant() < 0.0
+                      ? -1.0
+                      : 1.0;
   }
 };
 
@@ -380,7 +389,7 @@ void element_values(const Space &sp, const Element &el, const Reference &ref, El
       J.col(j) = jac_col[j].col(q);
       gu.col(j) = du[j].col(q);
     }
-    double det = J.determinant();
+    double det = sp.orientation * J.determinant();
     if (!(det > 0.0)) throw std::runtime_error("the map's Jacobian is not positive at a quadrature point");
     out.dx(q) = det * ref.weights(q) * volume;
     // ∇_x N = J^{-T} ∇_u N: rows of gu times J^{-1}.
@@ -388,18 +397,29 @@ void element_values(const Space &sp, const Element &el, const Reference &ref, El
   }
 }
 
-// Runs body(e, thread) on the elements, split in contiguous blocks among the threads.
+// Runs block(begin, end, thread) on contiguous blocks of the elements, one per thread; an
+// exception thrown in a block is rethrown here.
 void for_elements(size_t ne, int threads, const std::function<void(size_t, size_t, int)> &block) {
   threads = std::max(1, std::min<int>(threads, static_cast<int>(std::max<size_t>(ne, 1))));
   std::vector<std::thread> pool;
+  std::vector<std::exception_ptr> failures(threads);
+  auto guarded = [&](size_t begin, size_t end, int t) {
+    try {
+      block(begin, end, t);
+    } catch (...) {
+      failures[t] = std::current_exception();
+    }
+  };
   for (int t = 0; t < threads; t++) {
     size_t begin = ne * t / threads, end = ne * (t + 1) / threads;
     if (threads == 1)
-      block(begin, end, t);
+      guarded(begin, end, t);
     else
-      pool.emplace_back(block, begin, end, t);
+      pool.emplace_back(guarded, begin, end, t);
   }
   for (auto &th : pool) th.join();
+  for (auto &f : failures)
+    if (f) std::rethrow_exception(f);
 }
 
 struct System {
@@ -499,7 +519,6 @@ VectorXd solve_level(const Space &sp, const System &sys, bool definite) {
   for (size_t i = 0; i < sp.nb; i++)
     if (sp.boundary[i]) c(i) = projection(i);
   VectorXd rhs = VectorXd::Zero(ni);
-  for (Eigen::Index i = 0; i < ni; i++) (void)i;
   std::vector<Triplet> t;
   VectorXd lifted = sys.a * c;  // A applied to the boundary part
   for (int k = 0; k < sys.a.outerSize(); k++)
@@ -676,15 +695,27 @@ SplinePtr read_spline_text(const std::string &text) {
   return SplinePtr(s);
 }
 
-SplinePtr fit(DomainPtr domain, int threads) {
+// Builds the domain and fits its spline map. The cubic fit of a valid piecewise quadratic map
+// may fold where the boundary is coarsely resolved: while the fitted map is not certified
+// valid, the domain is rebuilt with a tolerance ten times smaller (at most three times).
+SplinePtr fit(DomainPtr domain, int threads, double tolerance) {
   igaparam_domain_options options = igaparam_domain_options_default();
   options.threads = static_cast<uint32_t>(threads);
-  igaparam_domain_report report;
-  check(igaparam_domain_build(domain.get(), &options, &report), "domain build");
-  if (report.invalid_cells != 0) throw std::runtime_error("the domain has invalid cells");
-  igaparam_spline *s = nullptr;
-  check(igaparam_spline_fit_domain(domain.get(), &s, nullptr), "spline fit");
-  return SplinePtr(s);
+  if (tolerance > 0.0) options.tolerance = tolerance;
+  for (int attempt = 0;; attempt++) {
+    igaparam_domain_report report;
+    check(igaparam_domain_build(domain.get(), &options, &report), "domain build");
+    if (report.invalid_cells != 0) throw std::runtime_error("the domain has invalid cells");
+    igaparam_spline *raw = nullptr;
+    check(igaparam_spline_fit_domain(domain.get(), &raw, nullptr), "spline fit");
+    SplinePtr s(raw);
+    igaparam_validity_report validity;
+    check(igaparam_spline_check_validity(s.get(), nullptr, &validity, nullptr, nullptr, 0), "validity");
+    if (validity.certified_positive || attempt == 3) return s;
+    options.tolerance /= 10.0;
+    std::fprintf(stderr, "igaparam_poisson: the fitted map is not certified valid; rebuilding with tolerance %g\n",
+                 options.tolerance);
+  }
 }
 
 // The quarter annulus r ∈ [1, 2], θ ∈ [0, π/2] from four polylines (arcs of 257 points).
@@ -703,7 +734,7 @@ SplinePtr quarter_annulus(int threads) {
   const double *points[4] = {bottom.data(), outer.data(), left.data(), inner.data()};
   igaparam_domain *domain = nullptr;
   check(igaparam_domain_new_from_polylines(counts, points, &domain), "quarter annulus");
-  return fit(DomainPtr(domain), threads);
+  return fit(DomainPtr(domain), threads, 0.0);
 }
 
 bool is_thb_xml(const std::string &path) {
@@ -714,7 +745,7 @@ bool is_thb_xml(const std::string &path) {
   return head.find("THBSpline") != std::string::npos;
 }
 
-SplinePtr load(const std::string &input, int dim, int threads) {
+SplinePtr load(const std::string &input, int dim, int threads, double tolerance) {
   if (input.empty()) return dim == 3 ? read_spline_text(thick_quarter_annulus_xml()) : quarter_annulus(threads);
   if (is_thb_xml(input)) {
     igaparam_spline *s = nullptr;
@@ -723,7 +754,7 @@ SplinePtr load(const std::string &input, int dim, int threads) {
   }
   igaparam_domain *domain = nullptr;
   check(igaparam_domain_new_from_file(input.c_str(), &domain), input.c_str());
-  return fit(DomainPtr(domain), threads);
+  return fit(DomainPtr(domain), threads, tolerance);
 }
 
 // The exact solution of a problem on a map of dimension d.
@@ -739,8 +770,9 @@ Problem make_problem(const std::string &name, int d) {
 void usage() {
   std::fprintf(stderr,
                "usage: igaparam_poisson [INPUT] [--problem poisson|helmholtz] [--levels N] [--threads N]\n"
-               "                        [--dim 2|3] [--quad N] [--vtu PATH] [--check-rates L2MIN H1MIN]\n"
-               "                        [--check-source]\n");
+               "                        [--dim 2|3] [--quad N] [--tolerance T] [--vtu PATH]\n"
+               "                        [--check-rates L2MIN H1MIN]"
+               " [--check-source]\n");
 }
 
 std::string json_list(const std::vector<double> &v) {
@@ -756,7 +788,7 @@ int run(int argc, char **argv) {
   std::string input, problem_name = "poisson", vtu;
   int levels = 3, threads = 0, dim = 2, quad = 0;
   bool check_rates = false, check_source = false;
-  double l2_min = 0.0, h1_min = 0.0;
+  double l2_min = 0.0, h1_min = 0.0, tolerance = 0.0;
   for (int i = 1; i < argc; i++) {
     std::string a = argv[i];
     auto next = [&]() -> std::string {
@@ -773,6 +805,8 @@ int run(int argc, char **argv) {
       dim = std::stoi(next());
     else if (a == "--quad")
       quad = std::stoi(next());
+    else if (a == "--tolerance")
+      tolerance = std::stod(next());
     else if (a == "--vtu")
       vtu = next();
     else if (a == "--check-rates") {
@@ -796,10 +830,17 @@ int run(int argc, char **argv) {
   if (threads == 0) threads = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
 
   if (check_source) {
-    // Points away from the centres, in a box holding the built-in domains.
+    // Points of the box [0.1, 2]^d at distance at least 1 from the origin: the region of the
+    // built-in domains, away from the centres of the radial solutions.
     std::vector<double> pts;
-    for (int i = 0; i < 200; i++)
-      for (int k = 0; k < dim; k++) pts.push_back(0.1 + 1.9 * std::fmod(0.6180339887 * (i + 1) * (k + 1.7), 1.0));
+    for (int i = 0; pts.size() < size_t(200 * dim); i++) {
+      double x[3], r2 = 0.0;
+      for (int k = 0; k < dim; k++) {
+        x[k] = 0.1 + 1.9 * std::fmod(0.6180339887 * (i + 1) * (k + 1.7), 1.0);
+        r2 += x[k] * x[k];
+      }
+      if (r2 >= 1.0) pts.insert(pts.end(), x, x + dim);
+    }
     bool ok = true;
     for (std::string name : {"poisson", "helmholtz"}) {
       double r = source_residual(make_problem(name, dim), dim, pts);
@@ -810,7 +851,7 @@ int run(int argc, char **argv) {
     return ok ? 0 : 3;
   }
 
-  SplinePtr spline = load(input, dim, threads);
+  SplinePtr spline = load(input, dim, threads, tolerance);
   size_t d = 0;
   check(igaparam_spline_dimension(spline.get(), &d), "dimension");
   const Problem problem = make_problem(problem_name, static_cast<int>(d));
