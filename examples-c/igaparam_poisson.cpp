@@ -585,8 +585,6 @@ void write_vtu(const Space &sp, const Problem &p, const VectorXd &c, const std::
   }
   std::vector<double> pts, uh, ue;
   std::vector<int> conn;
-  // A reference "rule" at the sample points: reuse Reference's Bernstein evaluation.
-  Reference ref(d, 1);
   MatrixXd samples(d, per_el), values(1 << (2 * d), per_el);
   for (int s = 0; s < per_el; s++) {
     int rest = s, a[3] = {0, 0, 0};
