@@ -2,9 +2,9 @@
 // cubic THB-spline maps of the library, with a uniform refinement series and its convergence
 // rates.
 //
-//   igaparam_poisson [INPUT] [--problem poisson|helmholtz] [--levels N] [--threads N]
+//   igaparam_poisson [INPUT] [--problem poisson|helmholtz|linear] [--levels N] [--threads N]
 //                    [--dim 2|3] [--quad N] [--tolerance T] [--vtu PATH]
-//                    [--check-rates L2MIN H1MIN] [--check-source]
+//                    [--check-rates L2MIN H1MIN] [--check-max-error E] [--check-source]
 //
 // INPUT is a G+Smo XML B-rep or a coastline .txt (the domain is built and its spline map
 // fitted; --tolerance sets the domain's boundary tolerance) or a THB spline .xml written by igaparam_spline_write_gismo (read, 2D or 3D).
@@ -18,7 +18,9 @@
 // exact solution (kept on the functions with a Greville point on the boundary), solution of the
 // interior system, and L2 / H1-seminorm errors by a finer quadrature. Prints a table and, as
 // its last line, a JSON object with the series and the rates between the last two levels.
-// --check-rates exits with status 3 when a rate is below its bound; --check-source compares
+// --check-rates exits with status 3 when a rate is below its bound, --check-max-error when an
+// L2 or H1 error exceeds E (--problem linear, u = 1 + x - 2y (+ 3z), is reproduced exactly by
+// the isoparametric space: a test of the assembly and of the boundary treatment); --check-source compares
 // the right-hand sides with finite differences of the exact solutions and exits.
 
 #include <igaparam.h>
@@ -84,6 +86,24 @@ struct Problem {
   std::function<double(const double *)> f;
   std::function<double(const double *)> kappa2;  // nullptr for Poisson
 };
+
+// u = 1 + x - 2y (+ 3z): in every isoparametric space (Σ N_i = 1, Σ P_i N_i = x), so the
+// discrete solution is exact up to round-off.
+Problem linear(int d) {
+  Problem p;
+  p.name = "linear";
+  const double a[3] = {1.0, -2.0, 3.0};
+  p.u = [=](const double *x) {
+    double v = 1.0;
+    for (int k = 0; k < d; k++) v += a[k] * x[k];
+    return v;
+  };
+  p.grad = [=](const double *, double *g) {
+    for (int k = 0; k < d; k++) g[k] = a[k];
+  };
+  p.f = [](const double *) { return 0.0; };
+  return p;
+}
 
 // u = sin(πx) sin(πy) exp(x/2) in 2D.
 Problem poisson_2d() {
@@ -762,15 +782,15 @@ Problem make_problem(const std::string &name, int d) {
     return arctan_layer(d, {-0.5, -0.5, -0.5}, 5.0, 2.0);
   }
   if (name == "helmholtz") return helmholtz(d, {0.6, 0.6, -0.4});
-  throw std::runtime_error("unknown problem '" + name + "' (poisson or helmholtz)");
+  if (name == "linear") return linear(d);
+  throw std::invalid_argument("unknown problem '" + name + "' (poisson, helmholtz or linear)");
 }
 
 void usage() {
   std::fprintf(stderr,
-               "usage: igaparam_poisson [INPUT] [--problem poisson|helmholtz] [--levels N] [--threads N]\n"
+               "usage: igaparam_poisson [INPUT] [--problem poisson|helmholtz|linear] [--levels N] [--threads N]\n"
                "                        [--dim 2|3] [--quad N] [--tolerance T] [--vtu PATH]\n"
-               "                        [--check-rates L2MIN H1MIN]"
-               " [--check-source]\n");
+               "                        [--check-rates L2MIN H1MIN] [--check-max-error E] [--check-source]\n");
 }
 
 std::string json_list(const std::vector<double> &v) {
@@ -786,7 +806,7 @@ int run(int argc, char **argv) {
   std::string input, problem_name = "poisson", vtu;
   int levels = 3, threads = 0, dim = 2, quad = 0;
   bool check_rates = false, check_source = false;
-  double l2_min = 0.0, h1_min = 0.0, tolerance = 0.0;
+  double l2_min = 0.0, h1_min = 0.0, tolerance = 0.0, max_error = -1.0;
   for (int i = 1; i < argc; i++) {
     std::string a = argv[i];
     auto next = [&]() -> std::string {
@@ -811,7 +831,9 @@ int run(int argc, char **argv) {
       check_rates = true;
       l2_min = std::stod(next());
       h1_min = std::stod(next());
-    } else if (a == "--check-source")
+    } else if (a == "--check-max-error")
+      max_error = std::stod(next());
+    else if (a == "--check-source")
       check_source = true;
     else if (a == "-h" || a == "--help") {
       usage();
@@ -904,6 +926,11 @@ int run(int argc, char **argv) {
   if (check_rates && (n < 2 || !(rate_l2 >= l2_min) || !(rate_h1 >= h1_min))) {
     std::fprintf(stderr, "igaparam_poisson: rates %.3f (L2) and %.3f (H1) below %.3f and %.3f\n", rate_l2,
                  rate_h1, l2_min, h1_min);
+    return 3;
+  }
+  if (max_error >= 0.0 && !(*std::max_element(l2s.begin(), l2s.end()) <= max_error &&
+                            *std::max_element(h1s.begin(), h1s.end()) <= max_error)) {
+    std::fprintf(stderr, "igaparam_poisson: errors above %g\n", max_error);
     return 3;
   }
   return 0;
