@@ -6,7 +6,7 @@ cd "$(dirname "${BASH_SOURCE[0]}")/.."
 
 # xvfb (with xauth for xvfb-run) and Mesa's OpenGL drivers: VTK renders the pictures through X,
 # on a virtual display when there is no real one.
-packages=(cmake g++ pkg-config libvtk9-dev libopenmesh-dev xvfb xauth libgl1-mesa-dri)
+packages=(cmake g++ pkg-config libvtk9-dev libopenmesh-dev libeigen3-dev xvfb xauth libgl1-mesa-dri)
 
 if command -v dpkg >/dev/null 2>&1; then
   missing=()
