@@ -255,23 +255,10 @@ impl<const D: usize, B: CubeMap<D>> Domain<D, B> {
         let limit = options.tolerance * facet_scale::<D>();
         let mut tree = Tree::<D>::new();
         tree.refine_uniformly(options.min_level)?;
-        loop {
-            let marked: Vec<usize> = tree
-                .leaves()
-                .into_iter()
-                .filter(|&c| {
-                    tree.cells()[c].level < options.max_level
-                        && cell_boundary_error(&tree, c, &framed_boundary) > limit
-                })
-                .collect();
-            if marked.is_empty() {
-                break;
-            }
-            for c in marked {
-                tree.refine(c)?;
-            }
-            tree.balance()?;
-        }
+        tree.refine_while(true, |tree, c| {
+            tree.cells()[c].level < options.max_level
+                && cell_boundary_error(tree, c, &framed_boundary) > limit
+        })?;
         let mesh = TMesh::new(tree)?;
         let mut stages = StageSeconds {
             adaptation: start.elapsed().as_secs_f64(),

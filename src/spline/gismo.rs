@@ -145,27 +145,15 @@ pub fn read_gismo_thb<const D: usize>(text: &str) -> Result<SplineMap<D, ThbSpac
             return Err(Error::io(format!("bad box: level {level}, {content}")));
         }
         let unit = crate::tmesh::UNIT as u64 >> level;
-        loop {
-            let marked: Vec<usize> = tree
-                .leaves()
-                .into_iter()
-                .filter(|&c| {
-                    let cell = tree.cells()[c];
-                    cell.level < level
-                        && (0..D).all(|k| {
-                            let lo = cell.lower[k] as u64 / unit;
-                            let hi = (cell.lower[k] + cell.side()) as u64 / unit;
-                            (lo as f64) < corners[D + k] && corners[k] < hi as f64
-                        })
+        tree.refine_while(false, |tree, c| {
+            let cell = tree.cells()[c];
+            cell.level < level
+                && (0..D).all(|k| {
+                    let lo = cell.lower[k] as u64 / unit;
+                    let hi = (cell.lower[k] + cell.side()) as u64 / unit;
+                    (lo as f64) < corners[D + k] && corners[k] < hi as f64
                 })
-                .collect();
-            if marked.is_empty() {
-                break;
-            }
-            for c in marked {
-                tree.refine(c)?;
-            }
-        }
+        })?;
     }
     tree.balance()?;
     let space = ThbSpace::new(tree)?;

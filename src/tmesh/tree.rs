@@ -120,6 +120,32 @@ impl<const D: usize> Tree<D> {
         Ok(())
     }
 
+    /// Refines, round after round, every leaf for which `marked(tree, leaf)` holds, until no leaf
+    /// is marked; with `balance`, the tree is 2:1 balanced after every round. `marked` must stop
+    /// holding (e.g. at a level limit) for the loop to end.
+    pub fn refine_while(
+        &mut self,
+        balance: bool,
+        mut marked: impl FnMut(&Tree<D>, usize) -> bool,
+    ) -> Result<()> {
+        loop {
+            let round: Vec<usize> = self
+                .leaves()
+                .into_iter()
+                .filter(|&c| marked(self, c))
+                .collect();
+            if round.is_empty() {
+                return Ok(());
+            }
+            for c in round {
+                self.refine(c)?;
+            }
+            if balance {
+                self.balance()?;
+            }
+        }
+    }
+
     /// The leaf containing the integer point `p`, or `None` outside the domain. On shared
     /// boundaries the cell on the upper side is chosen.
     pub fn leaf_at(&self, p: &[i64; D]) -> Option<usize> {
