@@ -1,15 +1,10 @@
 //! Planar domains: adapted, optimized T-meshes from four boundary curves.
 
-use std::path::{Path, PathBuf};
+mod common;
 
+use common::{boundary_data, curved_box, MappedCube};
 use igaparam::boundary::{BoundaryLoop2, Coastline, Curve2};
 use igaparam::domain::{PlanarDomain, PlanarOptions, PlanarReport};
-
-fn data(name: &str) -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("tests/data/boundary")
-        .join(name)
-}
 
 fn build(boundary: BoundaryLoop2, options: &PlanarOptions) -> (PlanarDomain, PlanarReport) {
     PlanarDomain::build(boundary, options, &mut |_, _| true).expect("domain")
@@ -70,12 +65,12 @@ fn shared_domains_give_valid_t_meshes_within_the_boundary_tolerance() {
     .map(|f| {
         (
             f.to_string(),
-            BoundaryLoop2::from_gismo_file(data(f)).unwrap(),
+            BoundaryLoop2::from_gismo_file(boundary_data(f)).unwrap(),
         )
     })
     .collect();
     for f in ["gran_canaria.txt", "tenerife.txt"] {
-        let coast = Coastline::read(data(f)).unwrap();
+        let coast = Coastline::read(boundary_data(f)).unwrap();
         boundaries.push((
             f.to_string(),
             BoundaryLoop2::from_coastline(&coast).unwrap(),
@@ -98,14 +93,6 @@ fn shared_domains_give_valid_t_meshes_within_the_boundary_tolerance() {
 }
 
 /// A solid given by a map of the unit cube (only its boundary values are used).
-struct MappedCube<F>(F);
-
-impl<F: Fn([f64; 3]) -> [f64; 3]> igaparam::domain::CubeMap<3> for MappedCube<F> {
-    fn boundary_point(&self, p: [f64; 3]) -> [f64; 3] {
-        (self.0)(p)
-    }
-}
-
 #[test]
 fn the_unit_cube_gives_the_identity() {
     let options = igaparam::domain::DomainOptions {
@@ -123,15 +110,7 @@ fn the_unit_cube_gives_the_identity() {
 
 #[test]
 fn a_curved_solid_gets_a_valid_adapted_octree() {
-    use std::f64::consts::PI;
-    // A box whose top bulges and whose sides are sheared and waved.
-    let map = |[x, y, z]: [f64; 3]| {
-        [
-            2.0 * x + 0.3 * z + 0.1 * (PI * y).sin(),
-            y + 0.15 * (2.0 * PI * x).sin() * z,
-            z * (1.0 + 0.4 * (PI * x).sin() * (PI * y).sin()),
-        ]
-    };
+    let map = curved_box;
     let options = igaparam::domain::DomainOptions {
         tolerance: 1e-4,
         max_level: 5,
@@ -246,7 +225,7 @@ fn refined_t_meshes_keep_the_identity() {
 /// vertices far from them barely moved.
 #[test]
 fn refining_cells_keeps_validity_and_balance_and_is_local() {
-    let boundary = BoundaryLoop2::from_gismo_file(data("male_bdry.xml")).unwrap();
+    let boundary = BoundaryLoop2::from_gismo_file(boundary_data("male_bdry.xml")).unwrap();
     let options = PlanarOptions::default();
     let (mut domain, before) = build(boundary, &options);
     assert_eq!(before.invalid_cells, 0);
@@ -298,7 +277,8 @@ fn refining_cells_keeps_validity_and_balance_and_is_local() {
 #[test]
 fn duck_brep_gives_a_valid_t_mesh() {
     let boundary =
-        igaparam::boundary::SolidBoundary::from_gismo_file(data("duck3d_BRep.xml")).unwrap();
+        igaparam::boundary::SolidBoundary::from_gismo_file(boundary_data("duck3d_BRep.xml"))
+            .unwrap();
     let options = igaparam::domain::SolidOptions {
         tolerance: 1e-4,
         max_level: 4,
@@ -315,7 +295,7 @@ fn duck_brep_gives_a_valid_t_mesh() {
 /// Triangulated faces that do not share their edges are refused with the faces named.
 #[test]
 fn solid_faces_that_do_not_match_are_refused() {
-    let mut cube = igaparam::boundary::CubeFaces::read_dir(data("duck_faces")).unwrap();
+    let mut cube = igaparam::boundary::CubeFaces::read_dir(boundary_data("duck_faces")).unwrap();
     for v in cube.faces[5].vertices.iter_mut() {
         v[2] += 0.01;
     }

@@ -2,28 +2,21 @@
 //! of poor quality until every element is certified valid with a smallest mean ratio above the
 //! target (`--nocapture` prints the rounds).
 
-use std::path::{Path, PathBuf};
+mod common;
 
-use igaparam::boundary::{BoundaryLoop2, Coastline};
+use common::planar_boundary;
 use igaparam::domain::{PlanarDomain, PlanarOptions};
 use igaparam::spline::{adapt, AdaptOptions};
 use igaparam::ErrorKind;
 
-fn data(name: &str) -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("tests/data/boundary")
-        .join(name)
-}
-
 fn domain(name: &str) -> PlanarDomain {
-    let boundary = if name.ends_with(".txt") {
-        BoundaryLoop2::from_coastline(&Coastline::read(data(name)).unwrap()).unwrap()
-    } else {
-        BoundaryLoop2::from_gismo_file(data(name)).unwrap()
-    };
-    PlanarDomain::build(boundary, &PlanarOptions::default(), &mut |_, _| true)
-        .expect("domain")
-        .0
+    PlanarDomain::build(
+        planar_boundary(name),
+        &PlanarOptions::default(),
+        &mut |_, _| true,
+    )
+    .expect("domain")
+    .0
 }
 
 /// Adapts the domain and checks the loop's invariants: the map returned is the fit of the

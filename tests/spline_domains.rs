@@ -2,33 +2,23 @@
 //! interpolation residual, mean-ratio quality and certified validity (`--nocapture` prints the
 //! table).
 
-use std::path::{Path, PathBuf};
 use std::time::Instant;
 
-use igaparam::boundary::{BoundaryLoop2, Coastline};
+mod common;
+
+use common::{curved_box, planar_boundary, MappedCube};
 use igaparam::domain::{PlanarDomain, PlanarOptions};
 use igaparam::spline::{QuadraticMap, SplineMap, SplineSpace, ThbSpace, ValidityOptions};
 use igaparam::tmesh::TMesh;
 
-fn data(name: &str) -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("tests/data/boundary")
-        .join(name)
-}
-
-fn boundary(name: &str) -> BoundaryLoop2 {
-    if name.ends_with(".txt") {
-        BoundaryLoop2::from_coastline(&Coastline::read(data(name)).unwrap()).unwrap()
-    } else {
-        BoundaryLoop2::from_gismo_file(data(name)).unwrap()
-    }
-}
-
 /// Builds the domain and runs [`fit_and_certify`] on it.
 fn fit_domain(name: &str, rounds: usize) -> bool {
-    let (domain, report) =
-        PlanarDomain::build(boundary(name), &PlanarOptions::default(), &mut |_, _| true)
-            .expect("domain");
+    let (domain, report) = PlanarDomain::build(
+        planar_boundary(name),
+        &PlanarOptions::default(),
+        &mut |_, _| true,
+    )
+    .expect("domain");
     assert_eq!(report.invalid_cells, 0, "{name}: {report:?}");
     fit_and_certify(
         name,
@@ -133,24 +123,9 @@ fn gran_canaria_gives_a_certified_spline_map() {
 }
 
 /// A solid given by a map of the unit cube (only its boundary values are used).
-struct MappedCube<F>(F);
-
-impl<F: Fn([f64; 3]) -> [f64; 3]> igaparam::domain::CubeMap<3> for MappedCube<F> {
-    fn boundary_point(&self, p: [f64; 3]) -> [f64; 3] {
-        (self.0)(p)
-    }
-}
-
 #[test]
 fn a_curved_solid_gives_a_certified_spline_map() {
-    use std::f64::consts::PI;
-    let map = |[x, y, z]: [f64; 3]| {
-        [
-            2.0 * x + 0.3 * z + 0.1 * (PI * y).sin(),
-            y + 0.15 * (2.0 * PI * x).sin() * z,
-            z * (1.0 + 0.4 * (PI * x).sin() * (PI * y).sin()),
-        ]
-    };
+    let map = curved_box;
     let options = igaparam::domain::DomainOptions {
         tolerance: 1e-4,
         max_level: 4,

@@ -1,5 +1,5 @@
-//! Shared helpers of the integration tests: structured grids in VTK node order and a small
-//! deterministic random generator.
+//! Shared helpers of the integration tests: structured grids in VTK node order, a small
+//! deterministic random generator, the bundled boundaries and mapped cubes.
 #![allow(dead_code)]
 
 use igaparam::optimize::lattice;
@@ -83,4 +83,40 @@ pub fn load_case(name: &str) -> igaparam::Mesh {
         .join(name);
     let grid = igaparam::io::vtu::read(&path).expect("test mesh");
     igaparam::Mesh::from_grid_with_motion(&grid).expect("test mesh motion")
+}
+
+/// Path of a file in `tests/data/boundary`.
+pub fn boundary_data(name: &str) -> std::path::PathBuf {
+    std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("tests/data/boundary")
+        .join(name)
+}
+
+/// The planar boundary of a bundled file: a coastline (`.txt`) or a G+Smo B-rep.
+pub fn planar_boundary(name: &str) -> igaparam::boundary::BoundaryLoop2 {
+    use igaparam::boundary::{BoundaryLoop2, Coastline};
+    if name.ends_with(".txt") {
+        BoundaryLoop2::from_coastline(&Coastline::read(boundary_data(name)).unwrap()).unwrap()
+    } else {
+        BoundaryLoop2::from_gismo_file(boundary_data(name)).unwrap()
+    }
+}
+
+/// The boundary of the unit cube mapped by a function.
+pub struct MappedCube<F>(pub F);
+
+impl<F: Fn([f64; 3]) -> [f64; 3]> igaparam::domain::CubeMap<3> for MappedCube<F> {
+    fn boundary_point(&self, p: [f64; 3]) -> [f64; 3] {
+        (self.0)(p)
+    }
+}
+
+/// A box whose top bulges and whose sides are sheared and waved.
+pub fn curved_box([x, y, z]: [f64; 3]) -> [f64; 3] {
+    use std::f64::consts::PI;
+    [
+        2.0 * x + 0.3 * z + 0.1 * (PI * y).sin(),
+        y + 0.15 * (2.0 * PI * x).sin() * z,
+        z * (1.0 + 0.4 * (PI * x).sin() * (PI * y).sin()),
+    ]
 }
