@@ -6,7 +6,8 @@
 //                    [--dim 2|3] [--quad N] [--tolerance T] [--vtu PATH]
 //                    [--check-rates L2MIN H1MIN] [--check-max-error E] [--check-source]
 //
-// INPUT is a G+Smo XML B-rep or a coastline .txt (the domain is built and its spline map
+// INPUT is a G+Smo XML B-rep (four curves or six surfaces), a coastline .txt, a folder of six
+// triangulated faces (the domain is built and its spline map
 // fitted; --tolerance sets the domain's boundary tolerance) or a THB spline .xml written by igaparam_spline_write_gismo (read, 2D or 3D).
 // Without INPUT: a quarter annulus (radii 1 and 2) built from four polylines (--dim 2, the
 // default) or a thick quarter annulus given as one cubic element (--dim 3), written as G+Smo
@@ -60,11 +61,15 @@ constexpr double kPi = 3.14159265358979323846;
 // ---------------------------------------------------------------------------------------------
 // C API helpers
 
-void check(igaparam_status status, const char *what) {
-  if (status == IGAPARAM_STATUS_OK) return;
+std::string last_error() {
   char message[1024] = {0};
   igaparam_last_error_message(message, sizeof message);
-  throw std::runtime_error(std::string(what) + ": " + message);
+  return message;
+}
+
+void check(igaparam_status status, const char *what) {
+  if (status == IGAPARAM_STATUS_OK) return;
+  throw std::runtime_error(std::string(what) + ": " + last_error());
 }
 
 struct SplineDeleter {
@@ -770,8 +775,13 @@ SplinePtr load(const std::string &input, int dim, int threads, double tolerance)
     check(igaparam_spline_read_gismo(input.c_str(), &s), input.c_str());
     return SplinePtr(s);
   }
+  // A B-rep or coastline with four curves; else a solid (six surfaces, or a folder of six faces).
   igaparam_domain *domain = nullptr;
-  check(igaparam_domain_new_from_file(input.c_str(), &domain), input.c_str());
+  if (igaparam_domain_new_from_file(input.c_str(), &domain) != IGAPARAM_STATUS_OK) {
+    std::string planar = last_error();
+    if (igaparam_domain_new_solid_from_file(input.c_str(), &domain) != IGAPARAM_STATUS_OK)
+      throw std::runtime_error(input + ": " + planar + " (as a solid: " + last_error() + ")");
+  }
   return fit(DomainPtr(domain), threads, tolerance);
 }
 

@@ -97,7 +97,8 @@ fn basis_properties<const D: usize>(seed: u64, steps: usize, max_level: u8) {
     })
     .unwrap();
     let marked: Vec<usize> = (0..coarse.element_count()).step_by(3).collect();
-    let (fine, _) = coarse.refine(&marked).unwrap();
+    let (fine, report) = coarse.refine(&marked).unwrap();
+    assert!(report.residual < 1e-12, "{report:?}");
     assert!(fine.basis_count() > coarse.basis_count());
     assert!(fine.space().tree().is_balanced());
     for x in probe_points::<D>(seed + 7, 200) {

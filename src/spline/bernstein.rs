@@ -54,6 +54,26 @@ pub fn blossom(level: u8, span: usize, coef: [f64; 4], args: [f64; 3]) -> f64 {
     d[DEGREE]
 }
 
+/// Blossoms at `args` of the four cubic Bernstein polynomials of [0, 1]: entry `k` is the sum,
+/// over the subsets `K` of `{0, 1, 2}` with `k` elements, of `Π_{r∈K} x_r Π_{r∉K} (1 − x_r)`.
+/// Hence the blossom of `Σ b_k B_k` is `Σ b_k β_k`.
+pub fn bernstein_blossom(args: [f64; 3]) -> [f64; 4] {
+    let mut out = [0.0; 4];
+    for subset in 0..8usize {
+        let product: f64 = (0..3)
+            .map(|r| {
+                if subset >> r & 1 == 1 {
+                    args[r]
+                } else {
+                    1.0 - args[r]
+                }
+            })
+            .product();
+        out[subset.count_ones() as usize] += product;
+    }
+    out
+}
+
 /// A 4×4 matrix of one direction, `m[row][column]`.
 pub type Matrix4 = [[f64; 4]; 4];
 
@@ -268,6 +288,29 @@ mod tests {
         for (i, row) in e.iter().enumerate() {
             for (b, &v) in row.iter().enumerate() {
                 assert_eq!(v, if i == b { 1.0 } else { 0.0 });
+            }
+        }
+    }
+
+    #[test]
+    fn bernstein_blossom_at_inner_knots_inverts_the_extraction() {
+        // The coefficient of function span + q in a polynomial given by Bernstein coefficients
+        // on the span is the blossom at the function's inner knots (de Boor–Fix): applied to
+        // the Bernstein coefficients of every function, it must give the identity.
+        for level in 0..4u8 {
+            for span in 0..1usize << level {
+                let (u0, u1) = (knot(level, span as i64 + 3), knot(level, span as i64 + 4));
+                let e = extraction(level, span);
+                for q in 0..4 {
+                    let i = (span + q) as i64;
+                    let args = std::array::from_fn(|r| (knot(level, i + 1 + r as i64) - u0) / (u1 - u0));
+                    let dual = bernstein_blossom(args);
+                    for (j, row) in e.iter().enumerate() {
+                        let v: f64 = row.iter().zip(&dual).map(|(a, b)| a * b).sum();
+                        let expected = if j == q { 1.0 } else { 0.0 };
+                        assert!((v - expected).abs() < 1e-12, "level {level} span {span} {j} {q}: {v}");
+                    }
+                }
             }
         }
     }

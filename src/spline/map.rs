@@ -41,8 +41,8 @@ fn element_samples<const D: usize, S: SplineSpace<D>>(space: &S) -> Vec<[f64; D]
 /// A spline space with one control point per basis function.
 #[derive(Clone, Debug)]
 pub struct SplineMap<const D: usize, S = ThbSpace<D>> {
-    space: S,
-    control: Vec<[f64; D]>,
+    pub(super) space: S,
+    pub(super) control: Vec<[f64; D]>,
 }
 
 /// What an interpolation did.
@@ -328,20 +328,6 @@ impl<const D: usize, S: SplineSpace<D>> SplineMap<D, S> {
     /// Mean ratio `q_S = d·det(J)^{2/d}/‖J‖²_F` at `x` (0 where `det J ≤ 0`).
     pub fn mean_ratio(&self, x: [f64; D]) -> Option<f64> {
         self.eval_with_jacobian(x).map(|(_, j)| mean_ratio(&j))
-    }
-
-    /// The map on the space refined at the marked elements (all of them for uniform
-    /// refinement), unchanged: the spaces are nested, so interpolating the current map at the
-    /// refined space's Greville points reproduces it to round-off.
-    pub fn refine(&self, marked: &[usize]) -> Result<(Self, FitReport)> {
-        let space = self.space.refine(marked)?;
-        SplineMap::fit(space, |x| self.eval(x))
-    }
-
-    /// The map refined uniformly once.
-    pub fn refine_uniformly(&self) -> Result<(Self, FitReport)> {
-        let all: Vec<usize> = (0..self.element_count()).collect();
-        self.refine(&all)
     }
 
     /// Prepares the inverse map with `samples^d` start points per element.

@@ -13,6 +13,7 @@ pub mod bernstein;
 mod gismo;
 mod map;
 mod quadratic;
+mod quasi;
 mod solve;
 mod space;
 mod thb;
