@@ -48,14 +48,18 @@ fn cubic<const D: usize>(x: [f64; D]) -> [f64; D] {
 fn reproduces_cubics<const D: usize>(seeds: &[u64], steps: usize, max_level: u8) {
     for &seed in seeds {
         let space = ThbSpace::new(random_tree::<D>(seed, steps, max_level)).unwrap();
-        let (map, report) = SplineMap::fit(space, |x| Some(cubic(x))).unwrap();
+        let (map, report) = SplineMap::fit(space.clone(), |x| Some(cubic(x))).unwrap();
         println!("d = {D}, seed {seed}: {report:?}");
         assert!(report.residual < 1e-11, "{report:?}");
+        let (quasi, report) =
+            SplineMap::fit_quasi_interpolation(space, |x| Some(cubic(x))).unwrap();
+        assert!(report.residual < 1e-11, "quasi-interpolation: {report:?}");
         for x in probe_points::<D>(seed + 1, 200) {
-            let (y, _) = map.eval_with_jacobian(x).unwrap();
             let e = cubic(x);
-            for k in 0..D {
-                assert!((y[k] - e[k]).abs() < 1e-11, "{x:?}: {y:?} vs {e:?}");
+            for y in [map.eval(x).unwrap(), quasi.eval(x).unwrap()] {
+                for k in 0..D {
+                    assert!((y[k] - e[k]).abs() < 1e-11, "{x:?}: {y:?} vs {e:?}");
+                }
             }
         }
     }
@@ -96,6 +100,15 @@ fn basis_properties<const D: usize>(seed: u64, steps: usize, max_level: u8) {
         }))
     })
     .unwrap();
+    // The quasi-interpolant is a projector onto the space: it gives back the coefficients of
+    // any map of the space (here a non-polynomial one).
+    let (again, _) =
+        SplineMap::fit_quasi_interpolation(coarse.space().clone(), |x| coarse.eval(x)).unwrap();
+    for (a, b) in again.control_points().iter().zip(coarse.control_points()) {
+        for k in 0..D {
+            assert!((a[k] - b[k]).abs() < 1e-10, "{a:?} vs {b:?}");
+        }
+    }
     let marked: Vec<usize> = (0..coarse.element_count()).step_by(3).collect();
     let (fine, report) = coarse.refine(&marked).unwrap();
     assert!(report.residual < 1e-12, "{report:?}");
@@ -255,10 +268,23 @@ fn uniform_space<const D: usize>(level: u8) -> ThbSpace<D> {
 
 #[test]
 fn quarter_annulus_interpolation_converges_at_order_four() {
+    quarter_annulus_converges(false);
+}
+
+#[test]
+fn quarter_annulus_quasi_interpolation_converges_at_order_four() {
+    quarter_annulus_converges(true);
+}
+
+fn quarter_annulus_converges(quasi: bool) {
     let mut errors = Vec::new();
     for level in 1..=5u8 {
-        let (map, report) =
-            SplineMap::fit(uniform_space::<2>(level), |x| Some(annulus(x))).unwrap();
+        let (map, report) = if quasi {
+            SplineMap::fit_quasi_interpolation(uniform_space::<2>(level), |x| Some(annulus(x)))
+        } else {
+            SplineMap::fit(uniform_space::<2>(level), |x| Some(annulus(x)))
+        }
+        .unwrap();
         assert!(!report.least_squares);
         let n = 64;
         let mut error = 0.0f64;
@@ -272,7 +298,9 @@ fn quarter_annulus_interpolation_converges_at_order_four() {
         errors.push(error);
     }
     let rates: Vec<f64> = errors.windows(2).map(|w| (w[0] / w[1]).log2()).collect();
-    println!("quarter annulus: max errors {errors:?}, rates {rates:?}");
+    println!(
+        "quarter annulus (quasi-interpolation: {quasi}): max errors {errors:?}, rates {rates:?}"
+    );
     let tail = &rates[rates.len() - 3..];
     assert!(tail.iter().all(|&r| r >= 3.7), "rates {rates:?}");
 }
