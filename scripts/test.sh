@@ -24,10 +24,10 @@ python_tests() {
   echo "+ $venv/bin/python -m pip install -q pytest numpy; pip install -q bindings/python"
   "$venv/bin/python" -m pip install -q pytest numpy || return 1
   # meshio: the tests compare the Python and C++ results on the airfoil read by it, and run the
-  # README's Python example.
-  "$venv/bin/python" -m pip install -q meshio || return 1
+  # README's Python example. pygismo (G+Smo): the tests read the library's G+Smo XML with it.
+  "$venv/bin/python" -m pip install -q meshio pygismo || return 1
   "$venv/bin/python" -m pip install -q --force-reinstall --no-deps bindings/python || return 1
-  # IGAPARAM_NO_SKIP=1: a skipped test (no meshio, no C++ example) fails.
+  # IGAPARAM_NO_SKIP=1: a skipped test (no meshio, no pygismo, no C++ example) fails.
   echo "+ IGAPARAM_LIBRARY=build/cargo/release/libigaparam.so IGAPARAM_NO_SKIP=1 python -m pytest -q tests/python"
   IGAPARAM_LIBRARY="$PWD/build/cargo/release/libigaparam.so" IGAPARAM_BUILD_DIR="$PWD/build" IGAPARAM_NO_SKIP=1 \
     "$venv/bin/python" -m pytest -q -rs -p no:cacheprovider tests/python

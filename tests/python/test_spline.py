@@ -14,6 +14,8 @@ import igaparam
 from igaparam import Domain, FitReport, IgaparamError, Spline, Status, ValidityReport
 from igaparam import _capi
 
+from cube_gismo import cube_greville, write_cube_gismo
+
 ROOT = Path(__file__).resolve().parents[2]
 BOUNDARY = ROOT / "tests" / "data" / "boundary"
 HEADER = ROOT / "include" / "igaparam.h"
@@ -377,22 +379,10 @@ SHIFT = np.array([1.0, -2.0, 0.5])
 
 @pytest.fixture(scope="module")
 def cube(tmp_path_factory):
-    knots = "0 0 0 0 0.5 1 1 1 1"
-    greville_1d = np.array([0, 1 / 6, 1 / 2, 5 / 6, 1])
-    w, v, u = np.meshgrid(greville_1d, greville_1d, greville_1d, indexing="ij")
-    greville = np.column_stack([u.ravel(), v.ravel(), w.ravel()])  # direction 0 fastest
+    greville = cube_greville()
     control = greville @ AFFINE.T + SHIFT
-    bases = "".join(
-        f'<Basis type="BSplineBasis" index="{k}"><KnotVector degree="3">{knots}</KnotVector></Basis>\n'
-        for k in range(3)
-    )
-    coefs = "\n".join(" ".join(repr(float(x)) for x in row) for row in control)
     path = tmp_path_factory.mktemp("cube") / "cube.xml"
-    path.write_text(
-        '<?xml version="1.0" encoding="UTF-8"?>\n<xml>\n<Geometry type="THBSpline3" id="0">\n'
-        f'<Basis type="THBSplineBasis3">\n<Basis type="TensorBSplineBasis3">\n{bases}</Basis>\n</Basis>\n'
-        f'<coefs geoDim="3">\n{coefs}\n</coefs>\n</Geometry>\n</xml>\n'
-    )
+    write_cube_gismo(path, control)
     with Spline.read_gismo(path) as spline:
         assert np.array_equal(spline.greville_points, greville)
         assert np.array_equal(spline.control_points, control)
