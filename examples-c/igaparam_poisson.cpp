@@ -3,12 +3,14 @@
 // rates.
 //
 //   igaparam_poisson [INPUT] [--problem poisson|helmholtz|linear] [--levels N] [--threads N]
-//                    [--dim 2|3] [--quad N] [--tolerance T] [--vtu PATH]
+//                    [--dim 2|3] [--quad N] [--tolerance T] [--refits N] [--vtu PATH]
 //                    [--check-rates L2MIN H1MIN] [--check-max-error E] [--check-source]
 //
-// INPUT is a G+Smo XML B-rep (four curves or six surfaces), a coastline .txt, a folder of six
-// triangulated faces (the domain is built and its spline map
-// fitted; --tolerance sets the domain's boundary tolerance) or a THB spline .xml written by igaparam_spline_write_gismo (read, 2D or 3D).
+// INPUT is a G+Smo XML B-rep (four curves or six surfaces), a coastline .txt or a folder of six
+// triangulated faces (the domain is built and its spline map fitted; --tolerance sets the
+// domain's boundary tolerance; while the map is not certified valid, the domain is rebuilt
+// with a tolerance ten times smaller, at most --refits times, default 3), or a THB spline .xml
+// written by igaparam_spline_write_gismo (read, 2D or 3D).
 // Without INPUT: a quarter annulus (radii 1 and 2) built from four polylines (--dim 2, the
 // default) or a thick quarter annulus given as one cubic element (--dim 3), written as G+Smo
 // THB XML to a temporary file and read back.
@@ -720,8 +722,9 @@ SplinePtr read_spline_text(const std::string &text) {
 
 // Builds the domain and fits its spline map. The cubic fit of a valid piecewise quadratic map
 // may fold where the boundary is coarsely resolved: while the fitted map is not certified
-// valid, the domain is rebuilt with a tolerance ten times smaller (at most three times).
-SplinePtr fit(DomainPtr domain, int threads, double tolerance) {
+// valid, the domain is rebuilt with a tolerance ten times smaller (at most `refits` times). The
+// solve itself needs det J > 0 at the quadrature points only (checked during assembly).
+SplinePtr fit(DomainPtr domain, int threads, double tolerance, int refits) {
   igaparam_domain_options options = igaparam_domain_options_default();
   options.threads = static_cast<uint32_t>(threads);
   if (tolerance > 0.0) options.tolerance = tolerance;
@@ -734,7 +737,12 @@ SplinePtr fit(DomainPtr domain, int threads, double tolerance) {
     SplinePtr s(raw);
     igaparam_validity_report validity;
     check(igaparam_spline_check_validity(s.get(), nullptr, &validity, nullptr, nullptr, 0), "validity");
-    if (validity.certified_positive || attempt == 3) return s;
+    if (validity.certified_positive || attempt >= refits) {
+      if (!validity.certified_positive)
+        std::fprintf(stderr, "igaparam_poisson: the map is not certified valid on %zu elements (min sampled q %.3g)\n",
+                     validity.uncertified, validity.min_quality);
+      return s;
+    }
     options.tolerance /= 10.0;
     std::fprintf(stderr, "igaparam_poisson: the fitted map is not certified valid; rebuilding with tolerance %g\n",
                  options.tolerance);
@@ -757,7 +765,7 @@ SplinePtr quarter_annulus(int threads) {
   const double *points[4] = {bottom.data(), outer.data(), left.data(), inner.data()};
   igaparam_domain *domain = nullptr;
   check(igaparam_domain_new_from_polylines(counts, points, &domain), "quarter annulus");
-  return fit(DomainPtr(domain), threads, 0.0);
+  return fit(DomainPtr(domain), threads, 0.0, 3);
 }
 
 bool is_thb_xml(const std::string &path) {
@@ -768,7 +776,7 @@ bool is_thb_xml(const std::string &path) {
   return head.find("THBSpline") != std::string::npos;
 }
 
-SplinePtr load(const std::string &input, int dim, int threads, double tolerance) {
+SplinePtr load(const std::string &input, int dim, int threads, double tolerance, int refits) {
   if (input.empty()) return dim == 3 ? read_spline_text(thick_quarter_annulus_xml()) : quarter_annulus(threads);
   if (is_thb_xml(input)) {
     igaparam_spline *s = nullptr;
@@ -782,7 +790,7 @@ SplinePtr load(const std::string &input, int dim, int threads, double tolerance)
     if (igaparam_domain_new_solid_from_file(input.c_str(), &domain) != IGAPARAM_STATUS_OK)
       throw std::runtime_error(input + ": " + planar + " (as a solid: " + last_error() + ")");
   }
-  return fit(DomainPtr(domain), threads, tolerance);
+  return fit(DomainPtr(domain), threads, tolerance, refits);
 }
 
 // The exact solution of a problem on a map of dimension d.
@@ -799,7 +807,7 @@ Problem make_problem(const std::string &name, int d) {
 void usage() {
   std::fprintf(stderr,
                "usage: igaparam_poisson [INPUT] [--problem poisson|helmholtz|linear] [--levels N] [--threads N]\n"
-               "                        [--dim 2|3] [--quad N] [--tolerance T] [--vtu PATH]\n"
+               "                        [--dim 2|3] [--quad N] [--tolerance T] [--refits N] [--vtu PATH]\n"
                "                        [--check-rates L2MIN H1MIN] [--check-max-error E] [--check-source]\n");
 }
 
@@ -814,7 +822,7 @@ std::string json_list(const std::vector<double> &v) {
 
 int run(int argc, char **argv) {
   std::string input, problem_name = "poisson", vtu;
-  int levels = 3, threads = 0, dim = 2, quad = 0;
+  int levels = 3, threads = 0, dim = 2, quad = 0, refits = 3;
   bool check_rates = false, check_source = false;
   double l2_min = 0.0, h1_min = 0.0, tolerance = 0.0, max_error = -1.0;
   for (int i = 1; i < argc; i++) {
@@ -833,6 +841,8 @@ int run(int argc, char **argv) {
       dim = std::stoi(next());
     else if (a == "--quad")
       quad = std::stoi(next());
+    else if (a == "--refits")
+      refits = std::stoi(next());
     else if (a == "--tolerance")
       tolerance = std::stod(next());
     else if (a == "--vtu")
@@ -881,7 +891,7 @@ int run(int argc, char **argv) {
     return ok ? 0 : 3;
   }
 
-  SplinePtr spline = load(input, dim, threads, tolerance);
+  SplinePtr spline = load(input, dim, threads, tolerance, refits);
   size_t d = 0;
   check(igaparam_spline_dimension(spline.get(), &d), "dimension");
   const Problem problem = make_problem(problem_name, static_cast<int>(d));
