@@ -278,9 +278,13 @@ int main(int argc, char** argv) {
       char buf[512];
       std::snprintf(buf, sizeof buf,
                     ",\"basis\":%zu,\"elements\":%zu,\"min_q_spline\":%.6f,\"mean_q_spline\":%.6f,"
-                    "\"certified_positive\":%s,\"uncertified\":%zu,\"adapt_rounds\":%u",
+                    "\"certified_positive\":%s,\"uncertified\":%zu,\"adapt_rounds\":%u,\"fit\":\"%s\"",
                     basis, elements, v.min_quality, v.mean_quality,
-                    v.certified_positive ? "true" : "false", v.uncertified, ar.rounds);
+                    v.certified_positive ? "true" : "false", v.uncertified, ar.rounds,
+                    adaptive                  ? "adaptive"
+                    : fit.quasi_interpolation ? "quasi_interpolation"
+                    : fit.least_squares       ? "least_squares"
+                                              : "interpolation");
       spline_json = buf;
     }
     std::string out = prefix + "_tmesh.vtu";

@@ -382,6 +382,12 @@ typedef struct {
    */
   int32_t least_squares;
   /**
+   * 1 when the control points come from the local quasi-interpolant (a fit whose map was
+   * certified valid, or less invalid, than that of the interpolation; and every
+   * `igaparam_spline_refine`), else 0.
+   */
+  int32_t quasi_interpolation;
+  /**
    * Wall-clock seconds.
    */
   double seconds;

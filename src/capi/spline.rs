@@ -55,6 +55,10 @@ pub struct igaparam_fit_report {
     /// 1 when a least-squares fit replaced a singular or badly conditioned interpolation at the
     /// Greville points, else 0.
     pub least_squares: i32,
+    /// 1 when the control points come from the local quasi-interpolant (a fit whose map was
+    /// certified valid, or less invalid, than that of the interpolation; and every
+    /// `igaparam_spline_refine`), else 0.
+    pub quasi_interpolation: i32,
     /// Wall-clock seconds.
     pub seconds: f64,
 }
@@ -111,6 +115,7 @@ fn fit_report(r: &FitReport) -> igaparam_fit_report {
         element_count: r.element_count,
         residual: r.residual,
         least_squares: r.least_squares as i32,
+        quasi_interpolation: r.quasi_interpolation as i32,
         seconds: r.seconds,
     }
 }

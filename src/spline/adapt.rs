@@ -132,8 +132,8 @@ pub fn adapt<const D: usize, B: CubeMap<D>>(
     let mut report = AdaptReport::default();
     let mut round = 0u32;
     loop {
-        let (map, fit) = SplineMap::fit_tmesh(domain.mesh(), domain.positions())?;
-        let validity = map.validity(&options.validity);
+        let (map, fit, validity) =
+            SplineMap::fit_tmesh_checked(domain.mesh(), domain.positions(), &options.validity)?;
         let reached = validity.certified_positive && validity.min_quality >= options.target_quality;
         let cells = if reached || round == options.max_rounds {
             Vec::new()

@@ -8,6 +8,7 @@ use rayon::prelude::*;
 use super::solve::SparseLu;
 use super::space::{BasisValues, SplineSpace};
 use super::thb::ThbSpace;
+use super::validity::{ValidityOptions, ValidityReport};
 use crate::error::{check_finite, Error, Result};
 use crate::optimize::metric::mean_ratio;
 use crate::optimize::small::{det, inverse, Matrix};
@@ -56,6 +57,9 @@ pub struct FitReport {
     pub residual: f64,
     /// Whether the least-squares fit replaced a singular interpolation.
     pub least_squares: bool,
+    /// Whether the coefficients come from the quasi-interpolant
+    /// ([`SplineMap::fit_quasi_interpolation`], or an exact refinement).
+    pub quasi_interpolation: bool,
     /// Smallest LU pivot relative to the largest matrix entry.
     pub smallest_pivot: f64,
     /// Bandwidth of the reordered collocation matrix.
@@ -243,6 +247,7 @@ impl<const D: usize, S: SplineSpace<D>> SplineMap<D, S> {
             residual,
             bandwidth: lu.bandwidth(),
             least_squares,
+            quasi_interpolation: false,
             smallest_pivot: lu.smallest_pivot(),
             seconds: start.elapsed().as_secs_f64(),
         };
@@ -439,13 +444,46 @@ impl<const D: usize, S: SplineSpace<D>> InverseMap<'_, D, S> {
 }
 
 impl<const D: usize> SplineMap<D, ThbSpace<D>> {
-    /// Fits the THB space of the T-mesh's tree to its piecewise quadratic map.
+    /// Fits the THB space of the T-mesh's tree to its piecewise quadratic map (see
+    /// [`SplineMap::fit_tmesh_checked`]).
     pub fn fit_tmesh(
         mesh: &crate::tmesh::TMesh<D>,
         positions: &[[f64; D]],
     ) -> Result<(Self, FitReport)> {
+        let (map, report, _) =
+            Self::fit_tmesh_checked(mesh, positions, &ValidityOptions::default())?;
+        Ok((map, report))
+    }
+
+    /// Fits the THB space of the T-mesh's tree to its piecewise quadratic map twice — by
+    /// [`SplineMap::fit`] (Greville interpolation, or least squares) and by
+    /// [`SplineMap::fit_quasi_interpolation`] — certifies both and keeps the better: certified
+    /// valid first, then fewer uncertified elements, then the higher smallest mean ratio, then
+    /// the interpolation. Interpolation follows the data more closely; the local
+    /// quasi-interpolant does not overshoot where the collocation is badly conditioned.
+    /// Returns the map, its fit report and its validity.
+    pub fn fit_tmesh_checked(
+        mesh: &crate::tmesh::TMesh<D>,
+        positions: &[[f64; D]],
+        options: &ValidityOptions,
+    ) -> Result<(Self, FitReport, ValidityReport)> {
         let source = super::quadratic::QuadraticMap::new(mesh, positions)?;
         let space = ThbSpace::new(mesh.tree().clone())?;
-        SplineMap::fit(space, |x| source.eval(x))
+        let (map, report) = SplineMap::fit(space.clone(), |x| source.eval(x))?;
+        let validity = map.validity(options);
+        if validity.certified_positive {
+            return Ok((map, report, validity));
+        }
+        let (quasi, quasi_report) = SplineMap::fit_quasi_interpolation(space, |x| source.eval(x))?;
+        let quasi_validity = quasi.validity(options);
+        let rank = |v: &ValidityReport| (v.uncertified, -v.min_quality);
+        Ok(
+            if rank(&quasi_validity).partial_cmp(&rank(&validity)) == Some(std::cmp::Ordering::Less)
+            {
+                (quasi, quasi_report, quasi_validity)
+            } else {
+                (map, report, validity)
+            },
+        )
     }
 }

@@ -183,6 +183,7 @@ impl<const D: usize> SplineMap<D, ThbSpace<D>> {
             element_count: self.element_count(),
             residual,
             least_squares: false,
+            quasi_interpolation: true,
             smallest_pivot: 1.0,
             bandwidth: 0,
             seconds: start.elapsed().as_secs_f64(),

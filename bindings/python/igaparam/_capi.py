@@ -159,6 +159,7 @@ class FitReport(ctypes.Structure):
         ("element_count", ctypes.c_size_t),
         ("residual", ctypes.c_double),
         ("least_squares", ctypes.c_int32),
+        ("quasi_interpolation", ctypes.c_int32),
         ("seconds", ctypes.c_double),
     ]
 

@@ -30,6 +30,9 @@ class FitReport:
             points (for a refinement: between the refined and the previous map).
         least_squares: True when a least-squares fit replaced a singular or badly conditioned
             interpolation at the Greville points.
+        quasi_interpolation: True when the control points come from the local
+            quasi-interpolant (chosen when its map is certified valid and the interpolation's
+            is not, or less invalid; and on every refinement).
         seconds: wall-clock seconds of the call.
     """
 
@@ -37,6 +40,7 @@ class FitReport:
     element_count: int
     residual: float
     least_squares: bool
+    quasi_interpolation: bool
     seconds: float
 
     @classmethod
@@ -46,6 +50,7 @@ class FitReport:
             element_count=report.element_count,
             residual=report.residual,
             least_squares=bool(report.least_squares),
+            quasi_interpolation=bool(report.quasi_interpolation),
             seconds=report.seconds,
         )
 
