@@ -49,9 +49,9 @@ fn fit_and_certify<const D: usize>(
     let mut space = ThbSpace::new(mesh.tree().clone()).unwrap();
     let mut refinements = 0;
     loop {
-        let (map, fit) = SplineMap::fit(space.clone(), |x| source.eval(x)).unwrap();
-        let validity = map.validity(&options);
-        if !fit.least_squares {
+        let (map, fit, validity) =
+            SplineMap::fit_checked(space.clone(), |x| source.eval(x), &options).unwrap();
+        if !fit.least_squares && !fit.quasi_interpolation {
             assert!(fit.residual < 1e-12 * size, "{name}: {fit:?}");
         }
         for v in &validity.elements {
@@ -67,7 +67,13 @@ fn fit_and_certify<const D: usize>(
             map.element_count(),
             fit.basis_count,
             fit.residual / size,
-            if fit.least_squares { "least squares" } else { "interpolation" },
+            if fit.quasi_interpolation {
+                "quasi-interpolation"
+            } else if fit.least_squares {
+                "least squares"
+            } else {
+                "interpolation"
+            },
             refinements,
             validity.min_quality,
             validity.mean_quality,

@@ -455,13 +455,8 @@ impl<const D: usize> SplineMap<D, ThbSpace<D>> {
         Ok((map, report))
     }
 
-    /// Fits the THB space of the T-mesh's tree to its piecewise quadratic map twice — by
-    /// [`SplineMap::fit`] (Greville interpolation, or least squares) and by
-    /// [`SplineMap::fit_quasi_interpolation`] — certifies both and keeps the better: certified
-    /// valid first, then fewer uncertified elements, then the higher smallest mean ratio, then
-    /// the interpolation. Interpolation follows the data more closely; the local
-    /// quasi-interpolant does not overshoot where the collocation is badly conditioned.
-    /// Returns the map, its fit report and its validity.
+    /// Fits the THB space of the T-mesh's tree to its piecewise quadratic map with
+    /// [`SplineMap::fit_checked`]. Returns the map, its fit report and its validity.
     pub fn fit_tmesh_checked(
         mesh: &crate::tmesh::TMesh<D>,
         positions: &[[f64; D]],
@@ -469,16 +464,31 @@ impl<const D: usize> SplineMap<D, ThbSpace<D>> {
     ) -> Result<(Self, FitReport, ValidityReport)> {
         let source = super::quadratic::QuadraticMap::new(mesh, positions)?;
         let space = ThbSpace::new(mesh.tree().clone())?;
-        let (map, report) = SplineMap::fit(space.clone(), |x| source.eval(x))?;
+        Self::fit_checked(space, |x| source.eval(x), options)
+    }
+
+    /// Fits `f` by [`SplineMap::fit`] (Greville interpolation, or least squares) and, unless
+    /// that map is certified valid, also by [`SplineMap::fit_quasi_interpolation`], and keeps
+    /// the better: certified valid first, then fewer uncertified elements, then the higher
+    /// smallest mean ratio, the interpolation on ties. Interpolation follows the data more
+    /// closely; the local quasi-interpolant does not overshoot where the collocation is badly
+    /// conditioned. Returns the map, its fit report and its validity.
+    pub fn fit_checked(
+        space: ThbSpace<D>,
+        f: impl Fn([f64; D]) -> Option<[f64; D]> + Sync,
+        options: &ValidityOptions,
+    ) -> Result<(Self, FitReport, ValidityReport)> {
+        let (map, report) = SplineMap::fit(space.clone(), &f)?;
         let validity = map.validity(options);
         if validity.certified_positive {
             return Ok((map, report, validity));
         }
-        let (quasi, quasi_report) = SplineMap::fit_quasi_interpolation(space, |x| source.eval(x))?;
+        let (quasi, quasi_report) = SplineMap::fit_quasi_interpolation(space, &f)?;
         let quasi_validity = quasi.validity(options);
         let rank = |v: &ValidityReport| (v.uncertified, -v.min_quality);
         Ok(
-            if rank(&quasi_validity).partial_cmp(&rank(&validity)) == Some(std::cmp::Ordering::Less)
+            if rank(&quasi_validity).partial_cmp(&rank(&validity))
+                == Some(std::cmp::Ordering::Less)
             {
                 (quasi, quasi_report, quasi_validity)
             } else {
