@@ -342,3 +342,42 @@ fn brep_faces_found_from_adjacency_and_orientation_from_corners() {
         assert!(close, "face 0 at ({a}, {b}) is not on surface 3");
     }
 }
+
+/// The triangulated duck, whose jittered faces meet at reflex angles along parts of the cube's
+/// edges: the seam relief opens every cell, and every boundary vertex stays within the allowed
+/// offset of its point on the boundary (measured in the frame of the bounding box).
+#[test]
+fn duck_faces_give_a_valid_t_mesh_within_the_boundary_offset() {
+    let boundary = SolidBoundary::from_obj_dir(data("duck_faces")).unwrap();
+    let options = igaparam::domain::SolidOptions {
+        tolerance: 1e-4,
+        max_level: 4,
+        ..Default::default()
+    };
+    let (domain, report) =
+        igaparam::domain::SolidDomain::build(boundary, &options, &mut |_, _| true).unwrap();
+    println!("duck_faces: {report:?}");
+    assert_eq!(report.invalid_cells, 0, "{report:?}");
+    assert!(report.boundary_offset <= options.boundary_offset * (1.0 + 1e-9));
+    let frame = domain.frame();
+    let mut largest = 0.0f64;
+    for (v, mut p) in domain.mesh().parametric().into_iter().enumerate() {
+        if !domain.mesh().on_boundary(v) {
+            continue;
+        }
+        if report.swapped {
+            p.swap(0, 1);
+        }
+        let on_surface = frame.to_frame(domain.boundary().eval(p));
+        let at = frame.to_frame(domain.positions()[v]);
+        largest = largest.max(dist(on_surface, at));
+    }
+    assert!(
+        largest <= options.boundary_offset * (1.0 + 1e-9),
+        "{largest}"
+    );
+    assert!(
+        (largest - report.boundary_offset).abs() <= 1e-12,
+        "{largest}"
+    );
+}

@@ -303,12 +303,16 @@ mod tests {
                 let e = extraction(level, span);
                 for q in 0..4 {
                     let i = (span + q) as i64;
-                    let args = std::array::from_fn(|r| (knot(level, i + 1 + r as i64) - u0) / (u1 - u0));
+                    let args =
+                        std::array::from_fn(|r| (knot(level, i + 1 + r as i64) - u0) / (u1 - u0));
                     let dual = bernstein_blossom(args);
                     for (j, row) in e.iter().enumerate() {
                         let v: f64 = row.iter().zip(&dual).map(|(a, b)| a * b).sum();
                         let expected = if j == q { 1.0 } else { 0.0 };
-                        assert!((v - expected).abs() < 1e-12, "level {level} span {span} {j} {q}: {v}");
+                        assert!(
+                            (v - expected).abs() < 1e-12,
+                            "level {level} span {span} {j} {q}: {v}"
+                        );
                     }
                 }
             }

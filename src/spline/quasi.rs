@@ -83,7 +83,8 @@ impl<const D: usize> ThbSpace<D> {
     /// (untruncated) B-spline over it relative to the cell size.
     fn coefficient_cells(&self, i: usize) -> Vec<(usize, f64)> {
         let (level, f) = self.functions()[i];
-        let spans: [(usize, usize); D] = std::array::from_fn(|k| support_spans(level, f[k] as usize));
+        let spans: [(usize, usize); D] =
+            std::array::from_fn(|k| support_spans(level, f[k] as usize));
         let h = 1.0 / (1u64 << level) as f64;
         let count: usize = spans.iter().map(|(a, b)| b - a).product();
         let mut out = Vec::with_capacity(count);
@@ -103,7 +104,11 @@ impl<const D: usize> ThbSpace<D> {
                 continue;
             }
             let weight: f64 = (0..D)
-                .map(|k| extraction(level, span[k])[f[k] as usize - span[k]].iter().sum::<f64>())
+                .map(|k| {
+                    extraction(level, span[k])[f[k] as usize - span[k]]
+                        .iter()
+                        .sum::<f64>()
+                })
                 .product();
             out.push((e, weight));
         }
@@ -153,8 +158,8 @@ impl<const D: usize> SplineMap<D, ThbSpace<D>> {
         let mut bernstein = vec![[0.0; D]; local];
         for (&j, row) in functions.iter().zip(c.chunks_exact(local)) {
             for (b, &v) in bernstein.iter_mut().zip(row) {
-                for k in 0..D {
-                    b[k] += v * self.control[j][k];
+                for (bk, ck) in b.iter_mut().zip(self.control[j]) {
+                    *bk += v * ck;
                 }
             }
         }
@@ -198,9 +203,9 @@ impl<const D: usize> SplineMap<D, ThbSpace<D>> {
         let refined = Self::quasi_interpolate(space, &pieces, |space, e| {
             let (lo, hi) = space.element_bounds(e);
             let centre = std::array::from_fn(|k| 0.5 * (lo[k] + hi[k]));
-            self.space.element_at(centre).ok_or_else(|| {
-                Error::invalid(format!("refined element centre {centre:?} outside"))
-            })
+            self.space
+                .element_at(centre)
+                .ok_or_else(|| Error::invalid(format!("refined element centre {centre:?} outside")))
         })?;
         let residual = refined.difference_at_greville(|x| self.eval(x));
         let report = refined.quasi_report(residual, start);
