@@ -30,8 +30,13 @@ pub const MARGIN: f64 = 0.05;
 /// Rounds of projections per vertex.
 const PROJECTION_ROUNDS: usize = 64;
 
-/// Rounds of relief (move the boundary vertices of folded cells, optimize the inner ones).
-const RELIEF_ROUNDS: u32 = 6;
+/// Largest number of rounds of relief (move the boundary vertices of folded cells, optimize the
+/// inner ones).
+const RELIEF_ROUNDS: u32 = 16;
+
+/// Rounds in a row without fewer folded cells after which the relief stops (a round may open
+/// nothing yet move vertices that the next rounds need).
+const PATIENCE: u32 = 3;
 
 /// The shortest displacement `d` (approximately: cyclic projections from 0) of a node at `y`
 /// such that `det S ≥ margin` for every term, or the best found after the projection rounds.
@@ -113,6 +118,7 @@ impl<const D: usize, B: CubeMap<D>> Domain<D, B> {
         let mut x = self.framed.clone();
         let mut sweeps = 0;
         let mut terms = Vec::new();
+        let mut stalled = 0;
         for _ in 0..RELIEF_ROUNDS {
             let mut nodes: Vec<usize> = invalid
                 .iter()
@@ -134,9 +140,13 @@ impl<const D: usize, B: CubeMap<D>> Domain<D, B> {
                 })?;
             sweeps += stats.sweeps;
             let still = invalid_cells(pool, &problem, &x);
-            let improved = still.len() < invalid.len();
+            stalled = if still.len() < invalid.len() {
+                0
+            } else {
+                stalled + 1
+            };
             invalid = still;
-            if invalid.is_empty() || !improved {
+            if invalid.is_empty() || stalled == PATIENCE {
                 break;
             }
         }
