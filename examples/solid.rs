@@ -1,5 +1,5 @@
 //! Builds the optimized T-mesh of a solid and writes it as `.vtu`:
-//! `solid INPUT OUT.vtu [tolerance] [max_level]` (INPUT a G+Smo XML B-rep of six surfaces or a
+//! `solid INPUT OUT.vtu [tolerance] [max_level] [boundary_offset]` (INPUT a G+Smo XML B-rep of six surfaces or a
 //! folder of six OBJ faces).
 
 use igaparam::boundary::SolidBoundary;
@@ -19,6 +19,9 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     }
     if let Some(l) = args.get(4) {
         options.max_level = l.parse()?;
+    }
+    if let Some(o) = args.get(5) {
+        options.boundary_offset = o.parse()?;
     }
     let (domain, report) = SolidDomain::build(boundary, &options, &mut |done, _| {
         if done % 50 == 0 {

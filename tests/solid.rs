@@ -342,3 +342,54 @@ fn brep_faces_found_from_adjacency_and_orientation_from_corners() {
         assert!(close, "face 0 at ({a}, {b}) is not on surface 3");
     }
 }
+
+/// Builds the T-mesh of a triangulated solid and checks that the seam relief opened every cell
+/// while every boundary vertex stays within the allowed offset of its point on the boundary
+/// (measured in the frame of the bounding box).
+fn check_relieved_solid(dir: &str, tolerance: f64, max_level: u8) {
+    let boundary = SolidBoundary::from_obj_dir(data(dir)).unwrap();
+    let options = igaparam::domain::SolidOptions {
+        tolerance,
+        max_level,
+        ..Default::default()
+    };
+    let (domain, report) =
+        igaparam::domain::SolidDomain::build(boundary, &options, &mut |_, _| true).unwrap();
+    println!("{dir}: {report:?}");
+    assert_eq!(report.invalid_cells, 0, "{report:?}");
+    assert!(report.boundary_offset <= options.boundary_offset * (1.0 + 1e-9));
+    let frame = domain.frame();
+    let mut largest = 0.0f64;
+    for (v, mut p) in domain.mesh().parametric().into_iter().enumerate() {
+        if !domain.mesh().on_boundary(v) {
+            continue;
+        }
+        if report.swapped {
+            p.swap(0, 1);
+        }
+        let on_surface = frame.to_frame(domain.boundary().eval(p));
+        let at = frame.to_frame(domain.positions()[v]);
+        largest = largest.max(dist(on_surface, at));
+    }
+    assert!(
+        largest <= options.boundary_offset * (1.0 + 1e-9),
+        "{largest}"
+    );
+    assert!(
+        (largest - report.boundary_offset).abs() <= 1e-9,
+        "{largest}"
+    );
+}
+
+/// The triangulated duck, whose jittered faces meet at reflex angles along parts of the cube's
+/// edges.
+#[test]
+fn duck_faces_give_a_valid_t_mesh_within_the_boundary_offset() {
+    check_relieved_solid("duck_faces", 1e-4, 4);
+}
+
+/// The Jacksboro block, whose terrain edge is jagged where it meets the side faces.
+#[test]
+fn jacksboro_faces_give_a_valid_t_mesh_within_the_boundary_offset() {
+    check_relieved_solid("jacksboro_faces", 1e-3, 3);
+}

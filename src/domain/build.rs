@@ -40,6 +40,13 @@ pub struct DomainOptions {
     /// Rounds of repair after the optimization: while cells stay invalid, they are refined (as
     /// by [`Domain::refine_cells`], past `max_level` up to level 16) and the mesh re-optimized.
     pub repair_rounds: u32,
+    /// Largest distance, in coordinates that map the bounding box onto a unit box (see
+    /// [`Frame`]), by which a boundary vertex may leave the boundary to open a cell that stays
+    /// folded with every boundary vertex on the boundary (see [`MARGIN`](super::relief::MARGIN)
+    /// and the seam relief); 0 keeps every boundary vertex on the boundary. Default 1e-2: the
+    /// jagged terrain edge of the Jacksboro block needs offsets near it, the jittered duck faces
+    /// 1e-3 with a few more levels of refinement.
+    pub boundary_offset: f64,
 }
 
 impl Default for DomainOptions {
@@ -51,6 +58,7 @@ impl Default for DomainOptions {
             max_sweeps: 200,
             threads: 0,
             repair_rounds: 6,
+            boundary_offset: 1e-2,
         }
     }
 }
@@ -66,6 +74,9 @@ pub struct DomainReport {
     pub max_level: u8,
     /// Largest boundary error, relative (see [`DomainOptions::tolerance`]).
     pub boundary_error: f64,
+    /// Largest distance of a boundary vertex from its point on the boundary, in coordinates
+    /// that map the bounding box onto a unit box (at most [`DomainOptions::boundary_offset`]).
+    pub boundary_offset: f64,
     /// Invalid cells after the transfinite placement.
     pub invalid_after_placement: usize,
     /// Invalid cells after the optimization.
@@ -325,7 +336,11 @@ impl<const D: usize, B: CubeMap<D>> Domain<D, B> {
             framed: x,
         };
         let mut sweeps = stats.sweeps;
-        let mut invalid = invalid_cells(&pool, &problem, &domain.framed);
+        // Folds that the boundary vertices alone cause where two faces meet at a reflex angle
+        // (a jittered or jagged seam) are relieved before, and after, every refinement.
+        let done = sweeps as usize;
+        let (mut invalid, s) = domain.relieve(options, &pool, &mut |d| progress(done + d, 0))?;
+        sweeps += s;
         let mut repair_rounds = 0;
         // The repair keeps the state with the fewest invalid cells, and stops once two rounds in
         // a row have increased their number: where the boundary itself folds at every scale (a seam of two
@@ -342,9 +357,12 @@ impl<const D: usize, B: CubeMap<D>> Domain<D, B> {
                 break;
             }
             let done = sweeps as usize;
+            sweeps += domain
+                .refine_in_place(&refinable, options, &pool, &mut |d| progress(done + d, 0))?
+                .1;
+            let done = sweeps as usize;
             let (still_invalid, s) =
-                domain
-                    .refine_in_place(&refinable, options, &pool, &mut |d| progress(done + d, 0))?;
+                domain.relieve(options, &pool, &mut |d| progress(done + d, 0))?;
             sweeps += s;
             // Folds on the cube's edges may open only once their chords are a few levels
             // shorter, so a round or two with more invalid cells is no failure; a count that
@@ -421,6 +439,7 @@ impl<const D: usize, B: CubeMap<D>> Domain<D, B> {
                 .max()
                 .unwrap_or(0),
             boundary_error,
+            boundary_offset: self.boundary_offset(),
             invalid_cells: quality.invalid.len(),
             min_quality: quality.min,
             mean_quality: quality.mean,

@@ -7,6 +7,7 @@ mod build;
 mod frame;
 mod planar;
 mod refine;
+mod relief;
 mod solid;
 
 pub use build::{transfinite, CubeMap, Domain, DomainOptions, DomainReport, StageSeconds};
