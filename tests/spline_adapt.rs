@@ -51,6 +51,12 @@ fn puzzle_reaches_target() {
     adapt_reaches_target("puzzle3_bdry.xml", 0.1);
 }
 
+/// The rotor's first map is certified with min q_S 0.07: one round reaches 0.1.
+#[test]
+fn rotor_reaches_target_after_refinement() {
+    adapt_reaches_target("rotor_bdry.xml", 0.1);
+}
+
 #[test]
 fn tenerife_reaches_target() {
     adapt_reaches_target("tenerife.txt", 0.05);
@@ -78,7 +84,7 @@ fn a_met_target_refines_nothing() {
 
 #[test]
 fn bad_options_and_cancellation() {
-    let mut d = domain("puzzle3_bdry.xml");
+    let mut d = domain("rotor_bdry.xml");
     let cells = d.mesh().cell_count();
     let bad = AdaptOptions {
         target_quality: 1.5,

@@ -487,8 +487,7 @@ impl<const D: usize> SplineMap<D, ThbSpace<D>> {
         let quasi_validity = quasi.validity(options);
         let rank = |v: &ValidityReport| (v.uncertified, -v.min_quality);
         Ok(
-            if rank(&quasi_validity).partial_cmp(&rank(&validity))
-                == Some(std::cmp::Ordering::Less)
+            if rank(&quasi_validity).partial_cmp(&rank(&validity)) == Some(std::cmp::Ordering::Less)
             {
                 (quasi, quasi_report, quasi_validity)
             } else {

@@ -367,10 +367,10 @@ static int cancel(void *user, igaparam_stage stage, size_t done, size_t total) {
   return 1;
 }
 
-/* The adaptive loop on the puzzle piece, whose first spline folds next to its necks. */
+/* The adaptive loop on the rotor, whose first spline map has min q_S 0.07 < 0.1. */
 static void test_adapt(void) {
   igaparam_domain *domain = NULL;
-  EXPECT(igaparam_domain_new_from_file(joined(data_dir, "puzzle3_bdry.xml"), &domain),
+  EXPECT(igaparam_domain_new_from_file(joined(data_dir, "rotor_bdry.xml"), &domain),
          IGAPARAM_STATUS_OK);
   EXPECT(igaparam_domain_build(domain, NULL, NULL), IGAPARAM_STATUS_OK);
   size_t cells = 0, after = 0;
