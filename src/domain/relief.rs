@@ -25,7 +25,7 @@ use crate::optimize::{invalid_cells, Problem, QualitySummary};
 
 /// The value of `det S` (1 for a cell of its target shape) the relief asks for at the points a
 /// moved vertex influences.
-pub const MARGIN: f64 = 0.05;
+pub(crate) const MARGIN: f64 = 0.05;
 
 /// Rounds of projections per vertex.
 const PROJECTION_ROUNDS: usize = 64;
