@@ -13,7 +13,7 @@ use rayon::prelude::*;
 use super::bernstein::{bernstein3, bernstein_blossom, extraction, knot, support_spans, Matrix4};
 use super::map::{FitReport, SplineMap};
 use super::space::SplineSpace;
-use super::thb::ThbSpace;
+use super::thb::{tensor_apply, ThbSpace};
 use crate::error::{check_finite, Error, Result};
 
 /// A polynomial of degree 3 per direction on a box: its tensor Bernstein coefficients there
@@ -48,9 +48,10 @@ impl<const D: usize> Piece<D> {
 /// Interior points of the local interpolation, per direction, in [0, 1].
 const LOCAL_POINTS: [f64; 4] = [0.125, 0.375, 0.625, 0.875];
 
-/// The matrix taking the values of a cubic at [`LOCAL_POINTS`] to its Bernstein coefficients:
-/// the inverse of the collocation matrix `V[j][b] = B_b(t_j)`, by Gauss–Jordan elimination with
-/// partial pivoting.
+/// The matrix taking the values of a cubic at [`LOCAL_POINTS`] to its Bernstein coefficients,
+/// stored transposed for [`tensor_apply`] (`m[j][b]`: value at `t_j` → coefficient `b`): the
+/// inverse of the collocation matrix `V[j][b] = B_b(t_j)`, by Gauss–Jordan elimination with
+/// partial pivoting, transposed.
 fn local_interpolation() -> Matrix4 {
     let mut a: Matrix4 = std::array::from_fn(|j| bernstein3(LOCAL_POINTS[j]).0);
     let mut inv: Matrix4 = std::array::from_fn(|i| std::array::from_fn(|j| (i == j) as u8 as f64));
@@ -75,7 +76,7 @@ fn local_interpolation() -> Matrix4 {
             }
         }
     }
-    inv
+    std::array::from_fn(|j| std::array::from_fn(|b| inv[b][j]))
 }
 
 impl<const D: usize> ThbSpace<D> {
@@ -248,11 +249,15 @@ impl<const D: usize> SplineMap<D, ThbSpace<D>> {
                         Ok(y)
                     })
                     .collect::<Result<Vec<_>>>()?;
-                Ok(Piece {
-                    lo,
-                    hi,
-                    bernstein: tensor_apply(&inverse, &values),
-                })
+                // Per coordinate, `inverse` applied in every direction.
+                let coordinates: [Vec<f64>; D] = std::array::from_fn(|k| {
+                    let v: Vec<f64> = values.iter().map(|y| y[k]).collect();
+                    tensor_apply(&[inverse; D], &v)
+                });
+                let bernstein = (0..local)
+                    .map(|b| std::array::from_fn(|k| coordinates[k][b]))
+                    .collect();
+                Ok(Piece { lo, hi, bernstein })
             })
             .collect::<Result<_>>()?;
         let map = Self::quasi_interpolate(space, &pieces, |_, e| Ok(e))?;
@@ -260,24 +265,4 @@ impl<const D: usize> SplineMap<D, ThbSpace<D>> {
         let report = map.quasi_report(residual, start);
         Ok((map, report))
     }
-}
-
-/// Applies `m` in every direction to a tensor of `4^d` points: `out[b] = Σ_s Π_k m[b_k][s_k] v[s]`.
-fn tensor_apply<const D: usize>(m: &Matrix4, v: &[[f64; D]]) -> Vec<[f64; D]> {
-    let mut cur = v.to_vec();
-    for k in 0..D {
-        let stride = 4usize.pow(k as u32);
-        let mut next = vec![[0.0; D]; cur.len()];
-        for (flat, out) in next.iter_mut().enumerate() {
-            let b = flat / stride % 4;
-            let base = flat - b * stride;
-            for (s, &w) in m[b].iter().enumerate() {
-                for d in 0..D {
-                    out[d] += w * cur[base + s * stride][d];
-                }
-            }
-        }
-        cur = next;
-    }
-    cur
 }

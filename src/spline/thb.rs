@@ -43,7 +43,7 @@ fn support_size<const D: usize>(level: u8, f: &[u32; D]) -> u32 {
 
 /// Applies a 4×4 matrix per direction to a tensor of `4^d` values:
 /// `out[q] = Σ_j Π_k m_k[j_k][q_k] v[j]`.
-fn tensor_apply<const D: usize>(m: &[Matrix4; D], v: &[f64]) -> Vec<f64> {
+pub(super) fn tensor_apply<const D: usize>(m: &[Matrix4; D], v: &[f64]) -> Vec<f64> {
     let mut cur = v.to_vec();
     for (k, mk) in m.iter().enumerate() {
         let stride = 4usize.pow(k as u32);
