@@ -109,11 +109,12 @@ impl<const D: usize, B: CubeMap<D>> Domain<D, B> {
         progress: &mut dyn FnMut(usize) -> bool,
     ) -> Result<(Vec<usize>, u32)> {
         let problem: Problem<D> = self.mesh.problem()?;
-        let mut invalid = invalid_cells(pool, &problem, &self.framed);
+        let initial = invalid_cells(pool, &problem, &self.framed);
         let radius = options.boundary_offset;
-        if invalid.is_empty() || radius <= 0.0 {
-            return Ok((invalid, 0));
+        if initial.is_empty() || radius <= 0.0 {
+            return Ok((initial, 0));
         }
+        let mut invalid = initial.clone();
         let anchors = self.boundary_anchors();
         let mut x = self.framed.clone();
         let mut sweeps = 0;
@@ -150,15 +151,14 @@ impl<const D: usize, B: CubeMap<D>> Domain<D, B> {
                 break;
             }
         }
-        let before = invalid_cells(pool, &problem, &self.framed).len();
-        if invalid.len() < before {
+        if invalid.len() < initial.len() {
             self.quality = QualitySummary::of(pool, &problem, &x).quality;
             self.positions = x.iter().map(|&p| self.frame.to_physical(p)).collect();
             self.framed = x;
+            Ok((invalid, sweeps))
         } else {
-            invalid = invalid_cells(pool, &problem, &self.framed);
+            Ok((initial, sweeps))
         }
-        Ok((invalid, sweeps))
     }
 
     /// Largest distance, in frame coordinates (the bounding box mapped onto a unit box), of a
