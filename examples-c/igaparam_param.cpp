@@ -1,14 +1,16 @@
 // igaparam_param: the optimized T-mesh parameterization of a planar domain or a solid.
 //
 //   igaparam_param INPUT OUT_PREFIX [--tol EPS] [--max-level L] [--threads N]
-//                  [--adapt] [--target-quality Q] [--rounds R] [--no-spline]
+//                  [--boundary-offset X] [--adapt] [--target-quality Q] [--rounds R]
+//                  [--no-spline]
 //
 // INPUT is a G+Smo XML B-rep (four curves, or six surfaces), a coastline .txt, or a folder of six
 // surface files xmin, xmax, ymin, ymax, zmin, zmax (.obj, .off, .stl or .ply, read by OpenMesh).
 // Builds the optimized T-mesh, fits its cubic THB-spline map and certifies it (with --adapt, the
 // adaptive loop refines the T-mesh where the map's mean ratio is under Q or not certified, for
-// at most R rounds). Writes OUT_PREFIX_tmesh.vtu with VTK (physical T-mesh: one quad or
-// hexahedron per cell through its corners, point data `parametric`, cell data `quality` and
+// at most R rounds). --boundary-offset caps the seam relief of the build (how far, relative to
+// the bounding box, a boundary vertex may leave the boundary; 0 keeps them all on it). Writes
+// OUT_PREFIX_tmesh.vtu with VTK (physical T-mesh: one quad or hexahedron per cell through its corners, point data `parametric`, cell data `quality` and
 // `level`), OUT_PREFIX_spline.vtu (the spline map sampled per element, point data `quality` =
 // q_S and `det`) and OUT_PREFIX.xml (the map as G+Smo XML), prints a summary and, as its last
 // line, one JSON object. Exit codes: 0 success, 1 error, 2 usage.
@@ -180,12 +182,24 @@ void write_vtu(const igaparam_domain* d, size_t dim, const std::string& out) {
   if (writer->Write() != 1) throw std::runtime_error(out + ": VTK cannot write it");
 }
 
+// A non-negative integer of at most 32 bits (std::stoul alone takes "-1" and wraps it);
+// throws a std::logic_error otherwise.
+unsigned parse_count(const std::string& v, size_t& used) {
+  if (v.empty() || v[0] < '0' || v[0] > '9') throw std::invalid_argument(v);
+  unsigned long x = std::stoul(v, &used);
+  if (x > 0xffffffffUL) throw std::out_of_range(v);
+  return unsigned(x);
+}
+
 int usage(const char* argv0) {
   std::fprintf(stderr,
                "usage: %s INPUT OUT_PREFIX [--tol EPS] [--max-level L] [--threads N]\n"
-               "         [--adapt] [--target-quality Q] [--rounds R] [--no-spline]\n"
+               "         [--boundary-offset X] [--adapt] [--target-quality Q] [--rounds R]\n"
+               "         [--no-spline]\n"
                "  INPUT: G+Smo XML B-rep, coastline .txt, or a folder of six faces\n"
-               "         xmin xmax ymin ymax zmin zmax (.obj/.off/.stl/.ply)\n",
+               "         xmin xmax ymin ymax zmin zmax (.obj/.off/.stl/.ply)\n"
+               "  --boundary-offset X: seam relief cap of the build, relative to the bounding box\n"
+               "         (X >= 0, default 1e-2; 0 keeps every boundary vertex on the boundary)\n",
                argv0);
   return 2;
 }
@@ -211,15 +225,17 @@ int main(int argc, char** argv) {
       if (a == "--tol") {
         options.tolerance = std::stod(v, &used);
       } else if (a == "--max-level") {
-        options.max_level = unsigned(std::stoul(v, &used));
+        options.max_level = parse_count(v, used);
         options.min_level = std::min(options.min_level, options.max_level);
       } else if (a == "--threads") {
-        options.threads = unsigned(std::stoul(v, &used));
+        options.threads = parse_count(v, used);
         adapt.threads = options.threads;
       } else if (a == "--target-quality") {
         adapt.target_quality = std::stod(v, &used);
       } else if (a == "--rounds") {
-        adapt.max_rounds = unsigned(std::stoul(v, &used));
+        adapt.max_rounds = parse_count(v, used);
+      } else if (a == "--boundary-offset") {
+        options.boundary_offset = std::stod(v, &used);
       } else {
         return usage(argv[0]);
       }
@@ -237,8 +253,10 @@ int main(int argc, char** argv) {
     check(igaparam_domain_build(domain.d, &options, &r), "build");
     std::printf("%s: %zuD T-mesh, %zu cells, %zu vertices, max level %u\n", input.c_str(), dim,
                 r.cells, r.vertices, r.max_level);
-    std::printf("boundary error %.3e (tolerance %.1e), invalid cells %zu after placement, %zu after\n",
-                r.boundary_error, options.tolerance, r.invalid_after_placement, r.invalid_cells);
+    std::printf("boundary error %.3e (tolerance %.1e), boundary offset %.3e (cap %.1e)\n", r.boundary_error,
+                options.tolerance, r.boundary_offset, options.boundary_offset);
+    std::printf("invalid cells %zu after placement, %zu after optimization\n", r.invalid_after_placement,
+                r.invalid_cells);
     std::printf("quality min %.4f mean %.4f, %u sweeps, %.3f s\n", r.min_quality, r.mean_quality,
                 r.sweeps, r.seconds);
     std::string spline_json;
@@ -292,9 +310,9 @@ int main(int argc, char** argv) {
     std::printf("wrote %s\n", out.c_str());
     std::printf(
         "{\"dim\":%zu,\"cells\":%zu,\"nodes\":%zu,\"max_level\":%u,\"boundary_error\":%.6e,"
-        "\"invalid_after_placement\":%zu,\"invalid_cells\":%zu,\"min_quality\":%.6f,"
+        "\"boundary_offset\":%.6e,\"invalid_after_placement\":%zu,\"invalid_cells\":%zu,\"min_quality\":%.6f,"
         "\"mean_quality\":%.6f,\"sweeps\":%u,\"threads\":%u,\"seconds\":%.4f%s}\n",
-        dim, r.cells, r.vertices, r.max_level, r.boundary_error, r.invalid_after_placement,
+        dim, r.cells, r.vertices, r.max_level, r.boundary_error, r.boundary_offset, r.invalid_after_placement,
         r.invalid_cells, r.min_quality, r.mean_quality, r.sweeps, options.threads, r.seconds,
         spline_json.c_str());
     return 0;

@@ -161,6 +161,18 @@ typedef struct {
    */
   uint32_t threads;
   /**
+   * Rounds of repair after the optimization (default 6): while cells stay invalid, they are
+   * refined (past `max_level`, up to level 16) and the mesh optimized again; 0 disables it.
+   */
+  uint32_t repair_rounds;
+  /**
+   * Seam relief cap, finite and at least 0: the largest distance, in coordinates that map
+   * the bounding box onto the unit box, by which a boundary vertex may leave the boundary to
+   * open a cell that stays folded with every boundary vertex on it (default 1e-2); 0 keeps
+   * every boundary vertex on the boundary.
+   */
+  double boundary_offset;
+  /**
    * Progress callback, or NULL (default). Called with `IGAPARAM_STAGE_OPTIMIZATION`, `done`
    * sweeps so far and `total` 0; returning non-zero cancels the build.
    */
@@ -192,6 +204,11 @@ typedef struct {
    * Largest boundary error, relative as `tolerance`.
    */
   double boundary_error;
+  /**
+   * Largest distance of a boundary vertex from its point on the boundary, in the coordinates
+   * of `boundary_offset` (at most the option; 0 when no seam relief was needed).
+   */
+  double boundary_offset;
   /**
    * Invalid cells (det J <= 0 somewhere) after the transfinite (Coons) placement.
    */

@@ -146,6 +146,14 @@ pub struct igaparam_domain_options {
     pub max_sweeps: u32,
     /// Worker threads, at most 4096; 0 (default) uses one per core.
     pub threads: u32,
+    /// Rounds of repair after the optimization (default 6): while cells stay invalid, they are
+    /// refined (past `max_level`, up to level 16) and the mesh optimized again; 0 disables it.
+    pub repair_rounds: u32,
+    /// Seam relief cap, finite and at least 0: the largest distance, in coordinates that map
+    /// the bounding box onto the unit box, by which a boundary vertex may leave the boundary to
+    /// open a cell that stays folded with every boundary vertex on it (default 1e-2); 0 keeps
+    /// every boundary vertex on the boundary.
+    pub boundary_offset: f64,
     /// Progress callback, or NULL (default). Called with `IGAPARAM_STAGE_OPTIMIZATION`, `done`
     /// sweeps so far and `total` 0; returning non-zero cancels the build.
     pub progress: igaparam_progress_fn,
@@ -166,6 +174,9 @@ pub struct igaparam_domain_report {
     pub max_level: u32,
     /// Largest boundary error, relative as `tolerance`.
     pub boundary_error: f64,
+    /// Largest distance of a boundary vertex from its point on the boundary, in the coordinates
+    /// of `boundary_offset` (at most the option; 0 when no seam relief was needed).
+    pub boundary_offset: f64,
     /// Invalid cells (det J <= 0 somewhere) after the transfinite (Coons) placement.
     pub invalid_after_placement: usize,
     /// Invalid cells after the optimization; 0 for a usable parameterization.
@@ -190,6 +201,8 @@ pub extern "C" fn igaparam_domain_options_default() -> igaparam_domain_options {
         max_level: d.max_level as u32,
         max_sweeps: d.max_sweeps,
         threads: d.threads as u32,
+        repair_rounds: d.repair_rounds,
+        boundary_offset: d.boundary_offset,
         progress: None,
         progress_user: std::ptr::null_mut(),
     }
@@ -220,13 +233,29 @@ fn planar_options(o: &igaparam_domain_options) -> Result<PlanarOptions> {
             o.threads
         )));
     }
+    if !o.boundary_offset.is_finite() {
+        return Err(Error::new(
+            crate::error::ErrorKind::NotFinite,
+            format!(
+                "boundary_offset is {}, it must be finite",
+                o.boundary_offset
+            ),
+        ));
+    }
+    if o.boundary_offset < 0.0 {
+        return Err(Error::invalid(format!(
+            "boundary_offset = {} must be at least 0",
+            o.boundary_offset
+        )));
+    }
     Ok(PlanarOptions {
         tolerance: o.tolerance,
         min_level: o.min_level as u8,
         max_level: o.max_level as u8,
         max_sweeps: o.max_sweeps,
         threads: o.threads as usize,
-        ..PlanarOptions::default()
+        repair_rounds: o.repair_rounds,
+        boundary_offset: o.boundary_offset,
     })
 }
 
@@ -371,6 +400,7 @@ fn c_report(r: &DomainReport) -> igaparam_domain_report {
         vertices: r.vertices,
         max_level: r.max_level as u32,
         boundary_error: r.boundary_error,
+        boundary_offset: r.boundary_offset,
         invalid_after_placement: r.invalid_after_placement,
         invalid_cells: r.invalid_cells,
         min_quality: r.min_quality,

@@ -5,8 +5,8 @@
  * and OUT_DIR receives the .vtu files. Builds the bundled domains and a unit square from four
  * polylines; calls every entry point with NULL, wrong sizes, non-finite values, an unbuilt domain
  * and invalid boundaries, checking the status, the message and that no output is written;
- * cancels a build through the progress callback. Prints "N passed, M failed"; exits non-zero if
- * any check failed.
+ * cancels a build through the progress callback; refuses a bad seam relief cap. Prints
+ * "N passed, M failed"; exits non-zero if any check failed.
  */
 
 #include <math.h>
@@ -167,6 +167,11 @@ static void test_unit_square(void) {
   EXPECT(igaparam_domain_build(d, &o, &report), IGAPARAM_STATUS_INVALID_ARGUMENT);
   o = igaparam_domain_options_default();
   o.threads = 5000;
+  EXPECT(igaparam_domain_build(d, &o, &report), IGAPARAM_STATUS_INVALID_ARGUMENT);
+  o = igaparam_domain_options_default();
+  o.boundary_offset = NAN;
+  EXPECT(igaparam_domain_build(d, &o, &report), IGAPARAM_STATUS_NOT_FINITE);
+  o.boundary_offset = -1e-3;
   EXPECT(igaparam_domain_build(d, &o, &report), IGAPARAM_STATUS_INVALID_ARGUMENT);
   CHECK(memcmp(&report, &untouched, sizeof report) == 0, "a failed build wrote the report");
   EXPECT(igaparam_domain_is_built(d, &is_built), IGAPARAM_STATUS_OK);
@@ -335,6 +340,67 @@ static void test_file(const char *name, const char *vtu) {
   igaparam_domain_free(d);
 }
 
+/* The seam relief cap `boundary_offset`: refused when negative or NaN, with a message naming it
+ * and the handle left as it was; 0 keeps every boundary vertex on the boundary. */
+static void test_boundary_offset(const char *name) {
+  igaparam_domain *d = NULL;
+  EXPECT(igaparam_domain_new_from_file(joined(data_dir, name), &d), IGAPARAM_STATUS_OK);
+  if (!d) return;
+  igaparam_domain_options o = igaparam_domain_options_default();
+  CHECK(isfinite(o.boundary_offset) && o.boundary_offset > 0 && o.repair_rounds > 0,
+        "default boundary_offset %g, repair_rounds %u", o.boundary_offset, o.repair_rounds);
+  o.max_level = 6;
+  o.boundary_offset = 0;
+  igaparam_domain_report report;
+  memset(&report, 0xAB, sizeof report);
+  EXPECT(igaparam_domain_build(d, &o, &report), IGAPARAM_STATUS_OK);
+  CHECK(report.boundary_offset == 0, "%s: offset 0 gave report.boundary_offset = %g", name,
+        report.boundary_offset);
+  size_t nv = 0, nc = 0;
+  EXPECT(igaparam_domain_vertex_count(d, &nv), IGAPARAM_STATUS_OK);
+  EXPECT(igaparam_domain_cell_count(d, &nc), IGAPARAM_STATUS_OK);
+  double *x = malloc(2 * nv * sizeof *x), *x2 = malloc(2 * nv * sizeof *x2);
+  EXPECT(igaparam_domain_copy_vertices(d, NULL, x, 2 * nv), IGAPARAM_STATUS_OK);
+
+  const double bad[3] = {-1e-3, NAN, INFINITY};
+  const igaparam_status want[3] = {IGAPARAM_STATUS_INVALID_ARGUMENT, IGAPARAM_STATUS_NOT_FINITE,
+                                   IGAPARAM_STATUS_NOT_FINITE};
+  for (int i = 0; i < 3; i++) {
+    igaparam_domain_options b = o;
+    b.max_level = 4; /* a different mesh, were the call to build one */
+    b.boundary_offset = bad[i];
+    igaparam_domain_report r2;
+    memset(&r2, 0xAB, sizeof r2);
+    unsigned char untouched[sizeof r2];
+    memcpy(untouched, &r2, sizeof r2);
+    EXPECT(igaparam_domain_build(d, &b, &r2), want[i]);
+    CHECK(strstr(message(), "boundary_offset") != NULL, "%s: offset %g: message '%s' does not name it",
+          name, bad[i], message());
+    CHECK(memcmp(&r2, untouched, sizeof r2) == 0, "%s: a refused offset %g wrote the report", name,
+          bad[i]);
+    size_t nv2 = 0, nc2 = 0;
+    EXPECT(igaparam_domain_vertex_count(d, &nv2), IGAPARAM_STATUS_OK);
+    EXPECT(igaparam_domain_cell_count(d, &nc2), IGAPARAM_STATUS_OK);
+    CHECK(nv2 == nv && nc2 == nc, "%s: a refused offset %g changed the counts", name, bad[i]);
+    if (nv2 == nv) {
+      EXPECT(igaparam_domain_copy_vertices(d, NULL, x2, 2 * nv), IGAPARAM_STATUS_OK);
+      CHECK(memcmp(x, x2, 2 * nv * sizeof *x) == 0, "%s: a refused offset %g moved vertices", name,
+            bad[i]);
+    }
+  }
+
+  /* With the default cap, the offset reported stays under it. */
+  o.boundary_offset = igaparam_domain_options_default().boundary_offset;
+  EXPECT(igaparam_domain_build(d, &o, &report), IGAPARAM_STATUS_OK);
+  CHECK(report.boundary_offset >= 0 && report.boundary_offset <= o.boundary_offset,
+        "%s: boundary_offset %g above the cap %g", name, report.boundary_offset, o.boundary_offset);
+  printf("%s: boundary offset %.3e with the cap %.1e\n", name, report.boundary_offset,
+         o.boundary_offset);
+  free(x2);
+  free(x);
+  igaparam_domain_free(d);
+}
+
 /* The unit cube's faces xmin ... zmax, each a 3 x 3 grid of vertices in 8 triangles. */
 static void cube_faces(double xyz[6][27], uint32_t tri[6][24]) {
   for (int f = 0; f < 6; f++) {
@@ -461,6 +527,7 @@ int main(int argc, char **argv) {
   test_solid();
   test_file("male_bdry.xml", "domain_male.vtu");
   test_file("gran_canaria.txt", "domain_gran_canaria.vtu");
+  test_boundary_offset("gran_canaria.txt");
   printf("%d passed, %d failed\n", passed, failed);
   return failed ? 1 : 0;
 }

@@ -152,3 +152,27 @@ def test_errors(tmp_path):
     with pytest.raises(ValueError):
         domain.cell_count
     domain.close()
+
+
+def test_boundary_offset():
+    """The seam relief cap goes through the options to the build and comes back in the report;
+    a bad one is refused by the library with a message naming it, the domain keeping its
+    T-mesh."""
+    defaults = igaparam._capi.library().igaparam_domain_options_default()
+    assert defaults.boundary_offset > 0 and defaults.repair_rounds > 0
+    with Domain.from_polylines(annulus_quarter()) as domain:
+        report = domain.build(max_level=6, boundary_offset=0, repair_rounds=2)
+        assert report.boundary_offset == 0.0 and report.as_dict()["boundary_offset"] == 0.0
+        assert report.invalid_cells == 0
+        xy = domain.physical_vertices
+        for bad, status in ((-1e-3, Status.INVALID_ARGUMENT), (float("nan"), Status.NOT_FINITE),
+                            (float("inf"), Status.NOT_FINITE)):
+            with pytest.raises(IgaparamError) as error:
+                domain.build(max_level=4, boundary_offset=bad)
+            assert error.value.status == status and "boundary_offset" in error.value.message
+            assert domain.cell_count == report.cells
+            assert np.array_equal(domain.physical_vertices, xy)
+        with pytest.raises(ValueError):
+            domain.build(repair_rounds=-1)
+        capped = domain.build(max_level=6, boundary_offset=defaults.boundary_offset)
+        assert 0.0 <= capped.boundary_offset <= defaults.boundary_offset

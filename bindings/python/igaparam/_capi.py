@@ -116,6 +116,8 @@ class DomainOptions(ctypes.Structure):
         ("max_level", ctypes.c_uint32),
         ("max_sweeps", ctypes.c_uint32),
         ("threads", ctypes.c_uint32),
+        ("repair_rounds", ctypes.c_uint32),
+        ("boundary_offset", ctypes.c_double),
         ("progress", PROGRESS_FN),
         ("progress_user", ctypes.c_void_p),
     ]
@@ -129,6 +131,7 @@ class DomainReport(ctypes.Structure):
         ("vertices", ctypes.c_size_t),
         ("max_level", ctypes.c_uint32),
         ("boundary_error", ctypes.c_double),
+        ("boundary_offset", ctypes.c_double),
         ("invalid_after_placement", ctypes.c_size_t),
         ("invalid_cells", ctypes.c_size_t),
         ("min_quality", ctypes.c_double),

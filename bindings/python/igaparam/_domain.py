@@ -24,6 +24,10 @@ class DomainReport:
     vertices: int
     max_level: int
     boundary_error: float
+    #: Largest distance of a boundary vertex from its point on the boundary, in coordinates
+    #: that map the bounding box onto the unit box: at most the ``boundary_offset`` option of
+    #: :meth:`Domain.build`, 0 when no seam relief was needed.
+    boundary_offset: float
     invalid_after_placement: int
     invalid_cells: int
     min_quality: float
@@ -109,7 +113,17 @@ class Domain(_Handle):
 
     # Building.
 
-    def build(self, tolerance=None, min_level=None, max_level=None, max_sweeps=None, threads=0, progress=None):
+    def build(
+        self,
+        tolerance=None,
+        min_level=None,
+        max_level=None,
+        max_sweeps=None,
+        threads=0,
+        progress=None,
+        repair_rounds=None,
+        boundary_offset=None,
+    ):
         """Adapts a T-mesh to the boundary, places its vertices and optimizes them. Building
         again replaces the previous T-mesh; on any error the domain keeps its previous state.
 
@@ -123,15 +137,30 @@ class Domain(_Handle):
             progress: None, or a callable ``progress(stage, done, total)`` called after
                 optimization sweeps; return False to cancel (``Status.CANCELLED``). An exception
                 raised by it cancels the build and is re-raised.
+            repair_rounds: rounds of repair after the optimization (default 6): cells left
+                invalid are refined (past ``max_level``, up to level 16) and the mesh optimized
+                again; 0 disables it.
+            boundary_offset: seam relief cap, finite and >= 0 (default 1e-2): the largest
+                distance, in coordinates that map the bounding box onto the unit box, by which a
+                boundary vertex may leave the boundary to open a cell that stays folded with
+                every boundary vertex on it; 0 keeps every boundary vertex on the boundary.
 
         Returns:
             DomainReport; ``invalid_cells == 0`` for a usable parameterization.
+
+        Raises:
+            ValueError: a negative level, sweep, thread or round count.
+            IgaparamError: options rejected by the library (``Status.NOT_FINITE`` for a NaN or
+                infinite ``tolerance`` or ``boundary_offset``, ``Status.INVALID_ARGUMENT`` for a
+                negative ``boundary_offset``, ...), a build that failed or was cancelled.
         """
         options = self._lib.igaparam_domain_options_default()
         if tolerance is not None:
             options.tolerance = float(tolerance)
+        if boundary_offset is not None:
+            options.boundary_offset = float(boundary_offset)
         for name, value in (("min_level", min_level), ("max_level", max_level), ("max_sweeps", max_sweeps),
-                            ("threads", threads)):
+                            ("threads", threads), ("repair_rounds", repair_rounds)):
             if value is not None:
                 if int(value) < 0:
                     raise ValueError(f"{name} must be >= 0")
