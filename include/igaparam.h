@@ -891,7 +891,9 @@ igaparam_validity_options igaparam_validity_options_default(void);
  * quadratic map (interpolation at the Greville points, sparse LU; a least-squares fit when that
  * system is singular) and writes the new handle to `*out`. `report` may be NULL. Fails with
  * `IGAPARAM_STATUS_INVALID_ARGUMENT` if the domain has not been built; `*out` is written only
- * on success. The spline does not refer to the domain afterwards.
+ * on success. The spline does not refer to the domain afterwards. The fit certifies the map
+ * as `igaparam_spline_check_validity` does with the default options, and the handle keeps that
+ * result for it.
  */
 igaparam_status igaparam_spline_fit_domain(const igaparam_domain *domain,
                                            igaparam_spline **out,
@@ -1084,7 +1086,10 @@ igaparam_status igaparam_spline_refine(igaparam_spline *spline,
  * `*report`. `options` may be NULL for the defaults. `element_bounds` (may be NULL) receives
  * each element's lower bound of det J_S and `element_quality` (may be NULL) each element's
  * smallest sampled mean ratio, `len` doubles each, at least `num_elements`: what an adaptive
- * loop marks elements by.
+ * loop marks elements by. A spline from `igaparam_spline_fit_domain` or
+ * `igaparam_domain_fit_adaptive` (and its clones) keeps the validity its fit computed with the
+ * default options, returned without recomputing for equal options until the map changes
+ * (`igaparam_spline_refine`); the result is the same either way.
  */
 igaparam_status igaparam_spline_check_validity(const igaparam_spline *spline,
                                                const igaparam_validity_options *options,

@@ -14,6 +14,7 @@ use crate::boundary::{
 use crate::domain::{DomainReport, PlanarDomain, PlanarOptions, SolidDomain};
 use crate::error::{check_finite, Error, Result};
 use crate::io::vtu::UnstructuredGrid;
+use crate::spline::{SplineMap, ValidityOptions, ValidityReport};
 
 /// A planar domain bounded by four curves or a solid bounded by six surfaces, and once built its
 /// T-mesh parameterization (opaque). Create a planar one with `igaparam_domain_new_from_file` or
@@ -436,22 +437,33 @@ pub(super) fn adapt_domain(
         _ => Err(Error::invalid("the domain has not been built").into()),
     }
 }
-/// Fits the spline map of the built domain (see `igaparam_spline_fit_domain`).
+/// Fits the spline map of the built domain (see `igaparam_spline_fit_domain`); returns it with
+/// its fit report and the validity the fit computed, with the (default) options of that.
 pub(super) fn fit_domain(
     domain: *const igaparam_domain,
-) -> std::result::Result<(AnyMap, crate::spline::FitReport), Failure> {
-    use crate::spline::SplineMap;
-    match built(domain)? {
+) -> std::result::Result<
+    (
+        AnyMap,
+        crate::spline::FitReport,
+        (ValidityOptions, ValidityReport),
+    ),
+    Failure,
+> {
+    let options = ValidityOptions::default();
+    let (map, report, validity) = match built(domain)? {
         igaparam_domain::Planar(_, Some(d)) => {
-            let (map, report) = SplineMap::fit_tmesh(d.mesh(), d.positions())?;
-            Ok((AnyMap::Two(map), report))
+            let (map, report, validity) =
+                SplineMap::fit_tmesh_checked(d.mesh(), d.positions(), &options)?;
+            (AnyMap::Two(map), report, validity)
         }
         igaparam_domain::Solid(_, Some(d)) => {
-            let (map, report) = SplineMap::fit_tmesh(d.mesh(), d.positions())?;
-            Ok((AnyMap::Three(map), report))
+            let (map, report, validity) =
+                SplineMap::fit_tmesh_checked(d.mesh(), d.positions(), &options)?;
+            (AnyMap::Three(map), report, validity)
         }
-        _ => Err(Error::invalid("the domain has not been built").into()),
-    }
+        _ => return Err(Error::invalid("the domain has not been built").into()),
+    };
+    Ok((map, report, (options, validity)))
 }
 
 /// Adapts a T-mesh to the boundary (refining boundary cells until `options.tolerance` or

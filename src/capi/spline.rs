@@ -12,7 +12,8 @@ use super::mesh::call_progress;
 use super::{igaparam_progress_fn, igaparam_stage};
 use crate::error::{check_finite, Error, Result};
 use crate::spline::{
-    AdaptOptions, FitReport, SplineMap, SplineSpace, ValidityOptions, HISTOGRAM_BINS,
+    AdaptOptions, FitReport, SplineMap, SplineSpace, ValidityOptions, ValidityReport,
+    HISTOGRAM_BINS,
 };
 
 /// The spline map of a 2D or 3D domain.
@@ -40,6 +41,18 @@ macro_rules! with_map {
 /// doubles; arrays of points are flat, `n × d` (x0 y0 x1 y1 ... in 2D).
 pub struct igaparam_spline {
     map: AnyMap,
+    /// The validity of `map` computed by the fit that produced it, with the options it was
+    /// computed with; `igaparam_spline_check_validity` returns it for equal options. Every change
+    /// of `map` goes through [`igaparam_spline::set_map`], which drops it.
+    validity: Option<(ValidityOptions, ValidityReport)>,
+}
+
+impl igaparam_spline {
+    /// Replaces the map, dropping the validity kept for the old one.
+    fn set_map(&mut self, map: AnyMap) {
+        self.map = map;
+        self.validity = None;
+    }
 }
 
 /// What a fit (`igaparam_spline_fit_domain`, `igaparam_spline_refine`) did.
@@ -120,9 +133,14 @@ fn fit_report(r: &FitReport) -> igaparam_fit_report {
     }
 }
 
-fn new_handle(map: AnyMap, out: *mut *mut igaparam_spline) -> std::result::Result<(), Failure> {
+/// Writes a new handle to `*out`; `validity` is that of `map` with its options, when known.
+fn new_handle(
+    map: AnyMap,
+    validity: Option<(ValidityOptions, ValidityReport)>,
+    out: *mut *mut igaparam_spline,
+) -> std::result::Result<(), Failure> {
     let out = non_null_mut(out, "out")?;
-    *out = Box::into_raw(Box::new(igaparam_spline { map }));
+    *out = Box::into_raw(Box::new(igaparam_spline { map, validity }));
     Ok(())
 }
 
@@ -187,7 +205,9 @@ fn point<const D: usize>(values: &[f64], i: usize) -> [f64; D] {
 /// quadratic map (interpolation at the Greville points, sparse LU; a least-squares fit when that
 /// system is singular) and writes the new handle to `*out`. `report` may be NULL. Fails with
 /// `IGAPARAM_STATUS_INVALID_ARGUMENT` if the domain has not been built; `*out` is written only
-/// on success. The spline does not refer to the domain afterwards.
+/// on success. The spline does not refer to the domain afterwards. The fit certifies the map
+/// as `igaparam_spline_check_validity` does with the default options, and the handle keeps that
+/// result for it.
 #[no_mangle]
 pub extern "C" fn igaparam_spline_fit_domain(
     domain: *const igaparam_domain,
@@ -196,11 +216,11 @@ pub extern "C" fn igaparam_spline_fit_domain(
 ) -> igaparam_status {
     run("igaparam_spline_fit_domain", || {
         non_null_mut(out, "out")?;
-        let (map, r) = fit_domain(domain)?;
+        let (map, r, validity) = fit_domain(domain)?;
         if !report.is_null() {
             *non_null_mut(report, "report")? = fit_report(&r);
         }
-        new_handle(map, out)
+        new_handle(map, Some(validity), out)
     })
 }
 
@@ -322,7 +342,7 @@ pub extern "C" fn igaparam_domain_fit_adaptive(
                 total,
             )
         };
-        let (map, r) = adapt_domain(domain, &opts, &mut progress)?;
+        let (map, mut r) = adapt_domain(domain, &opts, &mut progress)?;
         let last = r.rounds.last().copied().unwrap_or_default();
         if !report.is_null() {
             *non_null_mut(report, "report")? = igaparam_adapt_report {
@@ -337,7 +357,8 @@ pub extern "C" fn igaparam_domain_fit_adaptive(
                 seconds: r.seconds,
             };
         }
-        new_handle(map, out)
+        let validity = std::mem::take(&mut r.validity);
+        new_handle(map, Some((opts.validity, validity)), out)
     })
 }
 
@@ -360,7 +381,7 @@ pub extern "C" fn igaparam_spline_read_gismo(
         } else {
             AnyMap::Two(crate::spline::read_gismo_thb::<2>(&text)?)
         };
-        new_handle(map, out)
+        new_handle(map, None, out)
     })
 }
 
@@ -380,8 +401,8 @@ pub extern "C" fn igaparam_spline_clone(
     out: *mut *mut igaparam_spline,
 ) -> igaparam_status {
     run("igaparam_spline_clone", || {
-        let m = map(spline)?.clone();
-        new_handle(m, out)
+        let s = non_null(spline, "spline")?;
+        new_handle(s.map.clone(), s.validity.clone(), out)
     })
 }
 
@@ -779,7 +800,7 @@ pub extern "C" fn igaparam_spline_refine(
         if !report.is_null() {
             *non_null_mut(report, "report")? = fit_report(&r);
         }
-        handle.map = refined;
+        handle.set_map(refined);
         Ok(())
     })
 }
@@ -800,7 +821,10 @@ fn refine<const D: usize>(m: &SplineMap<D>, marked: &[usize]) -> Result<(SplineM
 /// `*report`. `options` may be NULL for the defaults. `element_bounds` (may be NULL) receives
 /// each element's lower bound of det J_S and `element_quality` (may be NULL) each element's
 /// smallest sampled mean ratio, `len` doubles each, at least `num_elements`: what an adaptive
-/// loop marks elements by.
+/// loop marks elements by. A spline from `igaparam_spline_fit_domain` or
+/// `igaparam_domain_fit_adaptive` (and its clones) keeps the validity its fit computed with the
+/// default options, returned without recomputing for equal options until the map changes
+/// (`igaparam_spline_refine`); the result is the same either way.
 #[no_mangle]
 pub extern "C" fn igaparam_spline_check_validity(
     spline: *const igaparam_spline,
@@ -811,7 +835,7 @@ pub extern "C" fn igaparam_spline_check_validity(
     len: usize,
 ) -> igaparam_status {
     run("igaparam_spline_check_validity", || {
-        let m = map(spline)?;
+        let s = non_null(spline, "spline")?;
         let raw = if options.is_null() {
             igaparam_validity_options_default()
         } else {
@@ -829,7 +853,15 @@ pub extern "C" fn igaparam_spline_check_validity(
             samples: raw.samples as usize,
         };
         let out = non_null_mut(report, "report")?;
-        let v = with_map!(m, m => m.validity(&opts));
+        // The validity the fit computed, when it used the same options; else compute it.
+        let computed;
+        let v = match &s.validity {
+            Some((kept, v)) if *kept == opts => v,
+            _ => {
+                computed = with_map!(&s.map, m => m.validity(&opts));
+                &computed
+            }
+        };
         let n = v.elements.len();
         if !element_bounds.is_null() {
             check_capacity("element_bounds", len, n)?;

@@ -68,6 +68,8 @@ pub struct AdaptReport {
     pub rounds: Vec<AdaptRound>,
     /// The fit of the map returned.
     pub fit: FitReport,
+    /// The validity of the map returned, computed with [`AdaptOptions::validity`].
+    pub validity: ValidityReport,
     /// Whether the map returned meets the target (certified, and min quality at least the
     /// target).
     pub reached: bool,
@@ -152,6 +154,7 @@ pub fn adapt<const D: usize, B: CubeMap<D>>(
         });
         if cells.is_empty() {
             report.fit = fit;
+            report.validity = validity;
             report.reached = reached;
             report.seconds = start.elapsed().as_secs_f64();
             return Ok((map, report));

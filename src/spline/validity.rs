@@ -52,7 +52,7 @@ pub struct ElementValidity {
 }
 
 /// Validity and quality of a whole map.
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug, Default, PartialEq)]
 pub struct ValidityReport {
     /// Per element, in element order.
     pub elements: Vec<ElementValidity>,

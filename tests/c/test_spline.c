@@ -6,7 +6,8 @@
  * checks that the basis
  * queries agree with the evaluation (Σ N_i P_i = S, Σ ∇N_i P_i = J, Σ N_i = 1, N_i ≥ 0), that the
  * Bézier extraction reproduces the basis values, that inversion undoes evaluation, that the map
- * is certified valid, that refinement keeps the map and that the G+Smo XML round trip keeps it;
+ * is certified valid (the validity a fit keeps being the one computed), that refinement keeps the
+ * map and that the G+Smo XML round trip keeps it;
  * calls the entry points with NULL, out-of-range and non-finite arguments, checking the status,
  * the message and that a failed call leaves the handle as it was. Prints "N passed, M failed";
  * exits non-zero if any check failed. Runs the adaptive loop on the puzzle piece.
@@ -247,6 +248,70 @@ static void test_validity(const igaparam_spline *s) {
   free(quality);
 }
 
+/* Checks that two splines of the same number of elements have the same validity (summary and
+ * per-element arrays, bit for bit) under `o` (NULL: the defaults). */
+static void same_validity(const igaparam_spline *a, const igaparam_spline *b,
+                          const igaparam_validity_options *o, const char *what) {
+  size_t na = 0, nb = 0;
+  EXPECT(igaparam_spline_element_count(a, &na), IGAPARAM_STATUS_OK);
+  EXPECT(igaparam_spline_element_count(b, &nb), IGAPARAM_STATUS_OK);
+  CHECK(na == nb && na > 0, "%s: %zu vs %zu elements", what, na, nb);
+  if (na != nb || na == 0) return;
+  double *bounds[2], *quality[2];
+  igaparam_validity_report r[2];
+  const igaparam_spline *s[2] = {a, b};
+  for (int i = 0; i < 2; i++) {
+    bounds[i] = malloc(na * sizeof *bounds[i]);
+    quality[i] = malloc(na * sizeof *quality[i]);
+    for (size_t e = 0; e < na; e++) bounds[i][e] = quality[i][e] = -7.0 - i;
+    memset(&r[i], 0, sizeof r[i]);
+    EXPECT(igaparam_spline_check_validity(s[i], o, &r[i], bounds[i], quality[i], na),
+           IGAPARAM_STATUS_OK);
+  }
+  CHECK(r[0].certified_positive == r[1].certified_positive && r[0].uncertified == r[1].uncertified &&
+            r[0].det_lower_bound == r[1].det_lower_bound && r[0].min_quality == r[1].min_quality &&
+            r[0].mean_quality == r[1].mean_quality &&
+            memcmp(r[0].histogram, r[1].histogram, sizeof r[0].histogram) == 0,
+        "%s: reports differ (det >= %.17g vs %.17g, min q %.17g vs %.17g, mean q %.17g vs %.17g)",
+        what, r[0].det_lower_bound, r[1].det_lower_bound, r[0].min_quality, r[1].min_quality,
+        r[0].mean_quality, r[1].mean_quality);
+  CHECK(memcmp(bounds[0], bounds[1], na * sizeof *bounds[0]) == 0,
+        "%s: per-element det bounds differ", what);
+  CHECK(memcmp(quality[0], quality[1], na * sizeof *quality[0]) == 0,
+        "%s: per-element qualities differ", what);
+  for (int i = 0; i < 2; i++) {
+    free(bounds[i]);
+    free(quality[i]);
+  }
+}
+
+/* The validity a fit keeps in its handle is what a computation gives: compare the fitted spline
+ * with its G+Smo XML copy (the same map, read back without a kept validity) under the default
+ * options (kept by the fit) and others (computed for both), then a clone of the fit (which keeps
+ * it) and, after the same refinement of both, which changes the elements, again. */
+static void test_kept_validity(const igaparam_spline *s) {
+  const char *xml = joined(out_dir, "male_fit.xml");
+  EXPECT(igaparam_spline_write_gismo(s, xml), IGAPARAM_STATUS_OK);
+  igaparam_spline *copy = NULL, *clone = NULL;
+  EXPECT(igaparam_spline_read_gismo(xml, &copy), IGAPARAM_STATUS_OK);
+  EXPECT(igaparam_spline_clone(s, &clone), IGAPARAM_STATUS_OK);
+  if (!copy || !clone) return;
+  same_validity(s, copy, NULL, "fit vs its XML copy");
+  igaparam_validity_options other = igaparam_validity_options_default();
+  other.samples = 7;
+  other.max_depth = 3;
+  same_validity(s, copy, &other, "fit vs its XML copy, other options");
+  igaparam_validity_options defaults = igaparam_validity_options_default();
+  same_validity(s, copy, &defaults, "fit vs its XML copy, default options again");
+  same_validity(clone, copy, NULL, "clone vs XML copy");
+  size_t marked[3] = {0, 5, 9};
+  EXPECT(igaparam_spline_refine(clone, 3, marked, NULL), IGAPARAM_STATUS_OK);
+  EXPECT(igaparam_spline_refine(copy, 3, marked, NULL), IGAPARAM_STATUS_OK);
+  same_validity(clone, copy, NULL, "refined clone vs refined XML copy");
+  igaparam_spline_free(clone);
+  igaparam_spline_free(copy);
+}
+
 /* The largest difference between the images of `n` points under two splines. */
 static double distance(const igaparam_spline *a, const igaparam_spline *b) {
   double params[2 * SAMPLES], pa[2 * SAMPLES], pb[2 * SAMPLES];
@@ -411,6 +476,13 @@ static void test_adapt(void) {
         "the spline returned: certified %d, min q %g", v.certified_positive, v.min_quality);
   printf("puzzle adaptation: %u rounds, %zu -> %zu cells, min q %.3f, mean q %.3f\n", r.rounds,
          cells, after, r.min_quality, r.mean_quality);
+  /* The validity the adaptive fit keeps is that of its map, read back from XML. */
+  const char *xml = joined(out_dir, "rotor_adapted.xml");
+  EXPECT(igaparam_spline_write_gismo(s, xml), IGAPARAM_STATUS_OK);
+  igaparam_spline *copy = NULL;
+  EXPECT(igaparam_spline_read_gismo(xml, &copy), IGAPARAM_STATUS_OK);
+  if (copy) same_validity(s, copy, NULL, "adaptive fit vs its XML copy");
+  igaparam_spline_free(copy);
   igaparam_spline_free(s);
 
   /* Unbuilt domain. */
@@ -436,6 +508,7 @@ int main(int argc, char **argv) {
     test_greville(s);
     test_inverse(s);
     test_validity(s);
+    test_kept_validity(s);
     test_refine_and_files(s);
     test_errors(s);
     igaparam_spline_free(s);
