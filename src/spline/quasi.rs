@@ -10,10 +10,10 @@ use std::time::Instant;
 
 use rayon::prelude::*;
 
-use super::bernstein::{bernstein3, bernstein_blossom, extraction, knot, support_spans, Matrix4};
+use super::bernstein::{bernstein3, bernstein_blossom, extraction, knot, Matrix4};
 use super::map::{FitReport, SplineMap};
 use super::space::SplineSpace;
-use super::thb::{tensor_apply, ThbSpace};
+use super::thb::{support_span_indices, tensor_apply, ThbSpace};
 use crate::error::{check_finite, Error, Result};
 
 /// A polynomial of degree 3 per direction on a box: its tensor Bernstein coefficients there
@@ -84,19 +84,10 @@ impl<const D: usize> ThbSpace<D> {
     /// (untruncated) B-spline over it relative to the cell size.
     fn coefficient_cells(&self, i: usize) -> Vec<(usize, f64)> {
         let (level, f) = self.functions()[i];
-        let spans: [(usize, usize); D] =
-            std::array::from_fn(|k| support_spans(level, f[k] as usize));
         let h = 1.0 / (1u64 << level) as f64;
-        let count: usize = spans.iter().map(|(a, b)| b - a).product();
-        let mut out = Vec::with_capacity(count);
-        for flat in 0..count {
-            let mut rest = flat;
-            let span: [usize; D] = std::array::from_fn(|k| {
-                let n = spans[k].1 - spans[k].0;
-                let v = spans[k].0 + rest % n;
-                rest /= n;
-                v
-            });
+        let spans = support_span_indices(level, &f);
+        let mut out = Vec::with_capacity(spans.len());
+        for span in spans {
             let centre = std::array::from_fn(|k| (span[k] as f64 + 0.5) * h);
             let Some(e) = self.element_at(centre) else {
                 continue;

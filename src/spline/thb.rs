@@ -33,12 +33,26 @@ pub struct ThbSpace<const D: usize> {
 }
 
 fn support_size<const D: usize>(level: u8, f: &[u32; D]) -> u32 {
-    f.iter()
-        .map(|&i| {
-            let (a, b) = support_spans(level, i as usize);
-            (b - a) as u32
+    support_span_indices(level, f).len() as u32
+}
+
+/// The multi-indices of the level-`level` knot spans in the support of the B-spline `f` of that
+/// level (per direction, the spans of [`support_spans`]), the first direction varying fastest.
+pub(crate) fn support_span_indices<const D: usize>(
+    level: u8,
+    f: &[u32; D],
+) -> impl ExactSizeIterator<Item = [usize; D]> {
+    let spans: [(usize, usize); D] = std::array::from_fn(|k| support_spans(level, f[k] as usize));
+    let count: usize = spans.iter().map(|(a, b)| b - a).product();
+    (0..count).map(move |flat| {
+        let mut rest = flat;
+        std::array::from_fn(|k| {
+            let n = spans[k].1 - spans[k].0;
+            let v = spans[k].0 + rest % n;
+            rest /= n;
+            v
         })
-        .product()
+    })
 }
 
 /// Applies a 4×4 matrix per direction to a tensor of `4^d` values:
@@ -245,43 +259,39 @@ impl<const D: usize> SplineSpace<D> for ThbSpace<D> {
             let (level, f) = self.functions[i];
             let g = points[i];
             let h = 1.0 / (1u64 << level) as f64;
-            let spans: [(usize, usize); D] =
-                std::array::from_fn(|k| support_spans(level, f[k] as usize));
-            let count: usize = spans.iter().map(|(a, b)| b - a).product();
             let mut best: Option<(f64, [f64; D])> = None;
-            for flat in 0..count * 3usize.pow(D as u32) {
-                let mut rest = flat;
-                let fraction: [f64; D] = std::array::from_fn(|_| {
-                    let v = 0.25 * (rest % 3 + 1) as f64;
-                    rest /= 3;
-                    v
-                });
-                let span: [usize; D] = std::array::from_fn(|k| {
-                    let n = spans[k].1 - spans[k].0;
-                    let v = spans[k].0 + rest % n;
-                    rest /= n;
-                    v
-                });
-                let p: [f64; D] = std::array::from_fn(|k| {
-                    if g[k] == 0.0 || g[k] == 1.0 {
-                        g[k]
-                    } else {
-                        (span[k] as f64 + fraction[k]) * h
-                    }
-                });
+            for span in support_span_indices(level, &f) {
                 let centre: [f64; D] = std::array::from_fn(|k| (span[k] as f64 + 0.5) * h);
-                if level_at(&centre) != Some(level) || taken.contains(&key(&p)) {
+                if level_at(&centre) != Some(level) {
                     continue;
                 }
-                let value = self.basis_at(p).and_then(|b| {
-                    b.functions
-                        .iter()
-                        .position(|&j| j == i)
-                        .map(|q| b.values[q])
-                });
-                if let Some(v) = value {
-                    if best.map_or(true, |(bv, _)| v > bv) {
-                        best = Some((v, p));
+                for digits in 0..3usize.pow(D as u32) {
+                    let mut rest = digits;
+                    let fraction: [f64; D] = std::array::from_fn(|_| {
+                        let v = 0.25 * (rest % 3 + 1) as f64;
+                        rest /= 3;
+                        v
+                    });
+                    let p: [f64; D] = std::array::from_fn(|k| {
+                        if g[k] == 0.0 || g[k] == 1.0 {
+                            g[k]
+                        } else {
+                            (span[k] as f64 + fraction[k]) * h
+                        }
+                    });
+                    if taken.contains(&key(&p)) {
+                        continue;
+                    }
+                    let value = self.basis_at(p).and_then(|b| {
+                        b.functions
+                            .iter()
+                            .position(|&j| j == i)
+                            .map(|q| b.values[q])
+                    });
+                    if let Some(v) = value {
+                        if best.map_or(true, |(bv, _)| v > bv) {
+                            best = Some((v, p));
+                        }
                     }
                 }
             }
