@@ -53,6 +53,30 @@ fn the_unit_square_gives_the_identity() {
 }
 
 #[test]
+fn a_negative_or_non_finite_boundary_offset_is_refused_and_zero_keeps_the_boundary() {
+    for bad in [-1e-3, f64::NAN, f64::INFINITY] {
+        let options = PlanarOptions {
+            boundary_offset: bad,
+            ..PlanarOptions::default()
+        };
+        let error = PlanarDomain::build(mapped_square(|p| p, 4), &options, &mut |_, _| true)
+            .expect_err("a bad boundary_offset was accepted");
+        assert!(
+            error.message.contains("boundary_offset"),
+            "{}",
+            error.message
+        );
+    }
+    let options = PlanarOptions {
+        boundary_offset: 0.0,
+        ..PlanarOptions::default()
+    };
+    let (_, report) = build(mapped_square(affine2, 4), &options);
+    assert_eq!(report.boundary_offset, 0.0);
+    assert_eq!(report.invalid_cells, 0);
+}
+
+#[test]
 fn shared_domains_give_valid_t_meshes_within_the_boundary_tolerance() {
     let options = PlanarOptions::default();
     let mut boundaries: Vec<(String, BoundaryLoop2)> = [

@@ -552,6 +552,12 @@ pub(super) fn check_options(options: &DomainOptions) -> Result<()> {
             "levels must satisfy min_level <= max_level <= 16",
         ));
     }
+    if !(options.boundary_offset.is_finite() && options.boundary_offset >= 0.0) {
+        return Err(Error::invalid(format!(
+            "boundary_offset = {} must be finite and at least 0",
+            options.boundary_offset
+        )));
+    }
     Ok(())
 }
 
