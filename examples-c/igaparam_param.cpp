@@ -279,6 +279,9 @@ int main(int argc, char** argv) {
                     ar.refined_cells, r.cells, ar.reached ? "reached" : "not reached");
       } else {
         check(igaparam_spline_fit_domain(domain.d, &spline.s, &fit), "spline fit");
+        if (fit.untangled > 0)
+          std::printf("untangling: %zu control points moved, boundary ones at most %.3g of the box\n",
+                      fit.untangled, fit.boundary_offset);
       }
       size_t basis = 0, elements = 0;
       check(igaparam_spline_basis_count(spline.s, &basis), "basis count");
@@ -296,9 +299,11 @@ int main(int argc, char** argv) {
       char buf[512];
       std::snprintf(buf, sizeof buf,
                     ",\"basis\":%zu,\"elements\":%zu,\"min_q_spline\":%.6f,\"mean_q_spline\":%.6f,"
-                    "\"certified_positive\":%s,\"uncertified\":%zu,\"adapt_rounds\":%u,\"fit\":\"%s\"",
+                    "\"certified_positive\":%s,\"uncertified\":%zu,\"adapt_rounds\":%u,\"untangled\":%zu,"
+                    "\"spline_boundary_offset\":%.6e,\"fit\":\"%s\"",
                     basis, elements, v.min_quality, v.mean_quality,
-                    v.certified_positive ? "true" : "false", v.uncertified, ar.rounds,
+                    v.certified_positive ? "true" : "false", v.uncertified, ar.rounds, fit.untangled,
+                    fit.boundary_offset,
                     adaptive                  ? "adaptive"
                     : fit.quasi_interpolation ? "quasi_interpolation"
                     : fit.least_squares       ? "least_squares"

@@ -3,12 +3,13 @@
 // rates.
 //
 //   igaparam_poisson [INPUT] [--problem poisson|helmholtz|linear] [--levels N] [--threads N]
-//                    [--dim 2|3] [--quad N] [--tolerance T] [--refits N] [--vtu PATH]
-//                    [--check-rates L2MIN H1MIN] [--check-max-error E] [--check-source]
+//                    [--dim 2|3] [--quad N] [--tolerance T] [--max-level L] [--refits N]
+//                    [--vtu PATH] [--check-rates L2MIN H1MIN] [--check-max-error E] [--check-source]
+//                    [--check-certified]
 //
 // INPUT is a G+Smo XML B-rep (four curves or six surfaces), a coastline .txt or a folder of six
 // triangulated faces (the domain is built and its spline map fitted; --tolerance sets the
-// domain's boundary tolerance; while the map is not certified valid, the domain is rebuilt
+// domain's boundary tolerance and --max-level its deepest level; while the map is not certified valid, the domain is rebuilt
 // with a tolerance ten times smaller, at most --refits times, default 3), or a THB spline .xml
 // written by igaparam_spline_write_gismo (read, 2D or 3D).
 // Without INPUT: a quarter annulus (radii 1 and 2) built from four polylines (--dim 2, the
@@ -24,7 +25,10 @@
 // --check-rates exits with status 3 when a rate is below its bound, --check-max-error when an
 // L2 or H1 error exceeds E (--problem linear, u = 1 + x - 2y (+ 3z), is reproduced exactly by
 // the isoparametric space: a test of the assembly and of the boundary treatment); --check-source compares
-// the right-hand sides with finite differences of the exact solutions and exits.
+// the right-hand sides with finite differences of the exact solutions and exits;
+// --check-certified exits with status 3 unless det J > 0 is proven on every element of the map.
+// For an input domain the 3D Poisson solution's layer is placed by the domain's bounding box
+// (see make_problem).
 
 #include <igaparam.h>
 
@@ -724,10 +728,11 @@ SplinePtr read_spline_text(const std::string &text) {
 // may fold where the boundary is coarsely resolved: while the fitted map is not certified
 // valid, the domain is rebuilt with a tolerance ten times smaller (at most `refits` times). The
 // solve itself needs det J > 0 at the quadrature points only (checked during assembly).
-SplinePtr fit(DomainPtr domain, int threads, double tolerance, int refits) {
+SplinePtr fit(DomainPtr domain, int threads, double tolerance, int max_level, int refits) {
   igaparam_domain_options options = igaparam_domain_options_default();
   options.threads = static_cast<uint32_t>(threads);
   if (tolerance > 0.0) options.tolerance = tolerance;
+  if (max_level >= 0) options.max_level = static_cast<uint8_t>(max_level);
   for (int attempt = 0;; attempt++) {
     igaparam_domain_report report;
     check(igaparam_domain_build(domain.get(), &options, &report), "domain build");
@@ -765,7 +770,7 @@ SplinePtr quarter_annulus(int threads) {
   const double *points[4] = {bottom.data(), outer.data(), left.data(), inner.data()};
   igaparam_domain *domain = nullptr;
   check(igaparam_domain_new_from_polylines(counts, points, &domain), "quarter annulus");
-  return fit(DomainPtr(domain), threads, 0.0, 3);
+  return fit(DomainPtr(domain), threads, 0.0, -1, 3);
 }
 
 bool is_thb_xml(const std::string &path) {
@@ -776,7 +781,7 @@ bool is_thb_xml(const std::string &path) {
   return head.find("THBSpline") != std::string::npos;
 }
 
-SplinePtr load(const std::string &input, int dim, int threads, double tolerance, int refits) {
+SplinePtr load(const std::string &input, int dim, int threads, double tolerance, int max_level, int refits) {
   if (input.empty()) return dim == 3 ? read_spline_text(thick_quarter_annulus_xml()) : quarter_annulus(threads);
   if (is_thb_xml(input)) {
     igaparam_spline *s = nullptr;
@@ -790,14 +795,27 @@ SplinePtr load(const std::string &input, int dim, int threads, double tolerance,
     if (igaparam_domain_new_solid_from_file(input.c_str(), &domain) != IGAPARAM_STATUS_OK)
       throw std::runtime_error(input + ": " + planar + " (as a solid: " + last_error() + ")");
   }
-  return fit(DomainPtr(domain), threads, tolerance, refits);
+  return fit(DomainPtr(domain), threads, tolerance, max_level, refits);
 }
 
-// The exact solution of a problem on a map of dimension d.
-Problem make_problem(const std::string &name, int d) {
+// The exact solution of a problem on a map of dimension d. `box` (lower corner, then upper
+// corner; empty for the built-in domains) is the bounding box of an input domain: there the 3D
+// Poisson layer is placed by it, its centre outside the box at a quarter of the box beyond the
+// lower corner, the layer through the box's centre, α = 10 / diagonal.
+Problem make_problem(const std::string &name, int d, const std::vector<double> &box = {}) {
   if (name == "poisson") {
     if (d == 2) return poisson_2d();
-    return arctan_layer(d, {-0.5, -0.5, -0.5}, 5.0, 2.0);
+    if (box.empty()) return arctan_layer(d, {-0.5, -0.5, -0.5}, 5.0, 2.0);
+    std::array<double, 3> centre{}, middle{};
+    double diagonal = 0.0, r0 = 0.0;
+    for (int k = 0; k < 3; k++) {
+      double extent = box[3 + k] - box[k];
+      centre[k] = box[k] - 0.25 * extent;
+      middle[k] = 0.5 * (box[k] + box[3 + k]);
+      diagonal += extent * extent;
+      r0 += (middle[k] - centre[k]) * (middle[k] - centre[k]);
+    }
+    return arctan_layer(d, centre, 10.0 / std::sqrt(diagonal), std::sqrt(r0));
   }
   if (name == "helmholtz") return helmholtz(d, {0.6, 0.6, -0.4});
   if (name == "linear") return linear(d);
@@ -807,8 +825,10 @@ Problem make_problem(const std::string &name, int d) {
 void usage() {
   std::fprintf(stderr,
                "usage: igaparam_poisson [INPUT] [--problem poisson|helmholtz|linear] [--levels N] [--threads N]\n"
-               "                        [--dim 2|3] [--quad N] [--tolerance T] [--refits N] [--vtu PATH]\n"
-               "                        [--check-rates L2MIN H1MIN] [--check-max-error E] [--check-source]\n");
+               "                        [--dim 2|3] [--quad N] [--tolerance T] [--max-level L] [--refits N]\n"
+               "                        [--vtu PATH]\n"
+               "                        [--check-rates L2MIN H1MIN] [--check-max-error E] [--check-source]\n"
+               "                        [--check-certified]\n");
 }
 
 std::string json_list(const std::vector<double> &v) {
@@ -822,8 +842,8 @@ std::string json_list(const std::vector<double> &v) {
 
 int run(int argc, char **argv) {
   std::string input, problem_name = "poisson", vtu;
-  int levels = 3, threads = 0, dim = 2, quad = 0, refits = 3;
-  bool check_rates = false, check_source = false;
+  int levels = 3, threads = 0, dim = 2, quad = 0, refits = 3, max_level = -1;
+  bool check_rates = false, check_source = false, check_certified = false;
   double l2_min = 0.0, h1_min = 0.0, tolerance = 0.0, max_error = -1.0;
   for (int i = 1; i < argc; i++) {
     std::string a = argv[i];
@@ -845,6 +865,8 @@ int run(int argc, char **argv) {
       refits = std::stoi(next());
     else if (a == "--tolerance")
       tolerance = std::stod(next());
+    else if (a == "--max-level")
+      max_level = std::stoi(next());
     else if (a == "--vtu")
       vtu = next();
     else if (a == "--check-rates") {
@@ -855,6 +877,8 @@ int run(int argc, char **argv) {
       max_error = std::stod(next());
     else if (a == "--check-source")
       check_source = true;
+    else if (a == "--check-certified")
+      check_certified = true;
     else if (a == "-h" || a == "--help") {
       usage();
       return 0;
@@ -865,8 +889,9 @@ int run(int argc, char **argv) {
     else
       throw std::invalid_argument("more than one input");
   }
-  if (levels < 0 || levels > 12 || (dim != 2 && dim != 3) || quad < 0 || quad > 12 || threads < 0)
-    throw std::invalid_argument("bad --levels, --dim, --quad or --threads");
+  if (levels < 0 || levels > 12 || (dim != 2 && dim != 3) || quad < 0 || quad > 12 || threads < 0 ||
+      max_level > 16 || (max_level < 0 && max_level != -1))
+    throw std::invalid_argument("bad --levels, --dim, --quad, --threads or --max-level");
   if (threads == 0) threads = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
 
   if (check_source) {
@@ -891,10 +916,37 @@ int run(int argc, char **argv) {
     return ok ? 0 : 3;
   }
 
-  SplinePtr spline = load(input, dim, threads, tolerance, refits);
+  SplinePtr spline = load(input, dim, threads, tolerance, max_level, refits);
   size_t d = 0;
   check(igaparam_spline_dimension(spline.get(), &d), "dimension");
-  const Problem problem = make_problem(problem_name, static_cast<int>(d));
+  if (check_certified) {
+    igaparam_validity_report validity;
+    check(igaparam_spline_check_validity(spline.get(), nullptr, &validity, nullptr, nullptr, 0), "validity");
+    if (!validity.certified_positive) {
+      std::fprintf(stderr, "igaparam_poisson: the map is not certified valid (%zu elements)\n", validity.uncertified);
+      return 3;
+    }
+    std::printf("map certified valid: det J > 0 proven on all elements, min sampled q_S %.4f\n",
+                validity.min_quality);
+  }
+  // The bounding box of the control points (it holds the domain) places the solution of an
+  // input domain.
+  std::vector<double> box;
+  if (!input.empty()) {
+    size_t nb = 0;
+    check(igaparam_spline_basis_count(spline.get(), &nb), "basis count");
+    std::vector<double> xyz(nb * d);
+    check(igaparam_spline_copy_control_points(spline.get(), xyz.data(), xyz.size()), "control points");
+    box.assign(6, 0.0);
+    for (size_t k = 0; k < d; k++) {
+      box[k] = box[3 + k] = xyz[k];
+      for (size_t i = 0; i < nb; i++) {
+        box[k] = std::min(box[k], xyz[i * d + k]);
+        box[3 + k] = std::max(box[3 + k], xyz[i * d + k]);
+      }
+    }
+  }
+  const Problem problem = make_problem(problem_name, static_cast<int>(d), box);
   const int assembly_points = quad > 0 ? quad : (d == 2 ? 5 : 4);
   const Reference assembly(static_cast<int>(d), assembly_points), error_rule(static_cast<int>(d), 6);
 

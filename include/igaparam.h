@@ -405,6 +405,17 @@ typedef struct {
    */
   int32_t quasi_interpolation;
   /**
+   * Control points that `igaparam_spline_fit_domain` moved to untangle a fitted map that was
+   * not certified valid (inner ones first; boundary ones, at most 0.01 of the bounding box,
+   * only when that was not enough); 0 when the fitted map was kept as it was.
+   */
+  size_t untangled;
+  /**
+   * Largest move of a boundary control point by that untangling, relative to the bounding
+   * box (each axis scaled to 1); 0 when the boundary was kept.
+   */
+  double boundary_offset;
+  /**
    * Wall-clock seconds.
    */
   double seconds;
@@ -893,7 +904,12 @@ igaparam_validity_options igaparam_validity_options_default(void);
  * `IGAPARAM_STATUS_INVALID_ARGUMENT` if the domain has not been built; `*out` is written only
  * on success. The spline does not refer to the domain afterwards. The fit certifies the map
  * as `igaparam_spline_check_validity` does with the default options, and the handle keeps that
- * result for it.
+ * result for it. When the interpolation's map is not certified, the local quasi-interpolant is
+ * made too and the better kept; when that is still not certified, the map is untangled: the
+ * control points around the uncertified elements move to lift det J (inner ones first, keeping
+ * the boundary; then boundary ones, at most 0.01 of the bounding box, except at the corners),
+ * kept only if fewer elements stay uncertified (`report->untangled`,
+ * `report->boundary_offset`).
  */
 igaparam_status igaparam_spline_fit_domain(const igaparam_domain *domain,
                                            igaparam_spline **out,

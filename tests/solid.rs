@@ -3,6 +3,7 @@
 use std::collections::HashMap;
 
 use igaparam::boundary::*;
+use igaparam::spline::{SplineMap, UntangleOptions, ValidityOptions};
 use igaparam::ErrorKind;
 
 fn data(name: &str) -> String {
@@ -346,7 +347,7 @@ fn brep_faces_found_from_adjacency_and_orientation_from_corners() {
 /// Builds the T-mesh of a triangulated solid and checks that the seam relief opened every cell
 /// while every boundary vertex stays within the allowed offset of its point on the boundary
 /// (measured in the frame of the bounding box).
-fn check_relieved_solid(dir: &str, tolerance: f64, max_level: u8) {
+fn check_relieved_solid(dir: &str, tolerance: f64, max_level: u8) -> igaparam::domain::SolidDomain {
     let boundary = SolidBoundary::from_obj_dir(data(dir)).unwrap();
     let options = igaparam::domain::SolidOptions {
         tolerance,
@@ -379,13 +380,32 @@ fn check_relieved_solid(dir: &str, tolerance: f64, max_level: u8) {
         (largest - report.boundary_offset).abs() <= 1e-9,
         "{largest}"
     );
+    domain
 }
 
 /// The triangulated duck, whose jittered faces meet at reflex angles along parts of the cube's
 /// edges.
 #[test]
-fn duck_faces_give_a_valid_t_mesh_within_the_boundary_offset() {
-    check_relieved_solid("duck_faces", 1e-4, 4);
+fn duck_faces_give_a_valid_t_mesh_and_a_certified_spline_map() {
+    let domain = check_relieved_solid("duck_faces", 1e-4, 4);
+    // The fitted map folds next to the cube's edges, where the faces meet almost tangentially;
+    // the untangling moves the control points there (boundary ones within the offset).
+    let untangle = UntangleOptions::default();
+    let (map, fit, validity) = SplineMap::fit_tmesh_checked(
+        domain.mesh(),
+        domain.positions(),
+        &ValidityOptions::default(),
+        &untangle,
+    )
+    .unwrap();
+    println!("{fit:?}\n{validity:?}");
+    assert!(
+        validity.certified_positive,
+        "{} uncertified",
+        validity.uncertified
+    );
+    assert!(fit.untangled > 0 && fit.boundary_offset <= untangle.boundary_offset * (1.0 + 1e-9));
+    assert_eq!(validity, map.validity(&ValidityOptions::default()));
 }
 
 /// The Jacksboro block, whose terrain edge is jagged where it meets the side faces.

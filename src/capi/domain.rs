@@ -14,7 +14,7 @@ use crate::boundary::{
 use crate::domain::{DomainReport, PlanarDomain, PlanarOptions, SolidDomain};
 use crate::error::{check_finite, Error, Result};
 use crate::io::vtu::UnstructuredGrid;
-use crate::spline::{SplineMap, ValidityOptions, ValidityReport};
+use crate::spline::{SplineMap, UntangleOptions, ValidityOptions, ValidityReport};
 
 /// A planar domain bounded by four curves or a solid bounded by six surfaces, and once built its
 /// T-mesh parameterization (opaque). Create a planar one with `igaparam_domain_new_from_file` or
@@ -437,6 +437,15 @@ pub(super) fn adapt_domain(
         _ => Err(Error::invalid("the domain has not been built").into()),
     }
 }
+/// The checked fit of a T-mesh's map, untangled with the default options.
+fn fit_tmesh<const D: usize>(
+    mesh: &crate::tmesh::TMesh<D>,
+    positions: &[[f64; D]],
+    options: &ValidityOptions,
+) -> crate::error::Result<(SplineMap<D>, crate::spline::FitReport, ValidityReport)> {
+    SplineMap::fit_tmesh_checked(mesh, positions, options, &UntangleOptions::default())
+}
+
 /// Fits the spline map of the built domain (see `igaparam_spline_fit_domain`); returns it with
 /// its fit report and the validity the fit computed, with the (default) options of that.
 pub(super) fn fit_domain(
@@ -452,13 +461,11 @@ pub(super) fn fit_domain(
     let options = ValidityOptions::default();
     let (map, report, validity) = match built(domain)? {
         igaparam_domain::Planar(_, Some(d)) => {
-            let (map, report, validity) =
-                SplineMap::fit_tmesh_checked(d.mesh(), d.positions(), &options)?;
+            let (map, report, validity) = fit_tmesh(d.mesh(), d.positions(), &options)?;
             (AnyMap::Two(map), report, validity)
         }
         igaparam_domain::Solid(_, Some(d)) => {
-            let (map, report, validity) =
-                SplineMap::fit_tmesh_checked(d.mesh(), d.positions(), &options)?;
+            let (map, report, validity) = fit_tmesh(d.mesh(), d.positions(), &options)?;
             (AnyMap::Three(map), report, validity)
         }
         _ => return Err(Error::invalid("the domain has not been built").into()),

@@ -72,6 +72,13 @@ pub struct igaparam_fit_report {
     /// certified valid, or less invalid, than that of the interpolation; and every
     /// `igaparam_spline_refine`), else 0.
     pub quasi_interpolation: i32,
+    /// Control points that `igaparam_spline_fit_domain` moved to untangle a fitted map that was
+    /// not certified valid (inner ones first; boundary ones, at most 0.01 of the bounding box,
+    /// only when that was not enough); 0 when the fitted map was kept as it was.
+    pub untangled: usize,
+    /// Largest move of a boundary control point by that untangling, relative to the bounding
+    /// box (each axis scaled to 1); 0 when the boundary was kept.
+    pub boundary_offset: f64,
     /// Wall-clock seconds.
     pub seconds: f64,
 }
@@ -129,6 +136,8 @@ fn fit_report(r: &FitReport) -> igaparam_fit_report {
         residual: r.residual,
         least_squares: r.least_squares as i32,
         quasi_interpolation: r.quasi_interpolation as i32,
+        untangled: r.untangled,
+        boundary_offset: r.boundary_offset,
         seconds: r.seconds,
     }
 }
@@ -207,7 +216,12 @@ fn point<const D: usize>(values: &[f64], i: usize) -> [f64; D] {
 /// `IGAPARAM_STATUS_INVALID_ARGUMENT` if the domain has not been built; `*out` is written only
 /// on success. The spline does not refer to the domain afterwards. The fit certifies the map
 /// as `igaparam_spline_check_validity` does with the default options, and the handle keeps that
-/// result for it.
+/// result for it. When the interpolation's map is not certified, the local quasi-interpolant is
+/// made too and the better kept; when that is still not certified, the map is untangled: the
+/// control points around the uncertified elements move to lift det J (inner ones first, keeping
+/// the boundary; then boundary ones, at most 0.01 of the bounding box, except at the corners),
+/// kept only if fewer elements stay uncertified (`report->untangled`,
+/// `report->boundary_offset`).
 #[no_mangle]
 pub extern "C" fn igaparam_spline_fit_domain(
     domain: *const igaparam_domain,

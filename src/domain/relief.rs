@@ -20,7 +20,7 @@ use super::build::{sweep_options, CubeMap, Domain, DomainOptions};
 use crate::error::Result;
 use crate::optimize::metric::Term;
 use crate::optimize::motion::optimize_in_place;
-use crate::optimize::small::{cofactor, det, dot, mul_vec, Vector};
+use crate::optimize::small::{clip_to_ball, cofactor, det, dot, mul_vec, Vector};
 use crate::optimize::{invalid_cells, Problem, QualitySummary};
 
 /// The value of `det S` (1 for a cell of its target shape) the relief asks for at the points a
@@ -74,17 +74,6 @@ pub fn lifting_displacement<const D: usize>(
     d
 }
 
-/// `p` moved towards `anchor` until it is at most `radius` from it.
-fn clip<const D: usize>(p: Vector<D>, anchor: Vector<D>, radius: f64) -> Vector<D> {
-    let o: Vector<D> = std::array::from_fn(|k| p[k] - anchor[k]);
-    let length = dot(&o, &o).sqrt();
-    if length <= radius {
-        p
-    } else {
-        std::array::from_fn(|k| anchor[k] + o[k] * radius / length)
-    }
-}
-
 impl<const D: usize, B: CubeMap<D>> Domain<D, B> {
     /// The point on the boundary (in frame coordinates) of every boundary vertex; `None` for the
     /// inner ones.
@@ -132,7 +121,7 @@ impl<const D: usize, B: CubeMap<D>> Domain<D, B> {
                 let anchor = anchors[v].expect("a boundary vertex");
                 problem.node_terms(v, &x, &mut terms);
                 let d = lifting_displacement(&terms, x[v], MARGIN);
-                x[v] = clip(std::array::from_fn(|k| x[v][k] + d[k]), anchor, radius);
+                x[v] = clip_to_ball(std::array::from_fn(|k| x[v][k] + d[k]), anchor, radius);
             }
             let done = sweeps as usize;
             let stats =
@@ -204,8 +193,8 @@ mod tests {
 
     #[test]
     fn clip_keeps_points_within_the_radius() {
-        assert_eq!(clip([0.3, 0.4], [0.0, 0.0], 1.0), [0.3, 0.4]);
-        let p = clip([3.0, 4.0], [0.0, 0.0], 1.0);
+        assert_eq!(clip_to_ball([0.3, 0.4], [0.0, 0.0], 1.0), [0.3, 0.4]);
+        let p = clip_to_ball([3.0, 4.0], [0.0, 0.0], 1.0);
         assert!((p[0] - 0.6).abs() < 1e-15 && (p[1] - 0.8).abs() < 1e-15);
     }
 }

@@ -120,6 +120,17 @@ pub fn mul_transpose_vec<const D: usize>(a: &Matrix<D>, v: &Vector<D>) -> Vector
     r
 }
 
+/// `p` moved towards `anchor` until it is at most `radius` from it.
+pub fn clip_to_ball<const D: usize>(p: Vector<D>, anchor: Vector<D>, radius: f64) -> Vector<D> {
+    let o: Vector<D> = std::array::from_fn(|k| p[k] - anchor[k]);
+    let length = dot(&o, &o).sqrt();
+    if length <= radius {
+        p
+    } else {
+        std::array::from_fn(|k| anchor[k] + o[k] * radius / length)
+    }
+}
+
 /// Dot product.
 pub fn dot<const D: usize>(a: &Vector<D>, b: &Vector<D>) -> f64 {
     a.iter().zip(b).map(|(x, y)| x * y).sum()

@@ -5,6 +5,7 @@
 use std::time::Instant;
 
 use super::map::{FitReport, SplineMap};
+use super::untangle::UntangleOptions;
 use super::validity::{ValidityOptions, ValidityReport};
 use crate::domain::{CubeMap, Domain, DomainOptions};
 use crate::error::{Error, Result};
@@ -134,8 +135,15 @@ pub fn adapt<const D: usize, B: CubeMap<D>>(
     let mut report = AdaptReport::default();
     let mut round = 0u32;
     loop {
-        let (map, fit, validity) =
-            SplineMap::fit_tmesh_checked(domain.mesh(), domain.positions(), &options.validity)?;
+        let (map, fit, validity) = SplineMap::fit_tmesh_checked(
+            domain.mesh(),
+            domain.positions(),
+            &options.validity,
+            &UntangleOptions {
+                boundary_offset: options.domain.boundary_offset,
+                ..Default::default()
+            },
+        )?;
         let reached = validity.certified_positive && validity.min_quality >= options.target_quality;
         let cells = if reached || round == options.max_rounds {
             Vec::new()

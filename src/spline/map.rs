@@ -8,6 +8,7 @@ use rayon::prelude::*;
 use super::solve::SparseLu;
 use super::space::{BasisValues, SplineSpace};
 use super::thb::ThbSpace;
+use super::untangle::UntangleOptions;
 use super::validity::{ValidityOptions, ValidityReport};
 use crate::error::{check_finite, Error, Result};
 use crate::optimize::metric::mean_ratio;
@@ -60,11 +61,17 @@ pub struct FitReport {
     /// Whether the coefficients come from the quasi-interpolant
     /// ([`SplineMap::fit_quasi_interpolation`], or an exact refinement).
     pub quasi_interpolation: bool,
+    /// Control points moved by the untangling ([`SplineMap::untangle`]) of a map the fit left
+    /// uncertified; 0 when the fitted map was kept as it was.
+    pub untangled: usize,
+    /// Largest move of a boundary control point by the untangling, relative to the bounding
+    /// box (see [`UntangleOptions::boundary_offset`]); 0 when the boundary was kept.
+    pub boundary_offset: f64,
     /// Smallest LU pivot relative to the largest matrix entry.
     pub smallest_pivot: f64,
     /// Bandwidth of the reordered collocation matrix.
     pub bandwidth: usize,
-    /// Wall-clock seconds.
+    /// Wall-clock seconds (with the certification and untangling of [`SplineMap::fit_checked`]).
     pub seconds: f64,
 }
 
@@ -249,6 +256,8 @@ impl<const D: usize, S: SplineSpace<D>> SplineMap<D, S> {
             least_squares,
             quasi_interpolation: false,
             smallest_pivot: lu.smallest_pivot(),
+            untangled: 0,
+            boundary_offset: 0.0,
             seconds: start.elapsed().as_secs_f64(),
         };
         Ok((SplineMap { space, control }, report))
@@ -450,8 +459,12 @@ impl<const D: usize> SplineMap<D, ThbSpace<D>> {
         mesh: &crate::tmesh::TMesh<D>,
         positions: &[[f64; D]],
     ) -> Result<(Self, FitReport)> {
-        let (map, report, _) =
-            Self::fit_tmesh_checked(mesh, positions, &ValidityOptions::default())?;
+        let (map, report, _) = Self::fit_tmesh_checked(
+            mesh,
+            positions,
+            &ValidityOptions::default(),
+            &UntangleOptions::default(),
+        )?;
         Ok((map, report))
     }
 
@@ -461,10 +474,11 @@ impl<const D: usize> SplineMap<D, ThbSpace<D>> {
         mesh: &crate::tmesh::TMesh<D>,
         positions: &[[f64; D]],
         options: &ValidityOptions,
+        untangle: &UntangleOptions,
     ) -> Result<(Self, FitReport, ValidityReport)> {
         let source = super::quadratic::QuadraticMap::new(mesh, positions)?;
         let space = ThbSpace::new(mesh.tree().clone())?;
-        Self::fit_checked(space, |x| source.eval(x), options)
+        Self::fit_checked(space, |x| source.eval(x), options, untangle)
     }
 
     /// Fits `f` by [`SplineMap::fit`] (Greville interpolation, or least squares) and, unless
@@ -472,27 +486,36 @@ impl<const D: usize> SplineMap<D, ThbSpace<D>> {
     /// the better: certified valid first, then fewer uncertified elements, then the higher
     /// smallest mean ratio, the interpolation on ties. Interpolation follows the data more
     /// closely; the local quasi-interpolant does not overshoot where the collocation is badly
-    /// conditioned. Returns the map, its fit report and its validity.
+    /// conditioned. When the map kept is not certified valid, it is untangled
+    /// ([`SplineMap::untangle`] with `untangle`). Returns the map, its fit report and its
+    /// validity (certified with `options`).
     pub fn fit_checked(
         space: ThbSpace<D>,
         f: impl Fn([f64; D]) -> Option<[f64; D]> + Sync,
         options: &ValidityOptions,
+        untangle: &UntangleOptions,
     ) -> Result<(Self, FitReport, ValidityReport)> {
-        let (map, report) = SplineMap::fit(space.clone(), &f)?;
+        let start = Instant::now();
+        let (map, mut report) = SplineMap::fit(space.clone(), &f)?;
         let validity = map.validity(options);
         if validity.certified_positive {
+            report.seconds = start.elapsed().as_secs_f64();
             return Ok((map, report, validity));
         }
         let (quasi, quasi_report) = SplineMap::fit_quasi_interpolation(space, &f)?;
         let quasi_validity = quasi.validity(options);
         let rank = |v: &ValidityReport| (v.uncertified, -v.min_quality);
-        Ok(
-            if rank(&quasi_validity).partial_cmp(&rank(&validity)) == Some(std::cmp::Ordering::Less)
-            {
-                (quasi, quasi_report, quasi_validity)
-            } else {
-                (map, report, validity)
-            },
-        )
+        let (mut map, mut report, validity) = if rank(&quasi_validity).partial_cmp(&rank(&validity))
+            == Some(std::cmp::Ordering::Less)
+        {
+            (quasi, quasi_report, quasi_validity)
+        } else {
+            (map, report, validity)
+        };
+        let (validity, untangled) = map.untangle(validity, options, untangle);
+        report.untangled = untangled.moved;
+        report.boundary_offset = untangled.boundary_offset;
+        report.seconds = start.elapsed().as_secs_f64();
+        Ok((map, report, validity))
     }
 }

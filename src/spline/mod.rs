@@ -17,6 +17,7 @@ mod quasi;
 mod solve;
 mod space;
 mod thb;
+mod untangle;
 mod validity;
 mod vtu;
 
@@ -27,5 +28,6 @@ pub use quadratic::QuadraticMap;
 pub use solve::SparseLu;
 pub use space::{BasisValues, SplineSpace};
 pub use thb::ThbSpace;
+pub use untangle::{UntangleOptions, UntangleReport};
 pub(crate) use validity::HISTOGRAM_BINS;
 pub use validity::{ElementValidity, ValidityOptions, ValidityReport};

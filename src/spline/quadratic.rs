@@ -4,6 +4,10 @@
 
 use std::collections::HashMap;
 
+use rayon::prelude::*;
+
+use super::bernstein::Bernstein;
+use super::validity::{jacobian_determinant, lower_bound};
 use crate::error::{Error, Result};
 use crate::optimize::lattice;
 use crate::tmesh::TMesh;
@@ -79,5 +83,42 @@ impl<'a, const D: usize> QuadraticMap<'a, D> {
             }
         }
         Some(y)
+    }
+    /// `det J` of cell `c`'s quadratic map, with respect to the parametric coordinates, as a
+    /// Bernstein polynomial (degree `2d − 1` per direction) on the cell mapped to [0,1]^d.
+    pub fn cell_det_polynomial(&self, c: usize) -> Bernstein<D> {
+        let (lo, hi) = self.mesh.cell_bounds(c);
+        let patches: Vec<Bernstein<D>> = (0..D)
+            .map(|a| {
+                // The lattice and the Bernstein coefficients share their order (direction 0
+                // fastest); the values at 0, ½, 1 become Bernstein coefficients direction by
+                // direction: b₁ = 2·f(½) − (f(0) + f(1))/2.
+                let mut p = Bernstein::zero([2; D]);
+                for (l, x) in self.nodes[c].iter().enumerate() {
+                    p.coef[l] = x[a];
+                }
+                for k in 0..D {
+                    let stride = 3usize.pow(k as u32);
+                    for l in 0..p.coef.len() {
+                        if lattice::coords::<D>(l)[k] == 1 {
+                            let (f0, f2) = (p.coef[l - stride], p.coef[l + stride]);
+                            p.coef[l] = 2.0 * p.coef[l] - 0.5 * (f0 + f2);
+                        }
+                    }
+                }
+                p
+            })
+            .collect();
+        jacobian_determinant(&patches, lo, hi)
+    }
+
+    /// The cells on which `det J > 0` is not proven by the Bernstein coefficients of
+    /// [`QuadraticMap::cell_det_polynomial`], subdivided at most `depth` times (in parallel,
+    /// in cell order).
+    pub fn uncertified_cells(&self, depth: u32) -> Vec<usize> {
+        (0..self.nodes.len())
+            .into_par_iter()
+            .filter(|&c| lower_bound(&self.cell_det_polynomial(c), depth) <= 0.0)
+            .collect()
     }
 }

@@ -178,6 +178,8 @@ impl<const D: usize> SplineMap<D, ThbSpace<D>> {
             quasi_interpolation: true,
             smallest_pivot: 1.0,
             bandwidth: 0,
+            untangled: 0,
+            boundary_offset: 0.0,
             seconds: start.elapsed().as_secs_f64(),
         }
     }

@@ -45,7 +45,12 @@ pub trait SplineSpace<const D: usize>: Clone + Send + Sync {
     /// Values and first derivatives (with respect to the parametric coordinates) of the
     /// functions non-zero at `x`; `None` outside [0,1]^d.
     fn basis_at(&self, x: [f64; D]) -> Option<BasisValues<D>> {
-        let e = self.element_at(x)?;
+        Some(self.basis_on(self.element_at(x)?, x))
+    }
+
+    /// [`SplineSpace::basis_at`] with the element given: the polynomials of element `e` at `x`
+    /// (a point of the element or of its boundary; outside it, `x` is clamped to the element).
+    fn basis_on(&self, e: usize, x: [f64; D]) -> BasisValues<D> {
         let (lo, hi) = self.element_bounds(e);
         let mut value = [[0.0; SPAN_FUNCTIONS]; D];
         let mut slope = [[0.0; SPAN_FUNCTIONS]; D];
@@ -87,12 +92,12 @@ pub trait SplineSpace<const D: usize>: Clone + Send + Sync {
                 }
             }
         }
-        Some(BasisValues {
+        BasisValues {
             element: e,
             functions: functions.to_vec(),
             values,
             gradients,
-        })
+        }
     }
 }
 

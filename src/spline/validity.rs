@@ -72,7 +72,7 @@ pub struct ValidityReport {
 
 /// Lower bound of a Bernstein polynomial on [0,1]^d by subdivision, stopping at positive
 /// bounds, at a non-positive corner value (the polynomial's own value there) or at `depth`.
-fn lower_bound<const D: usize>(p: &Bernstein<D>, depth: u32) -> f64 {
+pub(crate) fn lower_bound<const D: usize>(p: &Bernstein<D>, depth: u32) -> f64 {
     let m = p.min_coef();
     if m > 0.0 || depth == 0 {
         return m;
@@ -119,29 +119,7 @@ impl<const D: usize, S: SplineSpace<D>> SplineMap<D, S> {
                 p
             })
             .collect();
-        // jac[a][b] = ∂S_a/∂x_b.
-        let jac: Vec<Vec<Bernstein<D>>> = patches
-            .iter()
-            .map(|p| {
-                (0..D)
-                    .map(|b| {
-                        let mut d = p.derivative(b);
-                        let scale = 1.0 / (hi[b] - lo[b]);
-                        d.coef.iter_mut().for_each(|v| *v *= scale);
-                        d
-                    })
-                    .collect()
-            })
-            .collect();
-        let mut total = Bernstein::zero([3 * D - 1; D]);
-        for (perm, sign) in permutations(D) {
-            let mut term = jac[0][perm[0]].clone();
-            for a in 1..D {
-                term = term.mul(&jac[a][perm[a]]);
-            }
-            total.add_scaled(sign, &term);
-        }
-        total
+        jacobian_determinant(&patches, lo, hi)
     }
 
     /// Certified validity of element `e` and its sampled quality.
@@ -225,6 +203,40 @@ impl<const D: usize, S: SplineSpace<D>> SplineMap<D, S> {
             .map(|e| self.element_validity(e, &options).min_quality)
             .collect()
     }
+}
+
+/// `det J` of the map whose components are the Bernstein `patches` (all of one degree p per
+/// direction) on the box `[lo, hi]` mapped to [0,1]^d, the Jacobian taken with respect to the
+/// box's coordinates: a polynomial of degree `d·p − 1` per direction.
+pub(crate) fn jacobian_determinant<const D: usize>(
+    patches: &[Bernstein<D>],
+    lo: [f64; D],
+    hi: [f64; D],
+) -> Bernstein<D> {
+    // jac[a][b] = ∂S_a/∂x_b.
+    let jac: Vec<Vec<Bernstein<D>>> = patches
+        .iter()
+        .map(|p| {
+            (0..D)
+                .map(|b| {
+                    let mut d = p.derivative(b);
+                    let scale = 1.0 / (hi[b] - lo[b]);
+                    d.coef.iter_mut().for_each(|v| *v *= scale);
+                    d
+                })
+                .collect()
+        })
+        .collect();
+    let degree = patches[0].degree.map(|p| D * p - 1);
+    let mut total = Bernstein::zero(degree);
+    for (perm, sign) in permutations(D) {
+        let mut term = jac[0][perm[0]].clone();
+        for a in 1..D {
+            term = term.mul(&jac[a][perm[a]]);
+        }
+        total.add_scaled(sign, &term);
+    }
+    total
 }
 
 /// All permutations of `0..n` with their signs.

@@ -163,6 +163,8 @@ class FitReport(ctypes.Structure):
         ("residual", ctypes.c_double),
         ("least_squares", ctypes.c_int32),
         ("quasi_interpolation", ctypes.c_int32),
+        ("untangled", ctypes.c_size_t),
+        ("boundary_offset", ctypes.c_double),
         ("seconds", ctypes.c_double),
     ]
 

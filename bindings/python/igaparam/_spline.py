@@ -33,6 +33,11 @@ class FitReport:
         quasi_interpolation: True when the control points come from the local
             quasi-interpolant (chosen when its map is certified valid and the interpolation's
             is not, or less invalid; and on every refinement).
+        untangled: control points moved to untangle a fitted map that was not certified
+            valid (inner ones first, boundary ones only when that was not enough); 0 when the
+            fitted map was kept.
+        boundary_offset: largest move of a boundary control point by that untangling,
+            relative to the bounding box; 0 when the boundary was kept.
         seconds: wall-clock seconds of the call.
     """
 
@@ -41,6 +46,8 @@ class FitReport:
     residual: float
     least_squares: bool
     quasi_interpolation: bool
+    untangled: int
+    boundary_offset: float
     seconds: float
 
     @classmethod
@@ -51,6 +58,8 @@ class FitReport:
             residual=report.residual,
             least_squares=bool(report.least_squares),
             quasi_interpolation=bool(report.quasi_interpolation),
+            untangled=report.untangled,
+            boundary_offset=report.boundary_offset,
             seconds=report.seconds,
         )
 

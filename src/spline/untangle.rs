@@ -1,0 +1,522 @@
+//! Untangling of a fitted spline map: where `det J_S` is not proven positive, the control points
+//! around those elements are moved, one at a time, to minimise the regularised mean-ratio
+//! distortion of `J_S` at sample points of the elements they touch — the T-mesh optimizer's
+//! objective and per-node Newton solver, applied to control points. `J_S` at a point is affine
+//! in each control point (`J_S = A + P_i ∇N_iᵀ`), exactly the form of a T-mesh node's terms.
+//!
+//! Control points of functions that vanish on the boundary of [0,1]^d move freely: the boundary
+//! of the map does not change. Those of functions non-zero on exactly one side (not on an edge
+//! or corner of the square or cube) may move at most `boundary_offset` (in coordinates that map
+//! the control points' bounding box onto a unit box) when that is positive: where two boundary
+//! surfaces meet almost tangentially, `det J_S` on their common edge depends on the surfaces
+//! alone. The map is kept only if fewer elements stay uncertified.
+
+use std::collections::BTreeSet;
+
+use super::map::SplineMap;
+use super::space::SplineSpace;
+use super::thb::ThbSpace;
+use super::validity::{ValidityOptions, ValidityReport};
+use crate::optimize::metric::Term;
+use crate::optimize::node::minimise;
+use crate::optimize::small::{add_outer, clip_to_ball, Matrix, Vector};
+use crate::optimize::NodeSolverOptions;
+
+/// Options of [`SplineMap::untangle`].
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct UntangleOptions {
+    /// Rounds of (mark the uncertified elements, optimize the control points around them,
+    /// certify again).
+    pub rounds: u32,
+    /// Sweeps over the free control points per round.
+    pub sweeps: u32,
+    /// Sample points per direction and element (the element's corners included).
+    pub samples: usize,
+    /// Rings of elements around the uncertified ones whose control points move too.
+    pub rings: u32,
+    /// Largest move of a control point of a function non-zero on the boundary of [0,1]^d (but
+    /// not at a corner of the square or cube), in coordinates that map the control points'
+    /// bounding box onto a unit box; 0 keeps the boundary of the map. The boundary moves only
+    /// when moving the inner control points alone leaves elements uncertified. Default 1e-2,
+    /// as [`DomainOptions::boundary_offset`](crate::domain::DomainOptions::boundary_offset).
+    pub boundary_offset: f64,
+}
+
+impl Default for UntangleOptions {
+    fn default() -> Self {
+        UntangleOptions {
+            rounds: 4,
+            sweeps: 20,
+            samples: 4,
+            rings: 1,
+            boundary_offset: 1e-2,
+        }
+    }
+}
+
+/// What [`SplineMap::untangle`] did.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct UntangleReport {
+    /// Elements not certified before.
+    pub uncertified_before: usize,
+    /// Elements not certified after (equal to before when the map was kept unchanged).
+    pub uncertified_after: usize,
+    /// Control points moved (0 when the map was kept unchanged).
+    pub moved: usize,
+    /// Largest move of a control point of a boundary function, in the unit-box coordinates of
+    /// [`UntangleOptions::boundary_offset`].
+    pub boundary_offset: f64,
+}
+
+/// One element of a [`Region`]: its functions and, per sample, their gradients.
+type SampledElement<const D: usize> = (Vec<usize>, Vec<Vec<[f64; D]>>);
+
+/// The elements and samples the objective of the free control points looks at.
+struct Region<const D: usize> {
+    /// The elements, in increasing order.
+    order: Vec<usize>,
+    /// Per element: its functions and, per sample, their gradients.
+    elements: Vec<SampledElement<D>>,
+    /// Per element and sample, `J_S` in unit-box coordinates.
+    jacobians: Vec<Vec<Matrix<D>>>,
+    /// Per free function: its (element, position in the element's functions) pairs.
+    touches: Vec<(usize, Vec<(usize, usize)>)>,
+    /// Per free function: a length of its support in the unit-box coordinates.
+    lengths: Vec<f64>,
+}
+
+impl<const D: usize> SplineMap<D, ThbSpace<D>> {
+    /// Moves control points around the elements `validity` does not certify so that `det J_S`
+    /// becomes positive there (see the module documentation): first the inner control points,
+    /// then, while elements stay uncertified and `options.boundary_offset` is positive, those of
+    /// the boundary too. Keeps the new control points only when fewer elements stay uncertified
+    /// (or as many, with a higher smallest mean ratio) and returns the validity of the map kept,
+    /// certified with `certify`.
+    pub fn untangle(
+        &mut self,
+        validity: ValidityReport,
+        certify: &ValidityOptions,
+        options: &UntangleOptions,
+    ) -> (ValidityReport, UntangleReport) {
+        let mut report = UntangleReport {
+            uncertified_before: validity.uncertified,
+            uncertified_after: validity.uncertified,
+            ..Default::default()
+        };
+        let mut validity = validity;
+        let caps: &[f64] = if options.boundary_offset > 0.0 {
+            &[0.0, options.boundary_offset]
+        } else {
+            &[0.0]
+        };
+        for &cap in caps {
+            if validity.certified_positive || options.rounds == 0 {
+                break;
+            }
+            let (after, moved, offset) = self.untangle_within(validity, certify, options, cap);
+            validity = after;
+            report.moved += moved;
+            report.boundary_offset = report.boundary_offset.max(offset);
+        }
+        report.uncertified_after = validity.uncertified;
+        (validity, report)
+    }
+
+    /// One stage of [`SplineMap::untangle`]: boundary control points move at most `cap`.
+    /// Returns the validity of the map kept, the control points moved and the largest move of
+    /// a boundary one.
+    fn untangle_within(
+        &mut self,
+        validity: ValidityReport,
+        certify: &ValidityOptions,
+        options: &UntangleOptions,
+        cap: f64,
+    ) -> (ValidityReport, usize, f64) {
+        // Unit-box coordinates: each axis scaled by the extent of the control points.
+        let (lo, hi) = self.control.iter().fold(
+            ([f64::INFINITY; D], [f64::NEG_INFINITY; D]),
+            |(lo, hi), p| {
+                (
+                    std::array::from_fn(|k| lo[k].min(p[k])),
+                    std::array::from_fn(|k| hi[k].max(p[k])),
+                )
+            },
+        );
+        let scale: [f64; D] = std::array::from_fn(|k| {
+            let e = hi[k] - lo[k];
+            if e > 0.0 && e.is_finite() {
+                1.0 / e
+            } else {
+                1.0
+            }
+        });
+        let start: Vec<Vector<D>> = self
+            .control
+            .iter()
+            .map(|p| std::array::from_fn(|k| p[k] * scale[k]))
+            .collect();
+        let mut y = start.clone();
+        let mut uncertified: Vec<usize> = marked(&validity);
+        let mut moved = BTreeSet::new();
+        let solver = NodeSolverOptions {
+            gradient_tolerance: 1e-4,
+            max_iterations: 50,
+            relaxation: 1.0,
+        };
+        for _ in 0..options.rounds {
+            if uncertified.is_empty() {
+                break;
+            }
+            let mut region = self.region(&uncertified, options, cap, &y);
+            for _ in 0..options.sweeps {
+                let mut largest = 0.0f64;
+                for i in 0..region.touches.len() {
+                    let f = region.touches[i].0;
+                    let terms = terms(&region, &region.touches[i].1, &y, f);
+                    let weight_sum: f64 = terms.iter().map(|t| t.w).sum();
+                    let length = region.lengths[i];
+                    let Some(mut next) =
+                        minimise(&terms, y[f], (1 << D) - 1, weight_sum, length, &solver)
+                    else {
+                        continue;
+                    };
+                    if self.boundary_sides(f) > 0 {
+                        next = clip_to_ball(next, start[f], cap);
+                    }
+                    let delta: Vector<D> = std::array::from_fn(|k| next[k] - y[f][k]);
+                    let step = delta.iter().map(|v| v * v).sum::<f64>().sqrt();
+                    largest = largest.max(step / length);
+                    if step > 0.0 {
+                        region.shift(i, delta);
+                        y[f] = next;
+                        moved.insert(f);
+                    }
+                }
+                if largest < 1e-3 {
+                    break;
+                }
+            }
+            let trial = self.with_unit_box(&y, &scale, &moved);
+            let mut elements = region.order.clone();
+            elements.retain(|&e| !trial.element_validity(e, certify).certified_positive);
+            uncertified = elements;
+        }
+        let trial = self.with_unit_box(&y, &scale, &moved);
+        let after = trial.validity(certify);
+        let rank = |v: &ValidityReport| (v.uncertified, -v.min_quality);
+        if rank(&after).partial_cmp(&rank(&validity)) != Some(std::cmp::Ordering::Less) {
+            return (validity, 0, 0.0);
+        }
+        let offset = moved
+            .iter()
+            .filter(|&&f| self.boundary_sides(f) > 0)
+            .map(|&f| {
+                (0..D)
+                    .map(|k| (y[f][k] - start[f][k]).powi(2))
+                    .sum::<f64>()
+                    .sqrt()
+            })
+            .fold(0.0, f64::max);
+        *self = trial;
+        (after, moved.len(), offset)
+    }
+
+    /// The number of sides of [0,1]^d function `f` is non-zero on.
+    fn boundary_sides(&self, f: usize) -> usize {
+        let (level, index) = self.space.functions()[f];
+        let last = super::bernstein::function_count(level) as u32 - 1;
+        index.iter().filter(|&&i| i == 0 || i == last).count()
+    }
+
+    /// This map with the `moved` control points at `y` (unit-box coordinates); the others
+    /// keep their values bit for bit.
+    fn with_unit_box(&self, y: &[Vector<D>], scale: &[f64; D], moved: &BTreeSet<usize>) -> Self {
+        let mut control = self.control.clone();
+        for &f in moved {
+            control[f] = std::array::from_fn(|k| y[f][k] / scale[k]);
+        }
+        SplineMap {
+            space: self.space.clone(),
+            control,
+        }
+    }
+
+    /// The free functions around the `uncertified` elements and the elements and samples of
+    /// their objective.
+    fn region(
+        &self,
+        uncertified: &[usize],
+        options: &UntangleOptions,
+        cap: f64,
+        y: &[Vector<D>],
+    ) -> Region<D> {
+        let mut element_set: BTreeSet<usize> = uncertified.iter().copied().collect();
+        let mut functions = BTreeSet::new();
+        let support = self.function_elements();
+        let movable = |f: usize| {
+            let sides = self.boundary_sides(f);
+            sides == 0 || (sides < D && cap > 0.0)
+        };
+        for ring in 0..=options.rings {
+            let current: Vec<usize> = element_set.iter().copied().collect();
+            for e in current {
+                for &f in self.space.extraction(e).0 {
+                    if movable(f) && functions.insert(f) && ring < options.rings {
+                        element_set.extend(support[f].iter().copied());
+                    }
+                }
+            }
+        }
+        // The objective of a function covers its whole support.
+        let mut objective_elements = BTreeSet::new();
+        for &f in &functions {
+            objective_elements.extend(support[f].iter().copied());
+        }
+        let order: Vec<usize> = objective_elements.into_iter().collect();
+        let n = options.samples.max(2);
+        let per = n.pow(D as u32);
+        let elements: Vec<SampledElement<D>> = order
+            .iter()
+            .map(|&e| {
+                let (lo, hi) = self.space.element_bounds(e);
+                let samples = (0..per)
+                    .map(|s| {
+                        let x: [f64; D] = std::array::from_fn(|k| {
+                            let i = s / n.pow(k as u32) % n;
+                            lo[k] + (hi[k] - lo[k]) * i as f64 / (n - 1) as f64
+                        });
+                        self.space.basis_on(e, x).gradients
+                    })
+                    .collect();
+                (self.space.extraction(e).0.to_vec(), samples)
+            })
+            .collect();
+        let position: std::collections::HashMap<usize, usize> =
+            order.iter().enumerate().map(|(i, &e)| (e, i)).collect();
+        let mut touches = Vec::with_capacity(functions.len());
+        let mut lengths = Vec::with_capacity(functions.len());
+        for &f in &functions {
+            let list: Vec<(usize, usize)> = support[f]
+                .iter()
+                .map(|e| {
+                    let r = position[e];
+                    let at = elements[r]
+                        .0
+                        .iter()
+                        .position(|&g| g == f)
+                        .expect("a function of its support's elements");
+                    (r, at)
+                })
+                .collect();
+            let side: f64 = support[f]
+                .iter()
+                .map(|&e| {
+                    let (lo, hi) = self.space.element_bounds(e);
+                    hi[0] - lo[0]
+                })
+                .sum::<f64>()
+                / support[f].len().max(1) as f64;
+            lengths.push(side);
+            touches.push((f, list));
+        }
+        let jacobians = elements
+            .iter()
+            .map(|(functions, samples)| {
+                samples
+                    .iter()
+                    .map(|gradients| {
+                        let mut j = [[0.0; D]; D];
+                        for (&h, g) in functions.iter().zip(gradients) {
+                            j = add_outer(&j, &y[h], g);
+                        }
+                        j
+                    })
+                    .collect()
+            })
+            .collect();
+        Region {
+            order,
+            elements,
+            jacobians,
+            touches,
+            lengths,
+        }
+    }
+
+    /// Per function, the elements it is non-zero on.
+    fn function_elements(&self) -> Vec<Vec<usize>> {
+        let mut support = vec![Vec::new(); self.basis_count()];
+        for e in 0..self.element_count() {
+            for &f in self.space.extraction(e).0 {
+                support[f].push(e);
+            }
+        }
+        support
+    }
+}
+
+impl<const D: usize> Region<D> {
+    /// Updates the Jacobians after free function `i` (of `touches`) moved by `delta`.
+    fn shift(&mut self, i: usize, delta: Vector<D>) {
+        for &(r, at) in &self.touches[i].1 {
+            let (_, samples) = &self.elements[r];
+            for (j, gradients) in self.jacobians[r].iter_mut().zip(samples) {
+                *j = add_outer(j, &delta, &gradients[at]);
+            }
+        }
+    }
+}
+
+/// The uncertified elements of a report.
+fn marked(validity: &ValidityReport) -> Vec<usize> {
+    validity
+        .elements
+        .iter()
+        .enumerate()
+        .filter(|(_, v)| !v.certified_positive)
+        .map(|(e, _)| e)
+        .collect()
+}
+
+/// The objective terms of free function `f` (control point `y[f]`): one per sample of each
+/// element it touches, weighted equally per element.
+fn terms<const D: usize>(
+    region: &Region<D>,
+    touches: &[(usize, usize)],
+    y: &[Vector<D>],
+    f: usize,
+) -> Vec<Term<D>> {
+    let minus: Vector<D> = y[f].map(|v| -v);
+    let mut out = Vec::new();
+    for &(r, at) in touches {
+        let samples = &region.elements[r].1;
+        let w = 1.0 / samples.len() as f64;
+        for (gradients, j) in samples.iter().zip(&region.jacobians[r]) {
+            let g = gradients[at];
+            if g.iter().all(|&v| v == 0.0) {
+                continue;
+            }
+            out.push(Term {
+                a: add_outer(j, &minus, &g),
+                g,
+                w,
+            });
+        }
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::tmesh::Tree;
+
+    /// The identity of [0,1]^d on the uniform space of `level` (control points at the Greville
+    /// points), with the inner control point `moved` displaced by `by`.
+    fn folded<const D: usize>(level: u8, moved: usize, by: [f64; D]) -> SplineMap<D> {
+        let mut tree = Tree::<D>::new();
+        tree.refine_uniformly(level).unwrap();
+        let space = ThbSpace::new(tree).unwrap();
+        let mut control = space.greville_points();
+        for k in 0..D {
+            control[moved][k] += by[k];
+        }
+        SplineMap::new(space, control).unwrap()
+    }
+
+    /// The index of the function of multi-index `index` (one level).
+    fn function<const D: usize>(map: &SplineMap<D>, index: [u32; D]) -> usize {
+        map.space()
+            .functions()
+            .iter()
+            .position(|&(_, i)| i == index)
+            .unwrap()
+    }
+
+    fn untangles<const D: usize>(level: u8, index: [u32; D], by: [f64; D]) {
+        let probe = folded::<D>(level, 0, [0.0; D]);
+        let f = function(&probe, index);
+        let mut map = folded::<D>(level, f, by);
+        let certify = ValidityOptions::default();
+        let before = map.validity(&certify);
+        assert!(
+            before.uncertified > 0,
+            "the displaced point folds the map: {f} {:?} {:?}",
+            map.control_points()[f],
+            before.det_lower_bound
+        );
+        assert!(before.elements.iter().any(|v| v.sampled_min_det < 0.0));
+        let original = map.control_points().to_vec();
+        let options = UntangleOptions {
+            boundary_offset: 0.0,
+            ..Default::default()
+        };
+        let (after, report) = map.untangle(before.clone(), &certify, &options);
+        assert!(after.certified_positive, "{report:?}");
+        assert_eq!(after, map.validity(&certify));
+        assert_eq!(report.uncertified_before, before.uncertified);
+        assert_eq!(report.uncertified_after, 0);
+        assert!(report.moved > 0 && report.boundary_offset == 0.0);
+        // The boundary of the map is that of the identity: its control points did not move.
+        for (g, (p, q)) in original.iter().zip(map.control_points()).enumerate() {
+            if map.boundary_sides(g) > 0 {
+                assert_eq!(p, q, "boundary control point {g} moved");
+            }
+        }
+    }
+
+    #[test]
+    fn a_folded_square_is_untangled_with_its_boundary_kept() {
+        untangles::<2>(2, [2, 2], [0.8, 0.0]);
+    }
+
+    #[test]
+    fn a_folded_cube_is_untangled_with_its_boundary_kept() {
+        untangles::<3>(2, [3, 2, 3], [0.0, 1.2, 0.0]);
+    }
+
+    #[test]
+    fn a_certified_map_is_left_as_it_is() {
+        let mut map = folded::<2>(2, 0, [0.0; 2]);
+        let certify = ValidityOptions::default();
+        let validity = map.validity(&certify);
+        let control = map.control_points().to_vec();
+        let (after, report) = map.untangle(validity.clone(), &certify, &UntangleOptions::default());
+        assert_eq!(after, validity);
+        assert_eq!(report.moved, 0);
+        assert_eq!(map.control_points(), &control[..]);
+    }
+
+    #[test]
+    fn boundary_control_points_move_within_the_offset() {
+        // A boundary control point pushed across the domain folds the map whatever the inner
+        // points do; with an offset the boundary may move, at most that far.
+        let probe = folded::<2>(2, 0, [0.0; 2]);
+        let f = function(&probe, [2, 0]);
+        let mut map = folded::<2>(2, f, [0.0, 0.3]);
+        let certify = ValidityOptions::default();
+        let before = map.validity(&certify);
+        assert!(before.uncertified > 0);
+        let original = map.control_points().to_vec();
+        let options = UntangleOptions {
+            boundary_offset: 0.05,
+            ..Default::default()
+        };
+        let (after, report) = map.untangle(before.clone(), &certify, &options);
+        assert!(after.uncertified <= before.uncertified);
+        assert!(report.boundary_offset <= 0.05 * (1.0 + 1e-12), "{report:?}");
+        // Moves are measured in the unit box of the control points, here the unit square.
+        let extent = [1.0, 1.0];
+        for (g, (p, q)) in original.iter().zip(map.control_points()).enumerate() {
+            if map.boundary_sides(g) > 0 {
+                let d: f64 = (0..2)
+                    .map(|k| ((p[k] - q[k]) / extent[k]).powi(2))
+                    .sum::<f64>();
+                assert!(
+                    d.sqrt() <= 0.05 * (1.0 + 1e-9) + 1e-12,
+                    "{g}: {p:?} → {q:?}"
+                );
+            }
+        }
+    }
+}
