@@ -907,7 +907,7 @@ igaparam_validity_options igaparam_validity_options_default(void);
  * result for it. When the interpolation's map is not certified, the local quasi-interpolant is
  * made too and the better kept; when that is still not certified, the map is untangled: the
  * control points around the uncertified elements move to lift det J (inner ones first, keeping
- * the boundary; then boundary ones, at most 0.01 of the bounding box, except at the corners),
+ * the boundary; then boundary ones, at most 0.01 of the bounding box),
  * kept only if fewer elements stay uncertified (`report->untangled`,
  * `report->boundary_offset`).
  */

@@ -4,12 +4,13 @@
 //! objective and per-node Newton solver, applied to control points. `J_S` at a point is affine
 //! in each control point (`J_S = A + P_i ∇N_iᵀ`), exactly the form of a T-mesh node's terms.
 //!
-//! Control points of functions that vanish on the boundary of [0,1]^d move freely: the boundary
-//! of the map does not change. Those of functions non-zero on exactly one side (not on an edge
-//! or corner of the square or cube) may move at most `boundary_offset` (in coordinates that map
-//! the control points' bounding box onto a unit box) when that is positive: where two boundary
-//! surfaces meet almost tangentially, `det J_S` on their common edge depends on the surfaces
-//! alone. The map is kept only if fewer elements stay uncertified.
+//! First only the control points of functions that vanish on the boundary of [0,1]^d move: the
+//! boundary of the map does not change. If elements stay uncertified and `boundary_offset` is
+//! positive, those of the boundary functions move too, each at most `boundary_offset` (in
+//! coordinates that map the control points' bounding box onto a unit box) from where it was:
+//! where two boundary surfaces meet almost tangentially, `det J_S` on their common edge depends
+//! on the surfaces alone, and at a corner of the cube on its three edge curves alone. The map is
+//! kept only if fewer elements stay uncertified.
 
 use std::collections::BTreeSet;
 
@@ -34,9 +35,8 @@ pub struct UntangleOptions {
     pub samples: usize,
     /// Rings of elements around the uncertified ones whose control points move too.
     pub rings: u32,
-    /// Largest move of a control point of a function non-zero on the boundary of [0,1]^d (but
-    /// not at a corner of the square or cube), in coordinates that map the control points'
-    /// bounding box onto a unit box; 0 keeps the boundary of the map. The boundary moves only
+    /// Largest move of a control point of a function non-zero on the boundary of [0,1]^d, in
+    /// coordinates that map the control points' bounding box onto a unit box; 0 keeps the boundary of the map. The boundary moves only
     /// when moving the inner control points alone leaves elements uncertified. Default 1e-2,
     /// as [`DomainOptions::boundary_offset`](crate::domain::DomainOptions::boundary_offset).
     pub boundary_offset: f64,
@@ -253,10 +253,7 @@ impl<const D: usize> SplineMap<D, ThbSpace<D>> {
         let mut element_set: BTreeSet<usize> = uncertified.iter().copied().collect();
         let mut functions = BTreeSet::new();
         let support = self.function_elements();
-        let movable = |f: usize| {
-            let sides = self.boundary_sides(f);
-            sides == 0 || (sides < D && cap > 0.0)
-        };
+        let movable = |f: usize| cap > 0.0 || self.boundary_sides(f) == 0;
         for ring in 0..=options.rings {
             let current: Vec<usize> = element_set.iter().copied().collect();
             for e in current {
