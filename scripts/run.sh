@@ -11,7 +11,8 @@
 # and draws them (cells coloured by quality) with igaparam_render:
 #   out/airfoil_relocated.png, out/airfoil_laplacian.png, out/wing_relocated.png,
 #   out/airfoil_sorted_quality.png, out/wing_sorted_quality.png (cell qualities sorted ascending,
-#   harmonic placement against optimized), out/gran_canaria_spline.png, out/puzzle_spline.png
+#   harmonic placement against optimized), out/gran_canaria_spline.png, out/puzzle_spline.png,
+#   out/duck3d_spline.png
 #   (spline maps coloured by the mean ratio of their Jacobian)
 # Rendering needs an X display: the real one, else a virtual one through xvfb-run; without
 # either, the pictures are skipped with a message.
@@ -88,4 +89,6 @@ if [[ -x $param ]]; then
     --no-edges --title "Gran Canaria: spline map, mean ratio of the Jacobian"
   draw out/puzzle_spline.vtu out/puzzle_spline.png --array quality --range 0 1 --no-edges \
     --title "puzzle piece after adaptation: spline map, mean ratio of the Jacobian"
+  draw out/duck3d_spline.vtu out/duck3d_spline.png --array quality --range 0 1 --no-edges \
+    --view 30 20 --title "3D duck B-rep: untangled spline map, mean ratio of the Jacobian"
 fi
