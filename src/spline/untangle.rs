@@ -26,8 +26,9 @@ use crate::optimize::NodeSolverOptions;
 /// Options of [`SplineMap::untangle`].
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct UntangleOptions {
-    /// Rounds of (mark the uncertified elements, optimize the control points around them,
-    /// certify again).
+    /// Largest number of rounds of (mark the uncertified elements, optimize the control points
+    /// around them, certify again) per stage; a round that leaves as many elements uncertified
+    /// as it found ends the stage.
     pub rounds: u32,
     /// Sweeps over the free control points per round.
     pub sweeps: u32,
@@ -199,7 +200,13 @@ impl<const D: usize> SplineMap<D, ThbSpace<D>> {
             let trial = self.with_unit_box(&y, &scale, &moved);
             let mut elements = region.order.clone();
             elements.retain(|&e| !trial.element_validity(e, certify).certified_positive);
+            // A round that leaves as many elements uncertified as it started with stops the
+            // stage: more of the same sweeps would not open them.
+            let stalled = elements.len() >= uncertified.len();
             uncertified = elements;
+            if stalled {
+                break;
+            }
         }
         let trial = self.with_unit_box(&y, &scale, &moved);
         let after = trial.validity(certify);
