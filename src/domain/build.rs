@@ -9,7 +9,7 @@ use crate::error::{Error, Result};
 use crate::io::vtu::{DataArray, UnstructuredGrid};
 use crate::optimize::laplace::MeshGraph;
 use crate::optimize::motion::{follow_motion, optimize_in_place};
-use crate::optimize::small::{det, Matrix};
+use crate::optimize::small::{bounding_box, det, Matrix};
 use crate::optimize::{invalid_cells, lattice, NodeSolverOptions, QualitySummary, SweepOptions};
 use crate::tmesh::{TMesh, Tree, UNIT};
 
@@ -224,19 +224,6 @@ pub(super) fn cell_boundary_error<const D: usize>(
         }
     }
     worst
-}
-
-/// Corners of the box around the points.
-pub(super) fn bounding_box<const D: usize>(points: &[[f64; D]]) -> ([f64; D], [f64; D]) {
-    points.iter().fold(
-        ([f64::INFINITY; D], [f64::NEG_INFINITY; D]),
-        |(lo, hi), p| {
-            (
-                std::array::from_fn(|k| lo[k].min(p[k])),
-                std::array::from_fn(|k| hi[k].max(p[k])),
-            )
-        },
-    )
 }
 
 impl<const D: usize, B: CubeMap<D>> Domain<D, B> {

@@ -120,6 +120,19 @@ pub fn mul_transpose_vec<const D: usize>(a: &Matrix<D>, v: &Vector<D>) -> Vector
     r
 }
 
+/// Corners of the box around the points.
+pub fn bounding_box<const D: usize>(points: &[[f64; D]]) -> ([f64; D], [f64; D]) {
+    points.iter().fold(
+        ([f64::INFINITY; D], [f64::NEG_INFINITY; D]),
+        |(lo, hi), p| {
+            (
+                std::array::from_fn(|k| lo[k].min(p[k])),
+                std::array::from_fn(|k| hi[k].max(p[k])),
+            )
+        },
+    )
+}
+
 /// `p` moved towards `anchor` until it is at most `radius` from it.
 pub fn clip_to_ball<const D: usize>(p: Vector<D>, anchor: Vector<D>, radius: f64) -> Vector<D> {
     let o: Vector<D> = std::array::from_fn(|k| p[k] - anchor[k]);

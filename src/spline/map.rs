@@ -504,10 +504,7 @@ impl<const D: usize> SplineMap<D, ThbSpace<D>> {
         }
         let (quasi, quasi_report) = SplineMap::fit_quasi_interpolation(space, &f)?;
         let quasi_validity = quasi.validity(options);
-        let rank = |v: &ValidityReport| (v.uncertified, -v.min_quality);
-        let (mut map, mut report, validity) = if rank(&quasi_validity).partial_cmp(&rank(&validity))
-            == Some(std::cmp::Ordering::Less)
-        {
+        let (mut map, mut report, validity) = if quasi_validity.is_better_than(&validity) {
             (quasi, quasi_report, quasi_validity)
         } else {
             (map, report, validity)

@@ -17,10 +17,10 @@ use std::collections::BTreeSet;
 use super::map::SplineMap;
 use super::space::SplineSpace;
 use super::thb::ThbSpace;
-use super::validity::{ValidityOptions, ValidityReport};
+use super::validity::{element_grid, ValidityOptions, ValidityReport};
 use crate::optimize::metric::Term;
 use crate::optimize::node::minimise;
-use crate::optimize::small::{add_outer, clip_to_ball, Matrix, Vector};
+use crate::optimize::small::{add_outer, bounding_box, clip_to_ball, Matrix, Vector};
 use crate::optimize::NodeSolverOptions;
 
 /// Options of [`SplineMap::untangle`].
@@ -134,15 +134,7 @@ impl<const D: usize> SplineMap<D, ThbSpace<D>> {
         cap: f64,
     ) -> (ValidityReport, usize, f64) {
         // Unit-box coordinates: each axis scaled by the extent of the control points.
-        let (lo, hi) = self.control.iter().fold(
-            ([f64::INFINITY; D], [f64::NEG_INFINITY; D]),
-            |(lo, hi), p| {
-                (
-                    std::array::from_fn(|k| lo[k].min(p[k])),
-                    std::array::from_fn(|k| hi[k].max(p[k])),
-                )
-            },
-        );
+        let (lo, hi) = bounding_box(&self.control);
         let scale: [f64; D] = std::array::from_fn(|k| {
             let e = hi[k] - lo[k];
             if e > 0.0 && e.is_finite() {
@@ -159,6 +151,7 @@ impl<const D: usize> SplineMap<D, ThbSpace<D>> {
         let mut y = start.clone();
         let mut uncertified: Vec<usize> = marked(&validity);
         let mut moved = BTreeSet::new();
+        let support = self.function_elements();
         let solver = NodeSolverOptions {
             gradient_tolerance: 1e-4,
             max_iterations: 50,
@@ -168,7 +161,7 @@ impl<const D: usize> SplineMap<D, ThbSpace<D>> {
             if uncertified.is_empty() {
                 break;
             }
-            let mut region = self.region(&uncertified, options, cap, &y);
+            let mut region = self.region(&uncertified, &support, options, cap, &y);
             for _ in 0..options.sweeps {
                 let mut largest = 0.0f64;
                 for i in 0..region.touches.len() {
@@ -210,8 +203,7 @@ impl<const D: usize> SplineMap<D, ThbSpace<D>> {
         }
         let trial = self.with_unit_box(&y, &scale, &moved);
         let after = trial.validity(certify);
-        let rank = |v: &ValidityReport| (v.uncertified, -v.min_quality);
-        if rank(&after).partial_cmp(&rank(&validity)) != Some(std::cmp::Ordering::Less) {
+        if !after.is_better_than(&validity) {
             return (validity, 0, 0.0);
         }
         let offset = moved
@@ -249,17 +241,17 @@ impl<const D: usize> SplineMap<D, ThbSpace<D>> {
     }
 
     /// The free functions around the `uncertified` elements and the elements and samples of
-    /// their objective.
+    /// their objective; `support` lists each function's elements.
     fn region(
         &self,
         uncertified: &[usize],
+        support: &[Vec<usize>],
         options: &UntangleOptions,
         cap: f64,
         y: &[Vector<D>],
     ) -> Region<D> {
         let mut element_set: BTreeSet<usize> = uncertified.iter().copied().collect();
         let mut functions = BTreeSet::new();
-        let support = self.function_elements();
         let movable = |f: usize| cap > 0.0 || self.boundary_sides(f) == 0;
         for ring in 0..=options.rings {
             let current: Vec<usize> = element_set.iter().copied().collect();
@@ -277,20 +269,12 @@ impl<const D: usize> SplineMap<D, ThbSpace<D>> {
             objective_elements.extend(support[f].iter().copied());
         }
         let order: Vec<usize> = objective_elements.into_iter().collect();
-        let n = options.samples.max(2);
-        let per = n.pow(D as u32);
         let elements: Vec<SampledElement<D>> = order
             .iter()
             .map(|&e| {
                 let (lo, hi) = self.space.element_bounds(e);
-                let samples = (0..per)
-                    .map(|s| {
-                        let x: [f64; D] = std::array::from_fn(|k| {
-                            let i = s / n.pow(k as u32) % n;
-                            lo[k] + (hi[k] - lo[k]) * i as f64 / (n - 1) as f64
-                        });
-                        self.space.basis_on(e, x).gradients
-                    })
+                let samples = element_grid(lo, hi, options.samples)
+                    .map(|x| self.space.basis_on(e, x).gradients)
                     .collect();
                 (self.space.extraction(e).0.to_vec(), samples)
             })

@@ -99,6 +99,15 @@ pub(crate) fn lower_bound<const D: usize>(p: &Bernstein<D>, depth: u32) -> f64 {
         .fold(f64::INFINITY, f64::min)
 }
 
+impl ValidityReport {
+    /// Whether this map is the better of two: fewer uncertified elements, then a higher
+    /// smallest sampled mean ratio.
+    pub(crate) fn is_better_than(&self, other: &ValidityReport) -> bool {
+        let rank = |v: &ValidityReport| (v.uncertified, -v.min_quality);
+        rank(self).partial_cmp(&rank(other)) == Some(std::cmp::Ordering::Less)
+    }
+}
+
 impl<const D: usize, S: SplineSpace<D>> SplineMap<D, S> {
     /// `det J_S` on element `e` as a Bernstein polynomial on the element mapped to [0,1]^d,
     /// the Jacobian taken with respect to the parametric coordinates.
@@ -127,14 +136,9 @@ impl<const D: usize, S: SplineSpace<D>> SplineMap<D, S> {
         let poly = self.det_polynomial(e);
         let bound = lower_bound(&poly, options.max_depth);
         let (lo, hi) = self.element_bounds(e);
-        let n = options.samples.max(2);
         let (mut min_det, mut min_q, mut sum_q) = (f64::INFINITY, f64::INFINITY, 0.0);
-        let per = n.pow(D as u32);
-        for s in 0..per {
-            let x: [f64; D] = std::array::from_fn(|k| {
-                let i = s / n.pow(k as u32) % n;
-                lo[k] + (hi[k] - lo[k]) * i as f64 / (n - 1) as f64
-            });
+        let per = options.samples.max(2).pow(D as u32);
+        for x in element_grid(lo, hi, options.samples) {
             if let Some((_, j)) = self.eval_with_jacobian(x) {
                 let q = mean_ratio(&j);
                 min_det = min_det.min(det(&j));
@@ -159,15 +163,9 @@ impl<const D: usize, S: SplineSpace<D>> SplineMap<D, S> {
             .map(|e| self.element_validity(e, options))
             .collect();
         let mut histogram = [0; HISTOGRAM_BINS];
-        let n = options.samples.max(2);
-        let per = n.pow(D as u32);
         for e in 0..self.element_count() {
             let (lo, hi) = self.element_bounds(e);
-            for s in 0..per {
-                let x: [f64; D] = std::array::from_fn(|k| {
-                    let i = s / n.pow(k as u32) % n;
-                    lo[k] + (hi[k] - lo[k]) * i as f64 / (n - 1) as f64
-                });
+            for x in element_grid(lo, hi, options.samples) {
                 if let Some(q) = self.mean_ratio(x) {
                     histogram[((q * HISTOGRAM_BINS as f64) as usize).min(HISTOGRAM_BINS - 1)] += 1;
                 }
@@ -203,6 +201,22 @@ impl<const D: usize, S: SplineSpace<D>> SplineMap<D, S> {
             .map(|e| self.element_validity(e, &options).min_quality)
             .collect()
     }
+}
+
+/// The `n^d` points (`n` at least 2) of the uniform grid of the box `[lo, hi]`, its corners
+/// included, direction 0 fastest.
+pub(super) fn element_grid<const D: usize>(
+    lo: [f64; D],
+    hi: [f64; D],
+    n: usize,
+) -> impl Iterator<Item = [f64; D]> {
+    let n = n.max(2);
+    (0..n.pow(D as u32)).map(move |s| {
+        std::array::from_fn(|k| {
+            let i = s / n.pow(k as u32) % n;
+            lo[k] + (hi[k] - lo[k]) * i as f64 / (n - 1) as f64
+        })
+    })
 }
 
 /// `det J` of the map whose components are the Bernstein `patches` (all of one degree p per
