@@ -3,7 +3,9 @@
 use std::collections::HashMap;
 
 use igaparam::boundary::*;
-use igaparam::spline::{QuadraticMap, SplineMap, UntangleOptions, ValidityOptions};
+use igaparam::spline::{
+    FitReport, QuadraticMap, SplineMap, UntangleOptions, ValidityOptions, ValidityReport,
+};
 use igaparam::ErrorKind;
 
 fn data(name: &str) -> String {
@@ -389,19 +391,15 @@ fn check_relieved_solid(
     domain
 }
 
-/// The triangulated duck, whose jittered faces meet at reflex angles along parts of the cube's
-/// edges.
-#[test]
-fn duck_faces_give_a_valid_t_mesh_and_a_certified_spline_map() {
-    let domain = check_relieved_solid("duck_faces", 1e-4, 4, 1e-2);
-    // The fitted map folds next to the cube's edges, where the faces meet almost tangentially;
-    // the untangling moves the control points there (boundary ones within the offset).
-    let untangle = UntangleOptions::default();
+/// The checked fit of a solid's T-mesh (default options), asserted certified valid.
+fn certified_fit(
+    domain: &igaparam::domain::SolidDomain,
+) -> (SplineMap<3>, FitReport, ValidityReport) {
     let (map, fit, validity) = SplineMap::fit_tmesh_checked(
         domain.mesh(),
         domain.positions(),
         &ValidityOptions::default(),
-        &untangle,
+        &UntangleOptions::default(),
     )
     .unwrap();
     println!("{fit:?}\n{validity:?}");
@@ -410,6 +408,18 @@ fn duck_faces_give_a_valid_t_mesh_and_a_certified_spline_map() {
         "{} uncertified",
         validity.uncertified
     );
+    (map, fit, validity)
+}
+
+/// The triangulated duck, whose jittered faces meet at reflex angles along parts of the cube's
+/// edges.
+#[test]
+fn duck_faces_give_a_valid_t_mesh_and_a_certified_spline_map() {
+    let domain = check_relieved_solid("duck_faces", 1e-4, 4, 1e-2);
+    // The fitted map folds next to the cube's edges, where the faces meet almost tangentially;
+    // the untangling moves the control points there (boundary ones within the offset).
+    let untangle = UntangleOptions::default();
+    let (map, fit, validity) = certified_fit(&domain);
     assert!(fit.untangled > 0 && fit.boundary_offset <= untangle.boundary_offset * (1.0 + 1e-9));
     assert_eq!(validity, map.validity(&ValidityOptions::default()));
 }
@@ -427,17 +437,5 @@ fn jacksboro_faces_give_a_certified_spline_map_on_a_coarse_t_mesh() {
     let domain = check_relieved_solid("jacksboro_faces", 1e-2, 3, 3e-2);
     let cells = QuadraticMap::new(domain.mesh(), domain.positions()).unwrap();
     assert!(cells.uncertified_cells(5).is_empty());
-    let (_, fit, validity) = SplineMap::fit_tmesh_checked(
-        domain.mesh(),
-        domain.positions(),
-        &ValidityOptions::default(),
-        &UntangleOptions::default(),
-    )
-    .unwrap();
-    println!("{fit:?}\n{validity:?}");
-    assert!(
-        validity.certified_positive,
-        "{} uncertified",
-        validity.uncertified
-    );
+    certified_fit(&domain);
 }

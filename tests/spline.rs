@@ -458,7 +458,7 @@ fn check_cell_certification<const D: usize>(seed: u64, jitter: f64) -> (usize, u
             // det J from differences of the map, against the polynomial: the three-point
             // one-sided rule is exact for the quadratic map of the cell.
             let x: [f64; D] = std::array::from_fn(|k| lo[k] + t[k] * (hi[k] - lo[k]));
-            let mut jac = [[0.0; 3]; 3];
+            let mut jac = [[0.0; D]; D];
             for b in 0..D {
                 let step = if t[b] < 0.5 { 1e-3 } else { -1e-3 } * (hi[b] - lo[b]);
                 let at = |m: f64| {
@@ -471,13 +471,7 @@ fn check_cell_certification<const D: usize>(seed: u64, jitter: f64) -> (usize, u
                     jac[i][b] = (-3.0 * f0[i] + 4.0 * f1[i] - f2[i]) / (2.0 * step);
                 }
             }
-            let det = if D == 2 {
-                jac[0][0] * jac[1][1] - jac[0][1] * jac[1][0]
-            } else {
-                jac[0][0] * (jac[1][1] * jac[2][2] - jac[1][2] * jac[2][1])
-                    - jac[0][1] * (jac[1][0] * jac[2][2] - jac[1][2] * jac[2][0])
-                    + jac[0][2] * (jac[1][0] * jac[2][1] - jac[1][1] * jac[2][0])
-            };
+            let det = igaparam::optimize::small::det(&jac);
             let value = poly.eval(t);
             assert!(
                 (value - det).abs() <= 1e-7 * (1.0 + det.abs()),
