@@ -8,7 +8,7 @@
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
-use igaparam::boundary::{BoundaryLoop2, Coastline, SolidBoundary};
+use igaparam::boundary::{BoundaryLoop2, Coastline, CubeFaces, SolidBoundary};
 use igaparam::domain::{DomainOptions, DomainReport, PlanarDomain, SolidDomain};
 
 fn data(name: &str) -> PathBuf {
@@ -17,8 +17,9 @@ fn data(name: &str) -> PathBuf {
         .join(name)
 }
 
-/// Reads the boundary and builds its T-mesh: seconds of the input stage and the report.
-fn run(name: &str, options: &DomainOptions) -> (f64, DomainReport) {
+/// Reads the boundary (a folder of faces scaled by `scale` when given) and builds its T-mesh:
+/// seconds of the input stage and the report.
+fn run(name: &str, options: &DomainOptions, scale: Option<[f64; 3]>) -> (f64, DomainReport) {
     let path = data(name);
     let start = Instant::now();
     let none = &mut |_: usize, _: usize| true;
@@ -43,7 +44,11 @@ fn run(name: &str, options: &DomainOptions) -> (f64, DomainReport) {
         )
     } else {
         let boundary = if path.is_dir() {
-            SolidBoundary::from_obj_dir(&path)
+            let mut faces = CubeFaces::read_dir(&path).expect("faces");
+            if let Some(factors) = scale {
+                faces.scale(factors).expect("scale");
+            }
+            SolidBoundary::from_cube_faces(&faces)
         } else {
             SolidBoundary::from_gismo_file(&path)
         }
@@ -62,38 +67,46 @@ fn main() {
     let filter: Option<String> = std::env::args().skip(1).find(|a| !a.starts_with('-'));
     let cores = std::thread::available_parallelism().map_or(1, |n| n.get());
     println!("machine: {cores} cores");
-    let planar = DomainOptions::default();
+    let defaults = DomainOptions::default();
     let solid = DomainOptions {
         tolerance: 1e-4,
         max_level: 4,
         ..Default::default()
     };
-    // The Jacksboro faces are slivers with a jagged terrain edge: a coarser tree.
+    // The Jacksboro faces are slivers with a jagged terrain edge in the file's units (x, y in
+    // degrees / 1000, z in km): a coarser tree; in km, the default options.
     let jacksboro = DomainOptions {
         tolerance: 1e-3,
         max_level: 3,
         ..Default::default()
     };
-    let cases: [(&str, &DomainOptions); 9] = [
-        ("puzzle3_bdry.xml", &planar),
-        ("rotor_bdry.xml", &planar),
-        ("male_bdry.xml", &planar),
-        ("duck2d_BRep.xml", &planar),
-        ("gran_canaria.txt", &planar),
-        ("tenerife.txt", &planar),
-        ("duck3d_BRep.xml", &solid),
-        ("duck_faces", &solid),
-        ("jacksboro_faces", &jacksboro),
+    let km = Some([89273.3, 111200.0, 1.0]);
+    let cases: [(&str, &DomainOptions, Option<[f64; 3]>); 10] = [
+        ("puzzle3_bdry.xml", &defaults, None),
+        ("rotor_bdry.xml", &defaults, None),
+        ("male_bdry.xml", &defaults, None),
+        ("duck2d_BRep.xml", &defaults, None),
+        ("gran_canaria.txt", &defaults, None),
+        ("tenerife.txt", &defaults, None),
+        ("duck3d_BRep.xml", &solid, None),
+        ("duck_faces", &solid, None),
+        ("jacksboro_faces", &jacksboro, None),
+        ("jacksboro_faces", &defaults, km),
     ];
     println!(
         "| domain | tolerance | max level | cells | vertices | level reached | invalid after placement | invalid after | min q | mean q | repair rounds | input s | adaptation s | placement s | optimization s | repair s | total s |"
     );
     println!("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|");
-    for (name, options) in cases {
+    for (name, options, scale) in cases {
         if filter.as_ref().is_some_and(|f| !name.contains(f.as_str())) {
             continue;
         }
-        let (input, r) = run(name, options);
+        let (input, r) = run(name, options, scale);
+        let name = if scale.is_some() {
+            format!("{name} in km")
+        } else {
+            name.to_string()
+        };
         let s = r.stages;
         println!(
             "| {name} | {:.0e} | {} | {} | {} | {} | {} | {} | {:.3} | {:.3} | {} | {:.3} | {:.3} | {:.3} | {:.3} | {:.3} | {:.3} |",

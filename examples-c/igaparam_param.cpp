@@ -2,16 +2,18 @@
 //
 //   igaparam_param INPUT OUT_PREFIX [--tol EPS] [--max-level L] [--threads N]
 //                  [--boundary-offset X] [--adapt] [--target-quality Q] [--rounds R]
-//                  [--no-spline]
+//                  [--no-spline] [--scale SX,SY,SZ]
 //
 // INPUT is a G+Smo XML B-rep (four curves, or six surfaces), a coastline .txt, or a folder of six
 // surface files xmin, xmax, ymin, ymax, zmin, zmax (.obj, .off, .stl or .ply, read by OpenMesh).
 // Builds the optimized T-mesh, fits its cubic THB-spline map and certifies it (with --adapt, the
 // adaptive loop refines the T-mesh where the map's mean ratio is under Q or not certified, for
 // at most R rounds). --boundary-offset caps the seam relief of the build (how far, relative to
-// the bounding box, a boundary vertex may leave the boundary; 0 keeps them all on it). Writes
-// OUT_PREFIX_tmesh.vtu with VTK (physical T-mesh: one quad or hexahedron per cell through its corners, point data `parametric`, cell data `quality` and
-// `level`), OUT_PREFIX_spline.vtu (the spline map sampled per element, point data `quality` =
+// the bounding box, a boundary vertex may leave the boundary; 0 keeps them all on it). --scale
+// multiplies the coordinates of triangulated faces per axis, for data whose axes have different
+// units (Floater's parameterization of each face, and q_S, depend on them). Writes
+// OUT_PREFIX_tmesh.vtu with VTK (physical T-mesh: one quad or hexahedron per cell through its
+// corners, point data `parametric`, cell data `quality` and `level`), OUT_PREFIX_spline.vtu (the spline map sampled per element, point data `quality` =
 // q_S and `det`) and OUT_PREFIX.xml (the map as G+Smo XML), prints a summary and, as its last
 // line, one JSON object. Exit codes: 0 success, 1 error, 2 usage.
 
@@ -29,11 +31,15 @@
 #include <vtkXMLUnstructuredGridWriter.h>
 
 #include <algorithm>
+#include <array>
+#include <cmath>
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
+#include <fstream>
 #include <iostream>
+#include <sstream>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -81,6 +87,23 @@ struct Face {
   std::vector<uint32_t> triangles;
 };
 
+// The `v x y z` lines of an OBJ file in double precision, in file order (empty when one of
+// them does not parse).
+std::vector<double> obj_vertices(const fs::path& path) {
+  std::ifstream in(path);
+  std::vector<double> xyz;
+  std::string line;
+  while (std::getline(in, line)) {
+    std::istringstream words(line);
+    std::string key;
+    if (!(words >> key) || key != "v") continue;
+    double p[3];
+    if (!(words >> p[0] >> p[1] >> p[2])) return {};
+    xyz.insert(xyz.end(), p, p + 3);
+  }
+  return xyz;
+}
+
 Face read_face(const fs::path& path) {
   TriMesh mesh;
   if (!OpenMesh::IO::read_mesh(mesh, path.string()))
@@ -92,6 +115,18 @@ Face read_face(const fs::path& path) {
   }
   for (auto face : mesh.faces()) {
     for (auto v : mesh.fv_range(face)) f.triangles.push_back(uint32_t(v.idx()));
+  }
+  // OpenMesh's OBJ reader parses coordinates as float: take the file's own digits back when
+  // its vertices are OpenMesh's, in the same order, so that the same faces give the same
+  // parameterization whichever reader (this one or the library's) is used.
+  std::string ext = path.extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(), ::tolower);
+  if (ext == ".obj") {
+    std::vector<double> exact = obj_vertices(path);
+    bool same = exact.size() == f.xyz.size();
+    for (size_t i = 0; same && i < exact.size(); i++)
+      same = std::abs(exact[i] - f.xyz[i]) <= 1e-6 * std::abs(exact[i]);
+    if (same) f.xyz = std::move(exact);
   }
   return f;
 }
@@ -105,12 +140,35 @@ fs::path face_file(const fs::path& dir, const std::string& name) {
   throw std::runtime_error(dir.string() + ": no " + name + ".obj/.off/.stl/.ply");
 }
 
-void open_domain(const std::string& input, Domain& domain) {
+// Prints a note when the faces' bounding box is over 100 times longer in one axis than in
+// another: a sign of axes in different units (degrees and km, say), which distort Floater's maps.
+void warn_if_anisotropic(const std::vector<Face>& faces) {
+  double lo[3] = {HUGE_VAL, HUGE_VAL, HUGE_VAL}, hi[3] = {-HUGE_VAL, -HUGE_VAL, -HUGE_VAL};
+  for (const Face& f : faces)
+    for (size_t i = 0; i < f.xyz.size(); i++) {
+      lo[i % 3] = std::min(lo[i % 3], f.xyz[i]);
+      hi[i % 3] = std::max(hi[i % 3], f.xyz[i]);
+    }
+  double w[3] = {hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]};
+  double shortest = std::min({w[0], w[1], w[2]}), longest = std::max({w[0], w[1], w[2]});
+  if (longest > 100 * shortest)
+    std::printf("note: the faces span %.4g x %.4g x %.4g; if the axes have different units, give "
+                "them one with --scale SX,SY,SZ\n",
+                w[0], w[1], w[2]);
+}
+
+// Opens INPUT; the coordinates of triangulated faces are multiplied by `scale` per axis (NULL:
+// kept), which other inputs refuse.
+void open_domain(const std::string& input, Domain& domain, const std::array<double, 3>* scale) {
   fs::path path(input);
   if (fs::is_directory(path)) {
     std::vector<Face> faces;
-    for (const char* name : {"xmin", "xmax", "ymin", "ymax", "zmin", "zmax"})
+    for (const char* name : {"xmin", "xmax", "ymin", "ymax", "zmin", "zmax"}) {
       faces.push_back(read_face(face_file(path, name)));
+      if (scale)
+        for (size_t i = 0; i < faces.back().xyz.size(); i++) faces.back().xyz[i] *= (*scale)[i % 3];
+    }
+    warn_if_anisotropic(faces);
     size_t nv[6], nt[6];
     const double* xyz[6];
     const uint32_t* tri[6];
@@ -124,6 +182,7 @@ void open_domain(const std::string& input, Domain& domain) {
     return;
   }
   if (!fs::exists(path)) throw std::runtime_error(input + ": no such file or folder");
+  if (scale) throw std::runtime_error(input + ": --scale applies to a folder of triangulated faces only");
   // A .xml B-rep is planar (four curves) or solid (six surfaces): try planar first.
   igaparam_status s = igaparam_domain_new_from_file(input.c_str(), &domain.d);
   if (s == IGAPARAM_STATUS_OK) return;
@@ -191,15 +250,32 @@ unsigned parse_count(const std::string& v, size_t& used) {
   return unsigned(x);
 }
 
+// Three positive finite factors "SX,SY,SZ"; throws a std::logic_error otherwise.
+std::array<double, 3> parse_scale(const std::string& v) {
+  std::array<double, 3> f{};
+  size_t at = 0;
+  for (int k = 0; k < 3; k++) {
+    size_t used = 0;
+    f[k] = std::stod(v.substr(at), &used);
+    if (!std::isfinite(f[k]) || f[k] <= 0) throw std::out_of_range(v);
+    at += used;
+    if (k < 2 && (at >= v.size() || v[at++] != ',')) throw std::invalid_argument(v);
+  }
+  if (at != v.size()) throw std::invalid_argument(v);
+  return f;
+}
+
 int usage(const char* argv0) {
   std::fprintf(stderr,
                "usage: %s INPUT OUT_PREFIX [--tol EPS] [--max-level L] [--threads N]\n"
                "         [--boundary-offset X] [--adapt] [--target-quality Q] [--rounds R]\n"
-               "         [--no-spline]\n"
+               "         [--no-spline] [--scale SX,SY,SZ]\n"
                "  INPUT: G+Smo XML B-rep, coastline .txt, or a folder of six faces\n"
                "         xmin xmax ymin ymax zmin zmax (.obj/.off/.stl/.ply)\n"
                "  --boundary-offset X: seam relief cap of the build, relative to the bounding box\n"
-               "         (X >= 0, default 1e-2; 0 keeps every boundary vertex on the boundary)\n",
+               "         (X >= 0, default 1e-2; 0 keeps every boundary vertex on the boundary)\n"
+               "  --scale SX,SY,SZ: multiply the coordinates of the faces (folder input) per axis,\n"
+               "         to give every axis the same unit (e.g. degrees to km)\n",
                argv0);
   return 2;
 }
@@ -212,6 +288,8 @@ int main(int argc, char** argv) {
   igaparam_domain_options options = igaparam_domain_options_default();
   igaparam_adapt_options adapt = igaparam_adapt_options_default();
   bool adaptive = false, spline_wanted = true;
+  std::array<double, 3> scale{};
+  bool scaled = false;
   try {
     for (int i = 3; i < argc; i++) {
       std::string a = argv[i];
@@ -236,6 +314,10 @@ int main(int argc, char** argv) {
         adapt.max_rounds = parse_count(v, used);
       } else if (a == "--boundary-offset") {
         options.boundary_offset = std::stod(v, &used);
+      } else if (a == "--scale") {
+        scale = parse_scale(v);
+        scaled = true;
+        used = v.size();
       } else {
         return usage(argv[0]);
       }
@@ -246,7 +328,7 @@ int main(int argc, char** argv) {
   }
   try {
     Domain domain;
-    open_domain(input, domain);
+    open_domain(input, domain, scaled ? &scale : nullptr);
     size_t dim = 0;
     check(igaparam_domain_dimension(domain.d, &dim), "dimension");
     igaparam_domain_report r;

@@ -39,6 +39,8 @@ constexpr const char* kUsage =
     "  --cut AXIS F        3D: keep the cells whose centre lies below the fraction F (0..1) of the\n"
     "                      bounding box along AXIS (x, y or z), to show the inside\n"
     "  --view AZ EL        3D: camera azimuth and elevation in degrees (default 35 25)\n"
+    "  --stretch X Y Z     draw the mesh with its axes multiplied by X, Y, Z (> 0; e.g. the\n"
+    "                      vertical exaggeration of a terrain); the colours are unchanged\n"
     "  --labels A,B,...    curve labels of --sorted-quality (default: the file names)\n"
     "  --help              this text\n"
     "\n"
@@ -132,6 +134,11 @@ std::optional<Arguments> parse_arguments(int argc, char** argv) {
     } else if (arg == "--view") {
       args.picture.azimuth = parse_number(arg, value());
       args.picture.elevation = parse_number(arg, value());
+    } else if (arg == "--stretch") {
+      for (double& f : args.picture.stretch) {
+        f = parse_number(arg, value());
+        if (!(f > 0 && std::isfinite(f))) throw UsageError("--stretch expects three positive factors");
+      }
     } else if (arg == "--labels") {
       args.labels = split_commas(value());
     } else if (arg.size() > 1 && arg[0] == '-') {

@@ -119,6 +119,9 @@ struct MeshPicture {
   /// 3D camera: rotations (degrees) of the view from the +z side about the view-up (y) axis and
   /// then the horizontal axis.
   double azimuth = 35, elevation = 25;
+  /// Factors multiplying the drawn coordinates per axis (display only, e.g. a terrain's
+  /// vertical exaggeration).
+  double stretch[3] = {1, 1, 1};
 };
 
 namespace detail {
@@ -352,6 +355,7 @@ inline void render_mesh_png(vtkUnstructuredGrid* input, const MeshPicture& pictu
   renderer->UseFXAAOff();
   vtkNew<vtkActor> surface_actor;
   surface_actor->SetMapper(mapper);
+  surface_actor->SetScale(picture.stretch[0], picture.stretch[1], picture.stretch[2]);
   surface_actor->GetProperty()->SetAmbient(dimension == 3 ? 0.35 : 1.0);
   surface_actor->GetProperty()->SetDiffuse(dimension == 3 ? 0.65 : 0.0);
   renderer->AddActor(surface_actor);
@@ -401,6 +405,7 @@ inline void render_mesh_png(vtkUnstructuredGrid* input, const MeshPicture& pictu
     edge_mapper->SetRelativeCoincidentTopologyLineOffsetParameters(-2, -40);
     vtkNew<vtkActor> edge_actor;
     edge_actor->SetMapper(edge_mapper);
+    edge_actor->SetScale(picture.stretch[0], picture.stretch[1], picture.stretch[2]);
     edge_actor->GetProperty()->SetColor(0.1, 0.1, 0.1);
     edge_actor->GetProperty()->SetLineWidth(std::max(1.0f, static_cast<float>(picture.height) / 900.0f));
     edge_actor->GetProperty()->LightingOff();
@@ -452,7 +457,8 @@ inline void render_mesh_png(vtkUnstructuredGrid* input, const MeshPicture& pictu
     double bounds[6];
     grid->GetBounds(bounds);
     const double aspect = static_cast<double>(picture.width) / picture.height;
-    const double half = std::max(0.5 * (bounds[3] - bounds[2]), 0.5 * (bounds[1] - bounds[0]) / aspect);
+    const double half = std::max(0.5 * picture.stretch[1] * (bounds[3] - bounds[2]),
+                                 0.5 * picture.stretch[0] * (bounds[1] - bounds[0]) / aspect);
     camera->SetParallelScale(half / (0.96 * band));
   }
   // Shift the view so that the mesh's centre comes to the band's centre.

@@ -406,8 +406,9 @@ typedef struct {
   int32_t quasi_interpolation;
   /**
    * Control points that `igaparam_spline_fit_domain` moved to untangle a fitted map that was
-   * not certified valid (inner ones first; boundary ones, at most 0.01 of the bounding box,
-   * only when that was not enough); 0 when the fitted map was kept as it was.
+   * not certified valid (inner ones first; boundary ones, at most the domain's
+   * `boundary_offset` of the bounding box, only when that was not enough); 0 when the fitted
+   * map was kept as it was.
    */
   size_t untangled;
   /**
@@ -907,8 +908,8 @@ igaparam_validity_options igaparam_validity_options_default(void);
  * result for it. When the interpolation's map is not certified, the local quasi-interpolant is
  * made too and the better kept; when that is still not certified, the map is untangled: the
  * control points around the uncertified elements move to lift det J (inner ones first, keeping
- * the boundary; then boundary ones, at most 0.01 of the bounding box),
- * kept only if fewer elements stay uncertified (`report->untangled`,
+ * the boundary; then boundary ones, at most the `boundary_offset` the domain was built with,
+ * relative to the bounding box, none when it is 0), kept only if fewer elements stay uncertified (`report->untangled`,
  * `report->boundary_offset`).
  */
 igaparam_status igaparam_spline_fit_domain(const igaparam_domain *domain,

@@ -446,6 +446,27 @@ impl CubeFaces {
         })
     }
 
+    /// Multiplies the coordinates of every vertex by `factors`, axis by axis: for data whose
+    /// axes have different units (a terrain in degrees and metres, say). Floater's
+    /// parameterization measures the faces' angles in these coordinates, so the T-mesh and the
+    /// spline map depend on them, not only their physical figures. Shared vertices stay shared.
+    /// An error if a factor is not finite and positive; then nothing changes.
+    pub fn scale(&mut self, factors: Vec3) -> Result<()> {
+        if let Some(f) = factors.iter().find(|f| !(f.is_finite() && **f > 0.0)) {
+            return Err(Error::invalid(format!(
+                "scale factors must be finite and positive, got {f} in {factors:?}"
+            )));
+        }
+        for m in self.faces.iter_mut() {
+            for v in m.vertices.iter_mut() {
+                for (x, f) in v.iter_mut().zip(factors) {
+                    *x *= f;
+                }
+            }
+        }
+        Ok(())
+    }
+
     /// Maps every vertex of every face into the cube \[0,1\]^3: the face's own coordinate is 0 or
     /// 1, the other two come from [`floater_parameterize`] onto the unit square (in increasing
     /// axis order, e.g. (y, z) on `xmin`), with the face's corners — its vertices shared with two

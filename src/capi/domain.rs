@@ -437,13 +437,18 @@ pub(super) fn adapt_domain(
         _ => Err(Error::invalid("the domain has not been built").into()),
     }
 }
-/// The checked fit of a T-mesh's map, untangled with the default options.
-fn fit_tmesh<const D: usize>(
-    mesh: &crate::tmesh::TMesh<D>,
-    positions: &[[f64; D]],
+/// The checked fit of a built domain's map, untangled with the default options except the
+/// boundary offset, which is the domain's own (a domain built to keep its boundary keeps it in
+/// the spline map too).
+fn fit_tmesh<const D: usize, B: crate::domain::CubeMap<D>>(
+    domain: &crate::domain::Domain<D, B>,
     options: &ValidityOptions,
 ) -> crate::error::Result<(SplineMap<D>, crate::spline::FitReport, ValidityReport)> {
-    SplineMap::fit_tmesh_checked(mesh, positions, options, &UntangleOptions::default())
+    let untangle = UntangleOptions {
+        boundary_offset: domain.options().boundary_offset,
+        ..Default::default()
+    };
+    SplineMap::fit_tmesh_checked(domain.mesh(), domain.positions(), options, &untangle)
 }
 
 /// Fits the spline map of the built domain (see `igaparam_spline_fit_domain`); returns it with
@@ -461,11 +466,11 @@ pub(super) fn fit_domain(
     let options = ValidityOptions::default();
     let (map, report, validity) = match built(domain)? {
         igaparam_domain::Planar(_, Some(d)) => {
-            let (map, report, validity) = fit_tmesh(d.mesh(), d.positions(), &options)?;
+            let (map, report, validity) = fit_tmesh(d, &options)?;
             (AnyMap::Two(map), report, validity)
         }
         igaparam_domain::Solid(_, Some(d)) => {
-            let (map, report, validity) = fit_tmesh(d.mesh(), d.positions(), &options)?;
+            let (map, report, validity) = fit_tmesh(d, &options)?;
             (AnyMap::Three(map), report, validity)
         }
         _ => return Err(Error::invalid("the domain has not been built").into()),

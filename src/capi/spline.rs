@@ -73,8 +73,9 @@ pub struct igaparam_fit_report {
     /// `igaparam_spline_refine`), else 0.
     pub quasi_interpolation: i32,
     /// Control points that `igaparam_spline_fit_domain` moved to untangle a fitted map that was
-    /// not certified valid (inner ones first; boundary ones, at most 0.01 of the bounding box,
-    /// only when that was not enough); 0 when the fitted map was kept as it was.
+    /// not certified valid (inner ones first; boundary ones, at most the domain's
+    /// `boundary_offset` of the bounding box, only when that was not enough); 0 when the fitted
+    /// map was kept as it was.
     pub untangled: usize,
     /// Largest move of a boundary control point by that untangling, relative to the bounding
     /// box (each axis scaled to 1); 0 when the boundary was kept.
@@ -219,8 +220,8 @@ fn point<const D: usize>(values: &[f64], i: usize) -> [f64; D] {
 /// result for it. When the interpolation's map is not certified, the local quasi-interpolant is
 /// made too and the better kept; when that is still not certified, the map is untangled: the
 /// control points around the uncertified elements move to lift det J (inner ones first, keeping
-/// the boundary; then boundary ones, at most 0.01 of the bounding box),
-/// kept only if fewer elements stay uncertified (`report->untangled`,
+/// the boundary; then boundary ones, at most the `boundary_offset` the domain was built with,
+/// relative to the bounding box, none when it is 0), kept only if fewer elements stay uncertified (`report->untangled`,
 /// `report->boundary_offset`).
 #[no_mangle]
 pub extern "C" fn igaparam_spline_fit_domain(

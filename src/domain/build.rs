@@ -120,6 +120,8 @@ pub struct Domain<const D: usize, B> {
     /// Whether the boundary map's first two parametric coordinates are swapped.
     pub(super) swapped: bool,
     pub(super) frame: Frame<D>,
+    /// The options it was built with.
+    pub(super) options: DomainOptions,
     pub(super) mesh: TMesh<D>,
     /// Vertex positions in the frame's coordinates.
     pub(super) framed: Vec<[f64; D]>,
@@ -317,6 +319,7 @@ impl<const D: usize, B: CubeMap<D>> Domain<D, B> {
             boundary,
             swapped,
             frame,
+            options: *options,
             mesh,
             positions: x.iter().map(|&p| frame.to_physical(p)).collect(),
             quality: QualitySummary::of(&pool, &problem, &x).quality,
@@ -438,6 +441,13 @@ impl<const D: usize, B: CubeMap<D>> Domain<D, B> {
     /// The affine frame in which the T-mesh is optimized.
     pub fn frame(&self) -> Frame<D> {
         self.frame
+    }
+
+    /// The options the domain was built with (its `boundary_offset` also caps how far
+    /// [`SplineMap::untangle`](crate::spline::SplineMap::untangle) may move the boundary of
+    /// the spline map fitted by the C API).
+    pub fn options(&self) -> &DomainOptions {
+        &self.options
     }
 
     /// The boundary.

@@ -133,10 +133,20 @@ impl<const D: usize, S: SplineSpace<D>> SplineMap<D, S> {
 
     /// Certified validity of element `e` and its sampled quality.
     pub fn element_validity(&self, e: usize, options: &ValidityOptions) -> ElementValidity {
+        self.element_samples(e, options).0
+    }
+
+    /// [`SplineMap::element_validity`] with the histogram of its sampled mean ratios.
+    fn element_samples(
+        &self,
+        e: usize,
+        options: &ValidityOptions,
+    ) -> (ElementValidity, [usize; HISTOGRAM_BINS]) {
         let poly = self.det_polynomial(e);
         let bound = lower_bound(&poly, options.max_depth);
         let (lo, hi) = self.element_bounds(e);
         let (mut min_det, mut min_q, mut sum_q) = (f64::INFINITY, f64::INFINITY, 0.0);
+        let mut histogram = [0; HISTOGRAM_BINS];
         let per = options.samples.max(2).pow(D as u32);
         for x in element_grid(lo, hi, options.samples) {
             if let Some((_, j)) = self.eval_with_jacobian(x) {
@@ -144,31 +154,31 @@ impl<const D: usize, S: SplineSpace<D>> SplineMap<D, S> {
                 min_det = min_det.min(det(&j));
                 min_q = min_q.min(q);
                 sum_q += q;
+                histogram[((q * HISTOGRAM_BINS as f64) as usize).min(HISTOGRAM_BINS - 1)] += 1;
             }
         }
-        ElementValidity {
+        let element = ElementValidity {
             certified_positive: bound > 0.0,
             det_lower_bound: bound,
             sampled_min_det: min_det,
             min_quality: min_q,
             mean_quality: sum_q / per as f64,
-        }
+        };
+        (element, histogram)
     }
 
     /// Certified validity and sampled quality of every element (in parallel; the result does
     /// not depend on the number of threads).
     pub fn validity(&self, options: &ValidityOptions) -> ValidityReport {
-        let elements: Vec<ElementValidity> = (0..self.element_count())
+        let (elements, histograms): (Vec<ElementValidity>, Vec<[usize; HISTOGRAM_BINS]>) = (0
+            ..self.element_count())
             .into_par_iter()
-            .map(|e| self.element_validity(e, options))
-            .collect();
+            .map(|e| self.element_samples(e, options))
+            .unzip();
         let mut histogram = [0; HISTOGRAM_BINS];
-        for e in 0..self.element_count() {
-            let (lo, hi) = self.element_bounds(e);
-            for x in element_grid(lo, hi, options.samples) {
-                if let Some(q) = self.mean_ratio(x) {
-                    histogram[((q * HISTOGRAM_BINS as f64) as usize).min(HISTOGRAM_BINS - 1)] += 1;
-                }
+        for h in &histograms {
+            for (total, count) in histogram.iter_mut().zip(h) {
+                *total += count;
             }
         }
         let uncertified = elements.iter().filter(|v| !v.certified_positive).count();
