@@ -8,11 +8,12 @@
 #   out/gran_canaria_{tmesh,spline}.vtu, out/gran_canaria.xml   coastline of Gran Canaria
 #   out/puzzle_{tmesh,spline}.vtu, out/puzzle.xml               puzzle piece, adaptive loop
 #   out/duck3d_{tmesh,spline}.vtu, out/duck3d.xml               3D duck B-rep (about half a minute)
+#   out/jacksboro_{tmesh,spline}.vtu, out/jacksboro.xml         air above terrain, axes in km
 # and draws them (cells coloured by quality) with igaparam_render:
 #   out/airfoil_relocated.png, out/airfoil_laplacian.png, out/wing_relocated.png,
 #   out/airfoil_sorted_quality.png, out/wing_sorted_quality.png (cell qualities sorted ascending,
 #   harmonic placement against optimized), out/gran_canaria_spline.png, out/puzzle_spline.png,
-#   out/duck3d_spline.png
+#   out/duck3d_spline.png, out/jacksboro_spline.png
 #   (spline maps coloured by the mean ratio of their Jacobian)
 # Rendering needs an X display: the real one, else a virtual one through xvfb-run; without
 # either, the pictures are skipped with a message.
@@ -41,7 +42,8 @@ param=build/examples-c/igaparam_param
 if [[ -x $param ]]; then
   for args in "tests/data/boundary/gran_canaria.txt out/gran_canaria" \
     "tests/data/boundary/puzzle3_bdry.xml out/puzzle --adapt" \
-    "tests/data/boundary/duck3d_BRep.xml out/duck3d --tol 1e-4 --max-level 4"; do
+    "tests/data/boundary/duck3d_BRep.xml out/duck3d --tol 1e-4 --max-level 4" \
+    "tests/data/boundary/jacksboro_faces out/jacksboro --tol 1e-3 --scale 89273.3,111200,1"; do
     echo
     echo "+ $param $args"
     # shellcheck disable=SC2086  # the arguments are split on purpose
@@ -91,4 +93,7 @@ if [[ -x $param ]]; then
     --title "puzzle piece after adaptation: spline map, mean ratio of the Jacobian"
   draw out/duck3d_spline.vtu out/duck3d_spline.png --array quality --range 0 1 --no-edges \
     --view 30 20 --title "3D duck B-rep: untangled spline map, mean ratio of the Jacobian"
+  draw out/jacksboro_spline.vtu out/jacksboro_spline.png --array quality --no-edges \
+    --stretch 1 1 10 --view 200 -50 \
+    --title "Jacksboro block in km (terrain from below, z x10): spline map, mean ratio"
 fi
