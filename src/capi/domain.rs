@@ -763,9 +763,10 @@ fn new_solid_from_file(
 ///
 /// Each face must be a disk; faces that touch share their edge vertices with identical
 /// coordinates, and the vertex shared by three faces is a cube corner. Errors:
-/// `IGAPARAM_STATUS_NOT_FINITE` for a NaN or infinite coordinate,
-/// `IGAPARAM_STATUS_INVALID_ARGUMENT` for an index out of range, `IGAPARAM_STATUS_INVALID_MESH` for
-/// faces that do not match on their edges or corners. The arrays are copied.
+/// `IGAPARAM_STATUS_NULL_ARGUMENT` for a NULL array (a face's arrays may be NULL only when
+/// empty), `IGAPARAM_STATUS_NOT_FINITE` for a NaN or infinite coordinate,
+/// `IGAPARAM_STATUS_INVALID_MESH` for a triangle with an index out of range or a repeated vertex,
+/// and for faces that do not match on their edges or corners. The arrays are copied.
 #[no_mangle]
 pub extern "C" fn igaparam_domain_new_solid_from_triangulations(
     vertex_counts: *const usize,
