@@ -131,7 +131,7 @@ class Domain(_Handle):
 
     @classmethod
     def from_file(cls, path):
-        """A domain from a boundary file, chosen by its extension: ``.xml``, a G+Smo XML B-rep of
+        """A planar domain from a boundary file, chosen by its extension: ``.xml``, a G+Smo XML B-rep of
         four B-spline curves; ``.txt``, a coastline (points with four marked corners).
 
         Raises:
@@ -145,7 +145,7 @@ class Domain(_Handle):
 
     @classmethod
     def from_polylines(cls, polylines):
-        """A domain bounded by four polylines, each an array of shape (k, 2) with k >= 2, in any
+        """A planar domain bounded by four polylines, each an array of shape (k, 2) with k >= 2, in any
         order and direction: they are chained end to end into a counter-clockwise loop, the
         first one becoming the side u = 0.
 
