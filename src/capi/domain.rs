@@ -18,9 +18,9 @@ use crate::spline::{SplineMap, UntangleOptions, ValidityOptions, ValidityReport}
 
 /// A planar domain bounded by four curves or a solid bounded by six surfaces, and once built its
 /// T-mesh parameterization (opaque). Create a planar one with `igaparam_domain_new_from_file` or
-/// `igaparam_domain_new_from_polylines`, a solid with `igaparam_domain_new_solid_from_file` or
-/// `igaparam_domain_new_solid_from_triangulations`; build with `igaparam_domain_build`, release
-/// with `igaparam_domain_free`.
+/// `igaparam_domain_new_from_polylines`, a solid with `igaparam_domain_new_solid_from_file`,
+/// `igaparam_domain_new_solid_from_file_scaled` or `igaparam_domain_new_solid_from_triangulations`;
+/// build with `igaparam_domain_build`, release with `igaparam_domain_free`.
 // The handle itself lives on the heap behind the C pointer; the variants' sizes do not matter.
 #[allow(clippy::large_enum_variant)]
 pub enum igaparam_domain {
