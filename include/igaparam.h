@@ -105,9 +105,9 @@ typedef enum {
 /**
  * A planar domain bounded by four curves or a solid bounded by six surfaces, and once built its
  * T-mesh parameterization (opaque). Create a planar one with `igaparam_domain_new_from_file` or
- * `igaparam_domain_new_from_polylines`, a solid with `igaparam_domain_new_solid_from_file` or
- * `igaparam_domain_new_solid_from_triangulations`; build with `igaparam_domain_build`, release
- * with `igaparam_domain_free`.
+ * `igaparam_domain_new_from_polylines`, a solid with `igaparam_domain_new_solid_from_file`,
+ * `igaparam_domain_new_solid_from_file_scaled` or `igaparam_domain_new_solid_from_triangulations`;
+ * build with `igaparam_domain_build`, release with `igaparam_domain_free`.
  */
 typedef struct igaparam_domain igaparam_domain;
 
@@ -737,9 +737,28 @@ igaparam_status igaparam_domain_dimension(const igaparam_domain *domain, size_t 
  * `path` is a NUL-terminated UTF-8 path. `out` receives the new handle, to be released with
  * `igaparam_domain_free`. Errors: `IGAPARAM_STATUS_IO` when a file cannot be read or parsed,
  * `IGAPARAM_STATUS_INVALID_ARGUMENT` for another kind of path, `IGAPARAM_STATUS_INVALID_MESH` when
- * the surfaces do not share their edges and corners (the message says which).
+ * the surfaces do not share their edges and corners (the message says which). Same as
+ * `igaparam_domain_new_solid_from_file_scaled` with `scale` NULL.
  */
 igaparam_status igaparam_domain_new_solid_from_file(const char *path, igaparam_domain **out);
+
+/**
+ * Creates a solid from a boundary file or folder as `igaparam_domain_new_solid_from_file`,
+ * with every coordinate of the input multiplied by its axis' factor first: `scale` is NULL (no
+ * scaling) or points to 3 doubles `fx, fy, fz`, each finite and positive. The vertices of
+ * triangulated faces, or the control points of a B-rep's surfaces (exact for B-splines and
+ * NURBS), are scaled before the faces are parameterized; the solid, its T-mesh and its spline
+ * map are in the scaled coordinates. Use it for data whose axes are in different units (a
+ * terrain in degrees and kilometres, say): Floater's map measures angles in the coordinates it
+ * is given, so the T-mesh depends on them, not only on the solid's figure.
+ *
+ * Errors: those of `igaparam_domain_new_solid_from_file`, and
+ * `IGAPARAM_STATUS_INVALID_ARGUMENT` for a factor that is NaN, infinite, zero or negative
+ * (checked before any file is read). `*out` is left unchanged on error.
+ */
+igaparam_status igaparam_domain_new_solid_from_file_scaled(const char *path,
+                                                           const double *scale,
+                                                           igaparam_domain **out);
 
 /**
  * Creates a solid bounded by six triangulated faces, in the order `xmin, xmax, ymin, ymax, zmin,
@@ -753,9 +772,10 @@ igaparam_status igaparam_domain_new_solid_from_file(const char *path, igaparam_d
  *
  * Each face must be a disk; faces that touch share their edge vertices with identical
  * coordinates, and the vertex shared by three faces is a cube corner. Errors:
- * `IGAPARAM_STATUS_NOT_FINITE` for a NaN or infinite coordinate,
- * `IGAPARAM_STATUS_INVALID_ARGUMENT` for an index out of range, `IGAPARAM_STATUS_INVALID_MESH` for
- * faces that do not match on their edges or corners. The arrays are copied.
+ * `IGAPARAM_STATUS_NULL_ARGUMENT` for a NULL array (a face's arrays may be NULL only when
+ * empty), `IGAPARAM_STATUS_NOT_FINITE` for a NaN or infinite coordinate,
+ * `IGAPARAM_STATUS_INVALID_MESH` for a triangle with an index out of range or a repeated vertex,
+ * and for faces that do not match on their edges or corners. The arrays are copied.
  */
 igaparam_status igaparam_domain_new_solid_from_triangulations(const size_t *vertex_counts,
                                                               const double *const *xyz,

@@ -489,3 +489,75 @@ fn scale_factors_are_checked() {
     faces.scale([2.0, 3.0, 4.0]).unwrap();
     assert_eq!(faces.faces[0].vertices[1][2], before[1][2] * 4.0);
 }
+
+/// `SolidBoundary::from_file_scaled`: factors checked before any I/O; a folder of faces gives
+/// the solid of the scaled faces; a B-rep's scaled surfaces are the scaled solid (exactly for a
+/// factor 2, to round-off for others); no factors is `from_file`.
+#[test]
+fn solid_files_read_with_per_axis_factors() {
+    let xml = data("duck3d_BRep.xml");
+    for bad in [[0.0, 1.0, 1.0], [1.0, -1.0, 1.0], [1.0, 1.0, f64::NAN]] {
+        for path in [xml.as_str(), "no/such/file.xml"] {
+            let e = SolidBoundary::from_file_scaled(path, Some(bad)).unwrap_err();
+            assert_eq!(e.kind, ErrorKind::InvalidArgument);
+            assert!(e.message.contains("finite and positive"), "{}", e.message);
+        }
+    }
+    let e = SolidBoundary::from_file_scaled(data("README.md"), Some([2.0; 3])).unwrap_err();
+    assert_eq!(e.kind, ErrorKind::InvalidArgument);
+    assert!(e.message.contains("not a folder"), "{}", e.message);
+
+    let samples: Vec<(usize, f64, f64)> = (0..6)
+        .flat_map(|f| {
+            (0..=8).flat_map(move |i| (0..=8).map(move |j| (f, i as f64 / 8.0, j as f64 / 8.0)))
+        })
+        .collect();
+    let plain = SolidBoundary::from_file(&xml).unwrap();
+    for (factors, exact) in [([2.0, 2.0, 2.0], true), ([3.0, 0.1, 7.5], false)] {
+        let scaled = SolidBoundary::from_file_scaled(&xml, Some(factors)).unwrap();
+        let d = scaled.diagonal();
+        for &(f, a, b) in &samples {
+            let (p, q) = (plain.eval_face(f, a, b), scaled.eval_face(f, a, b));
+            let want = [0, 1, 2].map(|k| p[k] * factors[k]);
+            if exact {
+                assert_eq!(q, want, "face {f} at ({a}, {b})");
+            } else {
+                assert!(
+                    dist(q, want) <= 1e-14 * d,
+                    "face {f} at ({a}, {b}): {q:?} {want:?}"
+                );
+            }
+        }
+        let corners = plain.corners();
+        for (c, q) in scaled.corners().iter().enumerate() {
+            let want = [0, 1, 2].map(|k| corners[c][k] * factors[k]);
+            assert!(dist(*q, want) <= 1e-14 * d, "corner {c}");
+        }
+    }
+
+    let dir = data("jacksboro_faces");
+    let mut faces = CubeFaces::read_dir(&dir).unwrap();
+    faces.scale(JACKSBORO_KM).unwrap();
+    let by_hand = SolidBoundary::from_cube_faces(&faces).unwrap();
+    let read = SolidBoundary::from_file_scaled(&dir, Some(JACKSBORO_KM)).unwrap();
+    for f in 0..6 {
+        assert_eq!(
+            read.vertex_parameters(f),
+            by_hand.vertex_parameters(f),
+            "face {f}"
+        );
+    }
+    for &(f, a, b) in &samples {
+        assert_eq!(read.eval_face(f, a, b), by_hand.eval_face(f, a, b));
+    }
+    let unscaled = SolidBoundary::from_file_scaled(&dir, None).unwrap();
+    let plain = SolidBoundary::from_obj_dir(&dir).unwrap();
+    assert_eq!(unscaled.bounding_box(), plain.bounding_box());
+    for f in 0..6 {
+        assert_eq!(
+            unscaled.vertex_parameters(f),
+            plain.vertex_parameters(f),
+            "face {f}"
+        );
+    }
+}

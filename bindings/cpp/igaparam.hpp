@@ -12,6 +12,7 @@
 #ifndef IGAPARAM_HPP
 #define IGAPARAM_HPP
 
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <exception>
@@ -237,6 +238,16 @@ class Domain {
   static Domain solid_from_file(const std::string& path) {
     igaparam_domain* d = nullptr;
     detail::check(igaparam_domain_new_solid_from_file(path.c_str(), &d));
+    return Domain(d);
+  }
+
+  /// A solid from a file or folder as solid_from_file(path), every input coordinate multiplied
+  /// by its axis' factor first (`scale` = {fx, fy, fz}, each finite and positive): for data whose
+  /// axes are in different units; the T-mesh and spline map are in the scaled coordinates (see
+  /// igaparam_domain_new_solid_from_file_scaled).
+  static Domain solid_from_file(const std::string& path, const std::array<double, 3>& scale) {
+    igaparam_domain* d = nullptr;
+    detail::check(igaparam_domain_new_solid_from_file_scaled(path.c_str(), scale.data(), &d));
     return Domain(d);
   }
 

@@ -523,6 +523,21 @@ impl BSplineSurface {
     pub fn eval(&self, u: f64, v: f64) -> Vec3 {
         self.eval_derivs(u, v).0
     }
+
+    /// Multiplies the control points' coordinates by `factors`, axis by axis (the first
+    /// [`BSplineSurface::dim`] factors are used). Weights and knots stay: the surface becomes
+    /// exactly its image under the scaling, for B-splines and NURBS alike (a rational map is a
+    /// weighted average of its control points). An error if a factor is not finite and
+    /// positive; then nothing changes.
+    pub fn scale(&mut self, factors: Vec3) -> Result<()> {
+        super::check_scale_factors(factors)?;
+        for p in self.coefs.chunks_exact_mut(self.dim) {
+            for (x, f) in p.iter_mut().zip(factors) {
+                *x *= f;
+            }
+        }
+        Ok(())
+    }
 }
 
 #[cfg(test)]

@@ -17,3 +17,14 @@ pub use gismo_xml::{
 pub use loop2d::{BoundaryLoop2, Coastline, LoopOptions, Side};
 pub use solid::SolidBoundary;
 pub use trimesh::{floater_parameterize, signed_areas, CubeFaces, TriMesh, CUBE_FACE_NAMES};
+
+/// Checks per-axis scale factors: each must be finite and positive (an `InvalidArgument` error
+/// naming the first bad one otherwise).
+pub(crate) fn check_scale_factors(factors: Vec3) -> crate::error::Result<()> {
+    match factors.iter().find(|f| !(f.is_finite() && **f > 0.0)) {
+        Some(f) => Err(crate::error::Error::invalid(format!(
+            "scale factors must be finite and positive, got {f} in {factors:?}"
+        ))),
+        None => Ok(()),
+    }
+}

@@ -222,6 +222,11 @@ fn box_of(points: impl Iterator<Item = Vec3>) -> (Vec3, Vec3) {
     (lo, hi)
 }
 
+/// `e` with its message prefixed by the file or folder it is about.
+fn in_file(path: &Path, e: Error) -> Error {
+    Error::new(e.kind, format!("{}: {}", path.display(), e.message))
+}
+
 /// The number of samples per cube edge used by the constructors' shared-edge check.
 const EDGE_SAMPLES: usize = 21;
 
@@ -243,10 +248,57 @@ impl SolidBoundary {
     /// and surfaces that do not agree on their shared edges (checked at 21 points an edge,
     /// within 1e-9 of the bounding-box diagonal).
     pub fn from_gismo_file(path: impl AsRef<Path>) -> Result<Self> {
+        Self::read_gismo_file(path.as_ref(), None)
+    }
+
+    /// [`SolidBoundary::from_gismo_file`], the surfaces scaled by [`BSplineSurface::scale`]
+    /// first when `scale` is given.
+    fn read_gismo_file(path: &Path, scale: Option<Vec3>) -> Result<Self> {
+        let mut surfaces = read_gismo_surfaces(path)?;
+        if let Some(factors) = scale {
+            for s in surfaces.iter_mut() {
+                s.scale(factors)?;
+            }
+        }
+        Self::from_surfaces(surfaces).map_err(|e| in_file(path, e))
+    }
+
+    /// Reads a solid from `path`: a folder of six triangulated faces (as
+    /// [`SolidBoundary::from_obj_dir`]) or a `.xml` file (any case), a G+Smo B-rep of six
+    /// surfaces (as [`SolidBoundary::from_gismo_file`]).
+    pub fn from_file(path: impl AsRef<Path>) -> Result<Self> {
+        Self::from_file_scaled(path, None)
+    }
+
+    /// [`SolidBoundary::from_file`] with every coordinate of the input multiplied by its axis'
+    /// factor (`[fx, fy, fz]`) before anything else, when `scale` is given: the vertices of
+    /// triangulated faces (see [`CubeFaces::scale`]) or the control points of the B-rep's
+    /// surfaces (see [`BSplineSurface::scale`]; exact for B-splines and NURBS). Use it for data
+    /// whose axes are in different units: Floater's map of triangulated faces measures angles in
+    /// the coordinates given, so their parameterization, and everything built on it, depends on
+    /// the units. The solid's coordinates (and those of any T-mesh or spline map built from it)
+    /// are the scaled ones. Errors: `InvalidArgument` for a factor that is not finite and
+    /// positive (checked before any I/O) or a path that is neither a folder nor a `.xml` file,
+    /// then the errors of the two readers.
+    pub fn from_file_scaled(path: impl AsRef<Path>, scale: Option<Vec3>) -> Result<Self> {
         let path = path.as_ref();
-        let surfaces = read_gismo_surfaces(path)?;
-        Self::from_surfaces(surfaces)
-            .map_err(|e| Error::new(e.kind, format!("{}: {}", path.display(), e.message)))
+        if let Some(factors) = scale {
+            super::check_scale_factors(factors)?;
+        }
+        let is_xml = path
+            .extension()
+            .and_then(|e| e.to_str())
+            .is_some_and(|e| e.eq_ignore_ascii_case("xml"));
+        if path.is_dir() {
+            Self::read_obj_dir(path, scale)
+        } else if is_xml {
+            Self::read_gismo_file(path, scale)
+        } else {
+            Err(Error::invalid(format!(
+                "{}: not a folder of six .obj faces nor a .xml G+Smo B-rep",
+                path.display()
+            )))
+        }
     }
 
     /// Builds the map from six B-spline surfaces, as [`SolidBoundary::from_gismo_file`] does.
@@ -402,10 +454,17 @@ impl SolidBoundary {
     /// corners, a degenerate or folded parameterization, and faces that do not agree on their
     /// shared edges (checked at 21 points an edge, within 1e-9 of the bounding-box diagonal).
     pub fn from_obj_dir(dir: impl AsRef<Path>) -> Result<Self> {
-        let dir = dir.as_ref();
-        let cube = CubeFaces::read_dir(dir)?;
-        Self::from_cube_faces(&cube)
-            .map_err(|e| Error::new(e.kind, format!("{}: {}", dir.display(), e.message)))
+        Self::read_obj_dir(dir.as_ref(), None)
+    }
+
+    /// [`SolidBoundary::from_obj_dir`], the faces scaled by [`CubeFaces::scale`] first when
+    /// `scale` is given.
+    fn read_obj_dir(dir: &Path, scale: Option<Vec3>) -> Result<Self> {
+        let mut cube = CubeFaces::read_dir(dir)?;
+        if let Some(factors) = scale {
+            cube.scale(factors)?;
+        }
+        Self::from_cube_faces(&cube).map_err(|e| in_file(dir, e))
     }
 
     /// The solid bounded by six triangulated faces, in the order `xmin, xmax, ymin, ymax, zmin,

@@ -18,9 +18,9 @@ use crate::spline::{SplineMap, UntangleOptions, ValidityOptions, ValidityReport}
 
 /// A planar domain bounded by four curves or a solid bounded by six surfaces, and once built its
 /// T-mesh parameterization (opaque). Create a planar one with `igaparam_domain_new_from_file` or
-/// `igaparam_domain_new_from_polylines`, a solid with `igaparam_domain_new_solid_from_file` or
-/// `igaparam_domain_new_solid_from_triangulations`; build with `igaparam_domain_build`, release
-/// with `igaparam_domain_free`.
+/// `igaparam_domain_new_from_polylines`, a solid with `igaparam_domain_new_solid_from_file`,
+/// `igaparam_domain_new_solid_from_file_scaled` or `igaparam_domain_new_solid_from_triangulations`;
+/// build with `igaparam_domain_build`, release with `igaparam_domain_free`.
 // The handle itself lives on the heap behind the C pointer; the variants' sizes do not matter.
 #[allow(clippy::large_enum_variant)]
 pub enum igaparam_domain {
@@ -688,30 +688,65 @@ pub extern "C" fn igaparam_domain_dimension(
 /// `path` is a NUL-terminated UTF-8 path. `out` receives the new handle, to be released with
 /// `igaparam_domain_free`. Errors: `IGAPARAM_STATUS_IO` when a file cannot be read or parsed,
 /// `IGAPARAM_STATUS_INVALID_ARGUMENT` for another kind of path, `IGAPARAM_STATUS_INVALID_MESH` when
-/// the surfaces do not share their edges and corners (the message says which).
+/// the surfaces do not share their edges and corners (the message says which). Same as
+/// `igaparam_domain_new_solid_from_file_scaled` with `scale` NULL.
 #[no_mangle]
 pub extern "C" fn igaparam_domain_new_solid_from_file(
     path: *const c_char,
     out: *mut *mut igaparam_domain,
 ) -> igaparam_status {
-    run("igaparam_domain_new_solid_from_file", || {
+    new_solid_from_file(
+        "igaparam_domain_new_solid_from_file",
+        path,
+        std::ptr::null(),
+        out,
+    )
+}
+
+/// Creates a solid from a boundary file or folder as `igaparam_domain_new_solid_from_file`,
+/// with every coordinate of the input multiplied by its axis' factor first: `scale` is NULL (no
+/// scaling) or points to 3 doubles `fx, fy, fz`, each finite and positive. The vertices of
+/// triangulated faces, or the control points of a B-rep's surfaces (exact for B-splines and
+/// NURBS), are scaled before the faces are parameterized; the solid, its T-mesh and its spline
+/// map are in the scaled coordinates. Use it for data whose axes are in different units (a
+/// terrain in degrees and kilometres, say): Floater's map measures angles in the coordinates it
+/// is given, so the T-mesh depends on them, not only on the solid's figure.
+///
+/// Errors: those of `igaparam_domain_new_solid_from_file`, and
+/// `IGAPARAM_STATUS_INVALID_ARGUMENT` for a factor that is NaN, infinite, zero or negative
+/// (checked before any file is read). `*out` is left unchanged on error.
+#[no_mangle]
+pub extern "C" fn igaparam_domain_new_solid_from_file_scaled(
+    path: *const c_char,
+    scale: *const f64,
+    out: *mut *mut igaparam_domain,
+) -> igaparam_status {
+    new_solid_from_file(
+        "igaparam_domain_new_solid_from_file_scaled",
+        path,
+        scale,
+        out,
+    )
+}
+
+/// The body of the two `igaparam_domain_new_solid_from_file*` functions (`function` names the
+/// caller in messages); `scale` is NULL or 3 factors.
+fn new_solid_from_file(
+    function: &str,
+    path: *const c_char,
+    scale: *const f64,
+    out: *mut *mut igaparam_domain,
+) -> igaparam_status {
+    run(function, || {
         let out = non_null_mut(out, "out")?;
         let path = c_path(path, "path")?;
-        let is_xml = path
-            .extension()
-            .and_then(|e| e.to_str())
-            .is_some_and(|e| e.eq_ignore_ascii_case("xml"));
-        let boundary = if path.is_dir() {
-            SolidBoundary::from_obj_dir(path)?
-        } else if is_xml {
-            SolidBoundary::from_gismo_file(path)?
+        let scale = if scale.is_null() {
+            None
         } else {
-            return Err(Error::invalid(format!(
-                "{}: not a folder of six .obj faces nor a .xml G+Smo B-rep",
-                path.display()
-            ))
-            .into());
+            let f = slice(scale, 3, "scale")?;
+            Some([f[0], f[1], f[2]])
         };
+        let boundary = SolidBoundary::from_file_scaled(path, scale)?;
         new_handle(igaparam_domain::Solid(Box::new(boundary), None), out);
         Ok(())
     })
@@ -728,9 +763,10 @@ pub extern "C" fn igaparam_domain_new_solid_from_file(
 ///
 /// Each face must be a disk; faces that touch share their edge vertices with identical
 /// coordinates, and the vertex shared by three faces is a cube corner. Errors:
-/// `IGAPARAM_STATUS_NOT_FINITE` for a NaN or infinite coordinate,
-/// `IGAPARAM_STATUS_INVALID_ARGUMENT` for an index out of range, `IGAPARAM_STATUS_INVALID_MESH` for
-/// faces that do not match on their edges or corners. The arrays are copied.
+/// `IGAPARAM_STATUS_NULL_ARGUMENT` for a NULL array (a face's arrays may be NULL only when
+/// empty), `IGAPARAM_STATUS_NOT_FINITE` for a NaN or infinite coordinate,
+/// `IGAPARAM_STATUS_INVALID_MESH` for a triangle with an index out of range or a repeated vertex,
+/// and for faces that do not match on their edges or corners. The arrays are copied.
 #[no_mangle]
 pub extern "C" fn igaparam_domain_new_solid_from_triangulations(
     vertex_counts: *const usize,

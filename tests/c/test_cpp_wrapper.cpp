@@ -123,6 +123,29 @@ void test_spline() {
   EXPECT_ERROR(IGAPARAM_STATUS_IO, igaparam::Spline::read_gismo("/nonexistent/spline.xml"));
 }
 
+/// A solid read with per-axis factors: bad factors throw before any I/O; the duck B-rep doubled
+/// builds into the same T-mesh with every physical coordinate doubled.
+void test_scaled_solid() {
+  const std::string duck = std::string(IGAPARAM_TEST_DATA) + "/duck3d_BRep.xml";
+  EXPECT_ERROR(IGAPARAM_STATUS_INVALID_ARGUMENT, igaparam::Domain::solid_from_file(duck, {1.0, 0.0, 1.0}));
+  EXPECT_ERROR(IGAPARAM_STATUS_INVALID_ARGUMENT,
+               igaparam::Domain::solid_from_file("/nonexistent/duck.xml", {1.0, 1.0, NAN}));
+  EXPECT_ERROR(IGAPARAM_STATUS_IO, igaparam::Domain::solid_from_file("/nonexistent/duck.xml", {2.0, 2.0, 2.0}));
+  igaparam::Domain plain = igaparam::Domain::solid_from_file(duck);
+  igaparam::Domain doubled = igaparam::Domain::solid_from_file(duck, {2.0, 2.0, 2.0});
+  CHECK(doubled.dimension() == 3);
+  igaparam_domain_options o = igaparam_domain_options_default();
+  o.tolerance = 3e-3;
+  o.min_level = 1;
+  o.max_level = 3;
+  const igaparam_domain_report a = plain.build(o), b = doubled.build(o);
+  CHECK(a.invalid_cells == 0 && a.cells == b.cells);
+  std::vector<double> x = plain.physical(), y = doubled.physical();
+  for (double& v : x) v *= 2;
+  CHECK(x.size() == 3 * a.vertices && x == y);
+  CHECK(plain.parametric() == doubled.parametric());
+}
+
 }  // namespace
 
 int main() {
@@ -182,6 +205,7 @@ int main() {
   CHECK(mesh.relocate().invalid_after == 0);
 
   test_spline();
+  test_scaled_solid();
 
   structured_grid_free(&g);
   std::printf("%d passed, %d failed\n", passed, failed);

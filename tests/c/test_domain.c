@@ -5,7 +5,8 @@
  * and OUT_DIR receives the .vtu files. Builds the bundled domains and a unit square from four
  * polylines; calls every entry point with NULL, wrong sizes, non-finite values, an unbuilt domain
  * and invalid boundaries, checking the status, the message and that no output is written;
- * cancels a build through the progress callback; refuses a bad seam relief cap. Prints
+ * cancels a build through the progress callback; refuses a bad seam relief cap; reads solids
+ * with per-axis scale factors (the Jacksboro block in km, a B-rep doubled). Prints
  * "N passed, M failed"; exits non-zero if any check failed.
  */
 
@@ -443,9 +444,9 @@ static void test_solid(void) {
   CHECK(strstr(message(), "ymin") != NULL, "NaN: message '%s' does not name the face", message());
   xyz[2][13] = 0;
   tri[4][5] = 9;
-  CHECK(igaparam_domain_new_solid_from_triangulations(nv, pts, nt, tris, &d) != IGAPARAM_STATUS_OK &&
-            message()[0] != '\0',
-        "an index out of range was accepted");
+  EXPECT(igaparam_domain_new_solid_from_triangulations(nv, pts, nt, tris, &d),
+         IGAPARAM_STATUS_INVALID_MESH);
+  CHECK(strstr(message(), "zmin") != NULL, "index out of range: message '%s'", message());
   tri[4][5] = 3;
   for (int v = 0; v < 9; v++) xyz[5][3 * v + 2] = 1.25; /* zmax lifted off the sides */
   EXPECT(igaparam_domain_new_solid_from_triangulations(nv, pts, nt, tris, &d),
@@ -515,6 +516,147 @@ static void test_solid(void) {
   }
 }
 
+/* Builds `a` and `b` with options `o` and checks that `b`'s T-mesh is `a`'s with every physical
+ * coordinate multiplied by `factor`, exactly. */
+static void compare_scaled(igaparam_domain *a, igaparam_domain *b, double factor,
+                           const igaparam_domain_options *o) {
+  igaparam_domain *d[2] = {a, b};
+  igaparam_domain_report r[2];
+  double *uvw[2] = {NULL, NULL}, *x[2] = {NULL, NULL};
+  for (int i = 0; i < 2; i++) {
+    EXPECT(igaparam_domain_build(d[i], o, &r[i]), IGAPARAM_STATUS_OK);
+    size_t n = r[i].vertices;
+    uvw[i] = malloc(3 * n * sizeof *uvw[i]);
+    x[i] = malloc(3 * n * sizeof *x[i]);
+    EXPECT(igaparam_domain_copy_vertices(d[i], uvw[i], x[i], 3 * n), IGAPARAM_STATUS_OK);
+  }
+  printf("scaled by %g at tolerance %g, levels %u to %u: %zu cells, %zu vertices, %zu invalid, "
+         "%u sweeps, %.2f s\n",
+         factor, o->tolerance, o->min_level, o->max_level, r[0].cells, r[0].vertices,
+         r[0].invalid_cells, r[0].sweeps, r[0].seconds);
+  CHECK(r[0].invalid_cells == 0, "%zu invalid cells", r[0].invalid_cells);
+  CHECK(r[1].cells == r[0].cells && r[1].vertices == r[0].vertices && r[1].sweeps == r[0].sweeps,
+        "scaled by %g: %zu cells, %zu vertices, %u sweeps; unscaled %zu, %zu, %u", factor,
+        r[1].cells, r[1].vertices, r[1].sweeps, r[0].cells, r[0].vertices, r[0].sweeps);
+  if (r[1].vertices == r[0].vertices) {
+    size_t same_uvw = 0, same_x = 0, n = 3 * r[0].vertices;
+    double worst = 0;
+    for (size_t k = 0; k < n; k++) {
+      same_uvw += uvw[1][k] == uvw[0][k];
+      same_x += x[1][k] == factor * x[0][k];
+      worst = fmax(worst, fabs(x[1][k] - factor * x[0][k]));
+    }
+    CHECK(same_uvw == n && same_x == n,
+          "scaled by %g: %zu of %zu parametric and %zu physical coordinates exact "
+          "(largest difference %g)",
+          factor, same_uvw, n, same_x, worst);
+  }
+  CHECK(r[1].min_quality == r[0].min_quality && r[1].mean_quality == r[0].mean_quality &&
+            r[1].boundary_error == r[0].boundary_error,
+        "scaled by %g: quality %g vs %g, boundary error %g vs %g", factor, r[1].min_quality,
+        r[0].min_quality, r[1].boundary_error, r[0].boundary_error);
+  for (int i = 0; i < 2; i++) {
+    free(uvw[i]);
+    free(x[i]);
+  }
+}
+
+/* A solid read with per-axis scale factors (igaparam_domain_new_solid_from_file_scaled). */
+static void test_solid_scaled(void) {
+  char xml[1024], jacksboro[1024], missing[1024];
+  snprintf(xml, sizeof xml, "%s", joined(data_dir, "duck3d_BRep.xml"));
+  snprintf(jacksboro, sizeof jacksboro, "%s", joined(data_dir, "jacksboro_faces"));
+  snprintf(missing, sizeof missing, "%s", joined(data_dir, "no_such_file.xml"));
+
+  /* Argument errors leave the handle alone; bad factors are refused before any I/O. */
+  igaparam_domain *d = UNTOUCHED;
+  const double two[3] = {2, 2, 2};
+  EXPECT(igaparam_domain_new_solid_from_file_scaled(NULL, two, &d), IGAPARAM_STATUS_NULL_ARGUMENT);
+  CHECK(strstr(message(), "path") != NULL, "NULL path: message '%s'", message());
+  EXPECT(igaparam_domain_new_solid_from_file_scaled(xml, two, NULL), IGAPARAM_STATUS_NULL_ARGUMENT);
+  CHECK(strstr(message(), "out") != NULL, "NULL out: message '%s'", message());
+  const double bad[5][3] = {{NAN, 1, 1}, {1, 0, 1}, {1, 1, -2}, {INFINITY, 1, 1}, {1, -0.0, 1}};
+  for (int i = 0; i < 5; i++) {
+    EXPECT(igaparam_domain_new_solid_from_file_scaled(xml, bad[i], &d),
+           IGAPARAM_STATUS_INVALID_ARGUMENT);
+    CHECK(strstr(message(), "igaparam_domain_new_solid_from_file_scaled") != NULL &&
+              strstr(message(), "finite and positive") != NULL,
+          "bad factors %d: message '%s'", i, message());
+    EXPECT(igaparam_domain_new_solid_from_file_scaled(missing, bad[i], &d),
+           IGAPARAM_STATUS_INVALID_ARGUMENT);
+  }
+  EXPECT(igaparam_domain_new_solid_from_file_scaled(missing, two, &d), IGAPARAM_STATUS_IO);
+  EXPECT(igaparam_domain_new_solid_from_file_scaled(missing, NULL, &d), IGAPARAM_STATUS_IO);
+  EXPECT(igaparam_domain_new_solid_from_file_scaled(joined(data_dir, "README.md"), two, &d),
+         IGAPARAM_STATUS_INVALID_ARGUMENT);
+  CHECK(d == UNTOUCHED, "a failed constructor wrote its handle");
+
+  /* Uniform scaling of a B-rep by 2 commutes with the whole pipeline, exactly: the same T-mesh,
+   * every physical coordinate doubled (a factor 2 is exact in floating point, and every
+   * tolerance is relative to the bounding box). NULL factors are the unscaled solid. */
+  igaparam_domain *duck[3] = {NULL, NULL, NULL};
+  EXPECT(igaparam_domain_new_solid_from_file(xml, &duck[0]), IGAPARAM_STATUS_OK);
+  EXPECT(igaparam_domain_new_solid_from_file_scaled(xml, NULL, &duck[1]), IGAPARAM_STATUS_OK);
+  EXPECT(igaparam_domain_new_solid_from_file_scaled(xml, two, &duck[2]), IGAPARAM_STATUS_OK);
+  if (duck[0] && duck[1] && duck[2]) {
+    igaparam_domain_options o = igaparam_domain_options_default();
+    o.min_level = 1;
+    o.max_level = 3;
+    /* 3e-3: 8 cells and a few sweeps; 1e-3: every cell refined once, and the repair rounds. */
+    o.tolerance = 3e-3;
+    compare_scaled(duck[0], duck[1], 1.0, &o);
+    compare_scaled(duck[0], duck[2], 2.0, &o);
+    o.tolerance = 1e-3;
+    compare_scaled(duck[0], duck[2], 2.0, &o);
+  }
+  for (int i = 0; i < 3; i++) igaparam_domain_free(duck[i]);
+
+  /* The Jacksboro block (x, y in degrees/1000, z in km) with its axes in km builds without
+   * invalid cells and gives a spline map certified as fitted, without untangling. */
+  const double km[3] = {89273.3, 111200.0, 1.0};
+  d = NULL;
+  EXPECT(igaparam_domain_new_solid_from_file_scaled(jacksboro, km, &d), IGAPARAM_STATUS_OK);
+  if (!d) return;
+  igaparam_domain_options o = igaparam_domain_options_default();
+  o.tolerance = 1e-3;
+  o.max_level = 3;
+  igaparam_domain_report jr;
+  EXPECT(igaparam_domain_build(d, &o, &jr), IGAPARAM_STATUS_OK);
+  printf("Jacksboro in km at tolerance 1e-3, max level 3: %zu cells, %zu invalid after placement, "
+         "%zu invalid, min quality %g, seam offset %g\n",
+         jr.cells, jr.invalid_after_placement, jr.invalid_cells, jr.min_quality, jr.boundary_offset);
+  CHECK(jr.invalid_cells == 0, "Jacksboro in km: %zu invalid cells", jr.invalid_cells);
+  size_t n = jr.vertices;
+  double *xyz = malloc(3 * n * sizeof *xyz);
+  EXPECT(igaparam_domain_copy_vertices(d, NULL, xyz, 3 * n), IGAPARAM_STATUS_OK);
+  double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
+  for (size_t v = 0; v < n; v++)
+    for (int m = 0; m < 3; m++) {
+      lo[m] = fmin(lo[m], xyz[3 * v + m]);
+      hi[m] = fmax(hi[m], xyz[3 * v + m]);
+    }
+  free(xyz);
+  /* 29.98 km by 31.88 km: the factors reached the T-mesh. */
+  CHECK(fabs(hi[0] - lo[0] - 29.98) < 0.01 && fabs(hi[1] - lo[1] - 31.88) < 0.01,
+        "Jacksboro in km: extent %g x %g x %g", hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]);
+  igaparam_spline *s = NULL;
+  igaparam_fit_report fr;
+  EXPECT(igaparam_spline_fit_domain(d, &s, &fr), IGAPARAM_STATUS_OK);
+  if (s) {
+    igaparam_validity_report vr;
+    EXPECT(igaparam_spline_check_validity(s, NULL, &vr, NULL, NULL, 0), IGAPARAM_STATUS_OK);
+    printf("Jacksboro in km, spline map: %zu functions, %zu elements, untangled %zu, certified %d, "
+           "min mean ratio %g\n",
+           fr.basis_count, fr.element_count, fr.untangled, (int)vr.certified_positive,
+           vr.min_quality);
+    CHECK(fr.untangled == 0, "Jacksboro in km: %zu control points untangled", fr.untangled);
+    CHECK(vr.certified_positive == 1 && vr.uncertified == 0,
+          "Jacksboro in km: %zu elements uncertified", vr.uncertified);
+    igaparam_spline_free(s);
+  }
+  igaparam_domain_free(d);
+}
+
 int main(int argc, char **argv) {
   if (argc != 3) {
     fprintf(stderr, "usage: %s DATA_DIR OUT_DIR\n", argv[0]);
@@ -525,6 +667,7 @@ int main(int argc, char **argv) {
   test_constructor_errors();
   test_unit_square();
   test_solid();
+  test_solid_scaled();
   test_file("male_bdry.xml", "domain_male.vtu");
   test_file("gran_canaria.txt", "domain_gran_canaria.vtu");
   test_boundary_offset("gran_canaria.txt");

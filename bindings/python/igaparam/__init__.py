@@ -1,6 +1,6 @@
 """igaparam: relocation of the free nodes of quadrilateral/hexahedral finite-element meshes
-after their boundary moves, T-mesh parameterizations of planar domains from their boundary, and
-their cubic THB-spline maps (ctypes bindings of the C API, with numpy arrays).
+after their boundary moves, T-mesh parameterizations of planar domains and solids from their
+boundary, and their cubic THB-spline maps (ctypes bindings of the C API, with numpy arrays).
 
 Example::
 

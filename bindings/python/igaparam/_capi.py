@@ -191,6 +191,7 @@ _double_p = ctypes.POINTER(ctypes.c_double)
 _int64_p = ctypes.POINTER(ctypes.c_int64)
 _uint8_p = ctypes.POINTER(ctypes.c_uint8)
 _int32_p = ctypes.POINTER(ctypes.c_int32)
+_uint32_p = ctypes.POINTER(ctypes.c_uint32)
 
 # name: (restype, argtypes)
 _PROTOTYPES = {
@@ -224,6 +225,16 @@ _PROTOTYPES = {
         _status,
         [_size_p, ctypes.POINTER(_double_p), ctypes.POINTER(_domain_p)],
     ),
+    "igaparam_domain_new_solid_from_file": (_status, [ctypes.c_char_p, ctypes.POINTER(_domain_p)]),
+    "igaparam_domain_new_solid_from_file_scaled": (
+        _status,
+        [ctypes.c_char_p, _double_p, ctypes.POINTER(_domain_p)],
+    ),
+    "igaparam_domain_new_solid_from_triangulations": (
+        _status,
+        [_size_p, ctypes.POINTER(_double_p), _size_p, ctypes.POINTER(_uint32_p), ctypes.POINTER(_domain_p)],
+    ),
+    "igaparam_domain_dimension": (_status, [_domain_p, _size_p]),
     "igaparam_domain_free": (None, [_domain_p]),
     "igaparam_domain_build": (
         _status,
@@ -234,6 +245,7 @@ _PROTOTYPES = {
     "igaparam_domain_copy_vertices": (_status, [_domain_p, _double_p, _double_p, ctypes.c_size_t]),
     "igaparam_domain_copy_cell_quality": (_status, [_domain_p, _double_p, ctypes.c_size_t]),
     "igaparam_domain_copy_cells": (_status, [_domain_p, _uint8_p, _double_p, ctypes.c_size_t]),
+    "igaparam_domain_copy_cell_corners": (_status, [_domain_p, _size_p, ctypes.c_size_t]),
     "igaparam_domain_write_vtu": (_status, [_domain_p, ctypes.c_char_p]),
     "igaparam_domain_is_built": (_status, [_domain_p, ctypes.POINTER(ctypes.c_int)]),
     "igaparam_validity_options_default": (ValidityOptions, []),

@@ -1,5 +1,5 @@
-"""The :class:`Domain` class: a planar domain bounded by four curves and its adapted, optimized
-T-mesh parameterization."""
+"""The :class:`Domain` class: a planar domain bounded by four curves or a solid bounded by six
+surfaces, and its adapted, optimized T-mesh parameterization."""
 
 import ctypes
 import dataclasses
@@ -13,12 +13,15 @@ from ._mesh import _check, _progress_callback, _ptr
 
 __all__ = ["Domain", "DomainReport"]
 
+# size_t as a numpy dtype, for the buffer of cell corners.
+_SIZE_T = np.dtype(f"u{ctypes.sizeof(ctypes.c_size_t)}")
+
 
 @dataclasses.dataclass(frozen=True)
 class DomainReport:
     """What :meth:`Domain.build` did (``igaparam_domain_report``). Quality is the inverse mean
-    distortion of a cell against its parametric (square) cell: 1 is a square, 0 an inverted
-    cell."""
+    distortion of a cell against its parametric (square or cube) cell: 1 is a square or cube, 0
+    an inverted cell."""
 
     cells: int
     vertices: int
@@ -53,12 +56,56 @@ def _as_polyline(values, index):
     return np.ascontiguousarray(array, dtype=np.float64)
 
 
-class Domain(_Handle):
-    """A planar domain bounded by four curves (an ``igaparam_domain`` handle) and, once
-    :meth:`build` succeeded, its T-mesh: a quadtree of the parameter square [0,1]² adapted to
-    the boundary, with every vertex placed in the domain and optimized so that no cell folds.
+# The faces of a solid, in the order of the C API (the unit cube's faces x = 0, x = 1, ...).
+_CUBE_FACES = ("xmin", "xmax", "ymin", "ymax", "zmin", "zmax")
 
-    Create it with :meth:`from_file` or :meth:`from_polylines`. Release the handle with
+
+def _as_face(face, index):
+    """``(vertices, triangles)`` of face ``index`` as C-contiguous float64 (n, 3) and uint32
+    (m, 3) arrays."""
+    name = _CUBE_FACES[index]
+    try:
+        vertices, triangles = face
+    except (TypeError, ValueError):
+        raise ValueError(f"face {index} ({name}) must be a pair (vertices, triangles)") from None
+    vertices, triangles = np.asarray(vertices), np.asarray(triangles)
+    if vertices.dtype.kind not in "fiu":
+        raise ValueError(f"vertices of face {index} ({name}) must be numeric, not {vertices.dtype}")
+    if vertices.ndim != 2 or vertices.shape[1] != 3:
+        raise ValueError(f"vertices of face {index} ({name}) must have shape (n, 3), not {vertices.shape}")
+    if triangles.dtype.kind not in "iu":
+        raise ValueError(f"triangles of face {index} ({name}) must be an integer array, not {triangles.dtype}")
+    if triangles.ndim != 2 or triangles.shape[1] != 3:
+        raise ValueError(f"triangles of face {index} ({name}) must have shape (m, 3), not {triangles.shape}")
+    if triangles.size and (triangles.min() < 0 or triangles.max() > np.iinfo(np.uint32).max):
+        raise ValueError(f"triangles of face {index} ({name}) hold indices out of the uint32 range")
+    return (
+        np.ascontiguousarray(vertices, dtype=np.float64),
+        np.ascontiguousarray(triangles, dtype=np.uint32),
+    )
+
+
+def _as_scale(scale):
+    """None, or ``scale`` as a C array of three doubles (the library checks the values)."""
+    if scale is None:
+        return None
+    array = np.asarray(scale)
+    if array.dtype.kind not in "fiu":
+        raise ValueError(f"scale must be numeric, not {array.dtype}")
+    if array.shape != (3,):
+        raise ValueError(f"scale must hold 3 factors (x, y, z), not shape {array.shape}")
+    return (ctypes.c_double * 3)(*array.astype(np.float64).tolist())
+
+
+class Domain(_Handle):
+    """A planar domain bounded by four curves or a solid bounded by six surfaces (an
+    ``igaparam_domain`` handle) and, once :meth:`build` succeeded, its T-mesh: a quadtree
+    (octree for a solid) of the parameter square [0,1]² (cube [0,1]³) adapted to the boundary,
+    with every vertex placed in the domain and optimized so that no cell folds. Arrays of points
+    have :attr:`dimension` (d = 2 or 3) columns.
+
+    Create a planar domain with :meth:`from_file` or :meth:`from_polylines`, a solid with
+    :meth:`solid_from_file` or :meth:`solid_from_triangulations`. Release the handle with
     :meth:`close` or a ``with`` block (it is also released when the object is collected).
 
     Example::
@@ -67,6 +114,11 @@ class Domain(_Handle):
             report = domain.build()                 # report.invalid_cells == 0
             xy = domain.physical_vertices           # (n, 2)
             quality = domain.cell_quality           # (m,)
+
+        km = [89273.3, 111200.0, 1.0]               # x, y in degrees/1000 -> km
+        with igaparam.Domain.solid_from_file("tests/data/boundary/jacksboro_faces", scale=km) as block:
+            report = block.build(tolerance=1e-3, max_level=3)
+            xyz = block.physical_vertices           # (n, 3), in km
     """
 
     _kind = "domain"
@@ -79,7 +131,7 @@ class Domain(_Handle):
 
     @classmethod
     def from_file(cls, path):
-        """A domain from a boundary file, chosen by its extension: ``.xml``, a G+Smo XML B-rep of
+        """A planar domain from a boundary file, chosen by its extension: ``.xml``, a G+Smo XML B-rep of
         four B-spline curves; ``.txt``, a coastline (points with four marked corners).
 
         Raises:
@@ -93,7 +145,7 @@ class Domain(_Handle):
 
     @classmethod
     def from_polylines(cls, polylines):
-        """A domain bounded by four polylines, each an array of shape (k, 2) with k >= 2, in any
+        """A planar domain bounded by four polylines, each an array of shape (k, 2) with k >= 2, in any
         order and direction: they are chained end to end into a counter-clockwise loop, the
         first one becoming the side u = 0.
 
@@ -110,6 +162,89 @@ class Domain(_Handle):
         handle = ctypes.c_void_p()
         _check(_capi.library().igaparam_domain_new_from_polylines(counts, points, ctypes.byref(handle)))
         return cls(handle)
+
+    @classmethod
+    def solid_from_file(cls, path, scale=None):
+        """A solid from a G+Smo XML B-rep of six B-spline surfaces (a ``.xml`` file) or a folder
+        of six triangulated faces ``xmin.obj``, ``xmax.obj``, ..., ``zmax.obj`` (each mapped
+        onto its face of the unit cube by Floater's mean-value parameterization).
+
+        Args:
+            path: the file or folder.
+            scale: None, or three factors ``(fx, fy, fz)``, each finite and positive, that
+                multiply the input's coordinates axis by axis before anything else (the faces'
+                vertices, or the surfaces' control points: exact for B-splines and NURBS). For
+                data whose axes are in different units: Floater's map measures angles in the
+                coordinates given, so the T-mesh depends on them. The T-mesh and a fitted
+                :class:`Spline` are in the scaled coordinates.
+
+        Raises:
+            ValueError: ``scale`` is not three numbers.
+            IgaparamError: ``Status.INVALID_ARGUMENT`` for a factor that is NaN, infinite,
+                zero or negative (before any file is read), or a path that is neither a folder
+                nor a ``.xml`` file; ``Status.IO`` when a file cannot be read or parsed;
+                ``Status.INVALID_MESH`` for faces that do not share their edges and corners.
+        """
+        factors = _as_scale(scale)
+        handle = ctypes.c_void_p()
+        lib = _capi.library()
+        if factors is None:
+            status = lib.igaparam_domain_new_solid_from_file(os.fsencode(path), ctypes.byref(handle))
+        else:
+            status = lib.igaparam_domain_new_solid_from_file_scaled(os.fsencode(path), factors, ctypes.byref(handle))
+        _check(status)
+        return cls(handle)
+
+    @classmethod
+    def solid_from_triangulations(cls, faces):
+        """A solid bounded by six triangulated faces, each mapped onto its face of the unit cube
+        by Floater's mean-value parameterization.
+
+        Args:
+            faces: six pairs ``(vertices, triangles)`` in the order xmin, xmax, ymin, ymax,
+                zmin, zmax (the solid's sides on the cube's faces x = 0, x = 1, y = 0, ...):
+                ``vertices`` a numeric array of shape (n, 3), ``triangles`` an integer array of
+                shape (m, 3) of vertex indices counting from 0. Each face is a disk; faces that
+                touch share their edge vertices with identical coordinates, and the vertex
+                shared by three faces is a corner of the solid. The arrays are copied.
+
+        Raises:
+            ValueError: not six pairs, or arrays of the wrong shape or type, or negative
+                indices.
+            IgaparamError: rejected by the library: ``Status.NOT_FINITE`` for a NaN or infinite
+                coordinate, ``Status.INVALID_MESH`` for a triangle with an index out of range or
+                a repeated vertex, and for faces that do not match on their edges or corners.
+        """
+        faces = list(faces)
+        if len(faces) != 6:
+            raise ValueError(f"a solid needs 6 faces (xmin, xmax, ymin, ymax, zmin, zmax), not {len(faces)}")
+        arrays = [_as_face(face, i) for i, face in enumerate(faces)]
+        vertex_counts = (ctypes.c_size_t * 6)(*[v.shape[0] for v, _ in arrays])
+        triangle_counts = (ctypes.c_size_t * 6)(*[t.shape[0] for _, t in arrays])
+        points = (ctypes.POINTER(ctypes.c_double) * 6)(*[_ptr(v, ctypes.c_double) for v, _ in arrays])
+        triangles = (ctypes.POINTER(ctypes.c_uint32) * 6)(*[_ptr(t, ctypes.c_uint32) for _, t in arrays])
+        handle = ctypes.c_void_p()
+        _check(
+            _capi.library().igaparam_domain_new_solid_from_triangulations(
+                vertex_counts, points, triangle_counts, triangles, ctypes.byref(handle)
+            )
+        )
+        return cls(handle)
+
+    def __repr__(self):
+        if self._handle is None:
+            return "<igaparam.Domain (closed)>"
+        kind = "planar domain" if self.dimension == 2 else "solid"
+        if not self.is_built:
+            return f"<igaparam.Domain {kind}, not built>"
+        return f"<igaparam.Domain {kind}, {self.cell_count} cells, {self.vertex_count} vertices>"
+
+    @property
+    def dimension(self):
+        """2 for a planar domain, 3 for a solid."""
+        out = ctypes.c_size_t()
+        _check(self._lib.igaparam_domain_dimension(self._h(), ctypes.byref(out)))
+        return out.value
 
     # Building.
 
@@ -128,8 +263,11 @@ class Domain(_Handle):
         again replaces the previous T-mesh; on any error the domain keeps its previous state.
 
         Args:
-            tolerance: boundary tolerance, relative to the squared bounding-box diagonal
-                (library default 1e-5).
+            tolerance: boundary tolerance (library default 1e-5): a boundary cell edge (planar
+                domain) or face (solid) is refined while the triangle of its end images and the
+                image of its midpoint (the four tetrahedra of consecutive corner images and the
+                image of its centre), measured in coordinates that map the bounding box onto the
+                unit box, exceed ``tolerance × √d^d``.
             min_level: level of the initial uniform refinement (default 2).
             max_level: deepest level of the adaptation, at most 16 (default 9).
             max_sweeps: largest number of optimization sweeps (default 200).
@@ -201,19 +339,21 @@ class Domain(_Handle):
         return self._count(self._lib.igaparam_domain_cell_count)
 
     def _vertices(self, physical):
-        out = np.empty((self.vertex_count, 2), dtype=np.float64)
+        out = np.empty((self.vertex_count, self.dimension), dtype=np.float64)
         pointers = (None, _ptr(out, ctypes.c_double)) if physical else (_ptr(out, ctypes.c_double), None)
         _check(self._lib.igaparam_domain_copy_vertices(self._h(), *pointers, out.size))
         return out
 
     @property
     def parametric_vertices(self):
-        """(u, v) of every vertex in [0,1]², a new float64 array of shape (n, 2)."""
+        """(u, v) (planar) or (u, v, w) (solid) of every vertex in [0,1]^d, a new float64 array
+        of shape (n, d)."""
         return self._vertices(physical=False)
 
     @property
     def physical_vertices(self):
-        """(x, y) of every vertex in the domain, a new float64 array of shape (n, 2)."""
+        """(x, y) (planar) or (x, y, z) (solid) of every vertex in the domain, a new float64
+        array of shape (n, d)."""
         return self._vertices(physical=True)
 
     @property
@@ -233,16 +373,28 @@ class Domain(_Handle):
 
     @property
     def cell_bounds(self):
-        """Parametric box of every cell, a new float64 array of shape (m, 4): u0, v0, u1, v1
-        (lower then upper corner)."""
+        """Parametric box of every cell, a new float64 array of shape (m, 2d): the lower then
+        the upper corner (u0, v0, u1, v1 for a planar domain, u0, v0, w0, u1, v1, w1 for a
+        solid)."""
         m = self.cell_count
-        out = np.empty((m, 4), dtype=np.float64)
+        out = np.empty((m, 2 * self.dimension), dtype=np.float64)
         _check(self._lib.igaparam_domain_copy_cells(self._h(), None, _ptr(out, ctypes.c_double), m))
         return out
 
+    @property
+    def cell_corners(self):
+        """Corner vertices of every cell, a new int64 array of shape (m, 2^d) of indices into
+        the vertex arrays: counter-clockwise from the lower-left corner for a planar domain, in
+        VTK's hexahedron order for a solid. Hanging vertices are not listed."""
+        m = self.cell_count
+        out = np.empty((m, 2**self.dimension), dtype=_SIZE_T)
+        _check(self._lib.igaparam_domain_copy_cell_corners(self._h(), _ptr(out, ctypes.c_size_t), out.size))
+        return out.astype(np.int64)
+
     def write_vtu(self, path):
-        """Writes the T-mesh as a VTK .vtu file (polygons through corners and hanging vertices,
-        cell arrays ``quality`` and ``level``).
+        """Writes the T-mesh as a VTK .vtu file (polygons through corners and hanging vertices
+        for a planar domain, hexahedra through their corners for a solid; point array
+        ``parametric``, cell arrays ``quality`` and ``level``).
 
         Raises:
             IgaparamError: ``Status.IO`` when the file cannot be written.
