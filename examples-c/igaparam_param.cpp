@@ -10,7 +10,7 @@
 // adaptive loop refines the T-mesh where the map's mean ratio is under Q or not certified, for
 // at most R rounds). --boundary-offset caps the seam relief of the build (how far, relative to
 // the bounding box, a boundary vertex may leave the boundary; 0 keeps them all on it). --scale
-// multiplies the coordinates of triangulated faces per axis, for data whose axes have different
+// multiplies the coordinates of a solid (faces or B-rep) per axis, for data whose axes have different
 // units (Floater's parameterization of each face, and q_S, depend on them). Writes
 // OUT_PREFIX_tmesh.vtu with VTK (physical T-mesh: one quad or hexahedron per cell through its
 // corners, point data `parametric`, cell data `quality` and `level`), OUT_PREFIX_spline.vtu (the spline map sampled per element, point data `quality` =
@@ -157,8 +157,8 @@ void warn_if_anisotropic(const std::vector<Face>& faces) {
                 w[0], w[1], w[2]);
 }
 
-// Opens INPUT; the coordinates of triangulated faces are multiplied by `scale` per axis (NULL:
-// kept), which other inputs refuse.
+// Opens INPUT; the coordinates of a solid (triangulated faces or a .xml B-rep) are multiplied by
+// `scale` per axis (NULL: kept), which planar inputs refuse.
 void open_domain(const std::string& input, Domain& domain, const std::array<double, 3>* scale) {
   fs::path path(input);
   if (fs::is_directory(path)) {
@@ -182,13 +182,17 @@ void open_domain(const std::string& input, Domain& domain, const std::array<doub
     return;
   }
   if (!fs::exists(path)) throw std::runtime_error(input + ": no such file or folder");
-  if (scale) throw std::runtime_error(input + ": --scale applies to a folder of triangulated faces only");
+  std::string ext = path.extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(), ::tolower);
+  if (scale) {
+    if (ext != ".xml") throw std::runtime_error(input + ": --scale applies to solids (faces or .xml) only");
+    check(igaparam_domain_new_solid_from_file_scaled(input.c_str(), scale->data(), &domain.d), input.c_str());
+    return;
+  }
   // A .xml B-rep is planar (four curves) or solid (six surfaces): try planar first.
   igaparam_status s = igaparam_domain_new_from_file(input.c_str(), &domain.d);
   if (s == IGAPARAM_STATUS_OK) return;
   std::string planar_error = last_error();
-  std::string ext = path.extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(), ::tolower);
   if (ext == ".xml" && igaparam_domain_new_solid_from_file(input.c_str(), &domain.d) == IGAPARAM_STATUS_OK)
     return;
   throw std::runtime_error(planar_error + (ext == ".xml" ? " (as a solid: " + last_error() + ")" : ""));
@@ -274,7 +278,7 @@ int usage(const char* argv0) {
                "         xmin xmax ymin ymax zmin zmax (.obj/.off/.stl/.ply)\n"
                "  --boundary-offset X: seam relief cap of the build, relative to the bounding box\n"
                "         (X >= 0, default 1e-2; 0 keeps every boundary vertex on the boundary)\n"
-               "  --scale SX,SY,SZ: multiply the coordinates of the faces (folder input) per axis,\n"
+               "  --scale SX,SY,SZ: multiply the coordinates of a solid (faces or .xml) per axis,\n"
                "         to give every axis the same unit (e.g. degrees to km)\n",
                argv0);
   return 2;
