@@ -1,13 +1,13 @@
 """Tests of igaparam.Domain for solids in the Python bindings: solids read from files (with
 per-axis scale factors) and from triangulated faces, their T-mesh read-back and spline maps."""
 
-import xml.etree.ElementTree as ET
 from pathlib import Path
 
 import numpy as np
 import pytest
 
 from igaparam import Domain, IgaparamError, Spline, Status
+from test_domain import check_tmesh, written_piece
 
 BOUNDARY = Path(__file__).resolve().parents[2] / "tests" / "data" / "boundary"
 FACES = ("xmin", "xmax", "ymin", "ymax", "zmin", "zmax")
@@ -53,25 +53,10 @@ def unit_cube_faces(k=4):
 
 
 def check_solid_tmesh(domain, report):
-    """Shapes, ranges and agreement of a solid's read-back arrays with the report."""
+    """check_tmesh for a solid, and its hexahedra's corners."""
     assert domain.dimension == 3
+    uvw, bounds = check_tmesh(domain, report)
     n, m = domain.vertex_count, domain.cell_count
-    assert (n, m) == (report.vertices, report.cells) and m > 0
-    uvw, xyz = domain.parametric_vertices, domain.physical_vertices
-    assert uvw.shape == xyz.shape == (n, 3) and uvw.dtype == xyz.dtype == np.float64
-    assert uvw.min() == 0.0 and uvw.max() == 1.0
-    assert np.all(np.isfinite(xyz))
-    quality = domain.cell_quality
-    assert quality.shape == (m,)
-    assert quality.min() == pytest.approx(report.min_quality, abs=1e-12)
-    assert quality.mean() == pytest.approx(report.mean_quality, abs=1e-12)
-    levels, bounds = domain.cell_levels, domain.cell_bounds
-    assert levels.shape == (m,) and levels.max() == report.max_level
-    assert bounds.shape == (m, 6)
-    size = bounds[:, 3:] - bounds[:, :3]
-    assert np.allclose(size, (0.5 ** levels.astype(float))[:, None])
-    # The cells tile the parameter cube.
-    assert np.prod(size, axis=1).sum() == pytest.approx(1.0)
     corners = domain.cell_corners
     assert corners.shape == (m, 8) and corners.min() >= 0 and corners.max() < n
     # VTK hexahedron order: corner 0 at the lower bound, corner 6 at the upper one.
@@ -114,10 +99,7 @@ def test_jacksboro_in_km_spline_is_certified(jacksboro_km):
 
 def test_jacksboro_vtu(jacksboro_km, tmp_path):
     domain, report = jacksboro_km
-    path = tmp_path / "jacksboro.vtu"
-    domain.write_vtu(path)
-    piece = ET.parse(path).getroot().find("UnstructuredGrid/Piece")
-    assert int(piece.get("NumberOfCells")) == report.cells
+    piece = written_piece(domain, report, tmp_path / "jacksboro.vtu")
     types = piece.find("Cells/DataArray[@Name='types']").text.split()
     assert set(types) == {"12"}  # VTK_HEXAHEDRON
 
