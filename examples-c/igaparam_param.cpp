@@ -6,7 +6,8 @@
 //
 // INPUT is a G+Smo XML B-rep (four curves, or six surfaces), a coastline .txt, or a folder of six
 // surface files xmin, xmax, ymin, ymax, zmin, zmax (.obj, .off, .stl or .ply, read by OpenMesh).
-// Builds the optimized T-mesh, fits its cubic THB-spline map and certifies it (with --adapt, the
+// The default tolerance is 1e-5 for a planar domain, 1e-3 for a solid. Builds the optimized
+// T-mesh, fits its cubic THB-spline map and certifies it (with --adapt, the
 // adaptive loop refines the T-mesh where the map's mean ratio is under Q or not certified, for
 // at most R rounds). --boundary-offset caps the seam relief of the build (how far, relative to
 // the bounding box, a boundary vertex may leave the boundary; 0 keeps them all on it). --scale
@@ -275,6 +276,7 @@ int usage(const char* argv0) {
                "         [--boundary-offset X] [--adapt] [--target-quality Q] [--rounds R]\n"
                "         [--no-spline] [--scale SX,SY,SZ]\n"
                "  INPUT: G+Smo XML B-rep, coastline .txt, or a folder of six faces\n"
+               "  --tol EPS: boundary tolerance (default 1e-5 for a planar domain, 1e-3 for a solid)\n"
                "         xmin xmax ymin ymax zmin zmax (.obj/.off/.stl/.ply)\n"
                "  --boundary-offset X: seam relief cap of the build, relative to the bounding box\n"
                "         (X >= 0, default 1e-2; 0 keeps every boundary vertex on the boundary)\n"
@@ -293,7 +295,7 @@ int main(int argc, char** argv) {
   igaparam_adapt_options adapt = igaparam_adapt_options_default();
   bool adaptive = false, spline_wanted = true;
   std::array<double, 3> scale{};
-  bool scaled = false;
+  bool scaled = false, tolerance_given = false;
   try {
     for (int i = 3; i < argc; i++) {
       std::string a = argv[i];
@@ -306,6 +308,7 @@ int main(int argc, char** argv) {
       size_t used = 0;
       if (a == "--tol") {
         options.tolerance = std::stod(v, &used);
+        tolerance_given = true;
       } else if (a == "--max-level") {
         options.max_level = parse_count(v, used);
         options.min_level = std::min(options.min_level, options.max_level);
@@ -335,6 +338,7 @@ int main(int argc, char** argv) {
     open_domain(input, domain, scaled ? &scale : nullptr);
     size_t dim = 0;
     check(igaparam_domain_dimension(domain.d, &dim), "dimension");
+    if (dim == 3 && !tolerance_given) options.tolerance = igaparam_domain_options_default_solid().tolerance;
     igaparam_domain_report r;
     check(igaparam_domain_build(domain.d, &options, &r), "build");
     std::printf("%s: %zuD T-mesh, %zu cells, %zu vertices, max level %u\n", input.c_str(), dim,

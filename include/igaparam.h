@@ -133,7 +133,8 @@ typedef struct igaparam_spline igaparam_spline;
 typedef int (*igaparam_progress_fn)(void *user, igaparam_stage stage, size_t done, size_t total);
 
 /**
- * Options of `igaparam_domain_build`; get the defaults from `igaparam_domain_options_default`.
+ * Options of `igaparam_domain_build`; get the defaults from `igaparam_domain_options_default`
+ * (planar) or `igaparam_domain_options_default_solid`.
  */
 typedef struct {
   /**
@@ -141,7 +142,8 @@ typedef struct {
    * triangle formed by its end images and the image of its parametric midpoint, or a boundary
    * cell face (solid) while the four tetrahedra of consecutive corner images and the image of
    * its centre, measured in coordinates that map the bounding box onto the unit box, exceed
-   * `tolerance × √d^d` (for a square or cube box: `tolerance × diagonal^d`; default 1e-5).
+   * `tolerance × √d^d` (for a square or cube box: `tolerance × diagonal^d`; default 1e-5 for a
+   * planar domain, 1e-3 for a solid).
    */
   double tolerance;
   /**
@@ -607,9 +609,16 @@ size_t igaparam_last_error_message(char *buf,
 const char *igaparam_version(void);
 
 /**
- * The default domain options.
+ * The default options of a planar domain (tolerance 1e-5).
  */
 igaparam_domain_options igaparam_domain_options_default(void);
+
+/**
+ * The default options of a solid: those of `igaparam_domain_options_default` with a
+ * tolerance of 1e-3 (a tolerance bounds a volume in 3D; 1e-5 refines for many minutes).
+ * `igaparam_domain_build` with NULL options uses these for a solid.
+ */
+igaparam_domain_options igaparam_domain_options_default_solid(void);
 
 /**
  * Creates a domain from a boundary file, chosen by its extension (case-insensitive):
@@ -650,7 +659,8 @@ void igaparam_domain_free(igaparam_domain *domain);
  * Adapts a T-mesh to the boundary (refining boundary cells until `options.tolerance` or
  * `options.max_level` is met), places its vertices (boundary ones on the curves, inner ones by
  * the Coons patch) and optimizes them; the result is kept in the handle, replacing that of an
- * earlier build. `options` may be NULL for the defaults; `report` may be NULL. On any error or
+ * earlier build. `options` may be NULL for the defaults (`igaparam_domain_options_default`, or
+ * `igaparam_domain_options_default_solid` for a solid); `report` may be NULL. On any error or
  * cancellation the handle is unchanged (an earlier build stays) and `*report` is not written.
  */
 igaparam_status igaparam_domain_build(igaparam_domain *domain,

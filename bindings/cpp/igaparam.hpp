@@ -297,11 +297,25 @@ class Domain {
     return d;
   }
 
-  /// Adapts, places and optimizes the T-mesh (options from igaparam_domain_options_default).
-  igaparam_domain_report build(const igaparam_domain_options& options = igaparam_domain_options_default()) {
+  /// Adapts, places and optimizes the T-mesh with the defaults of its dimension
+  /// (igaparam_domain_options_default, or igaparam_domain_options_default_solid for a solid).
+  igaparam_domain_report build() {
+    igaparam_domain_report report{};
+    detail::check(igaparam_domain_build(domain_, nullptr, &report));
+    return report;
+  }
+
+  /// Adapts, places and optimizes the T-mesh with the given options (start from
+  /// default_options()).
+  igaparam_domain_report build(const igaparam_domain_options& options) {
     igaparam_domain_report report{};
     detail::check(igaparam_domain_build(domain_, &options, &report));
     return report;
+  }
+
+  /// The default options of this domain's dimension.
+  igaparam_domain_options default_options() const {
+    return dimension() == 3 ? igaparam_domain_options_default_solid() : igaparam_domain_options_default();
   }
 
   /// Parametric coordinates of the vertices, dimension() per vertex.

@@ -11,7 +11,7 @@ use super::{igaparam_progress_fn, igaparam_stage, igaparam_status};
 use crate::boundary::{
     BoundaryLoop2, Coastline, CubeFaces, Curve2, Point2, SolidBoundary, TriMesh,
 };
-use crate::domain::{DomainReport, PlanarDomain, PlanarOptions, SolidDomain};
+use crate::domain::{DomainReport, PlanarDomain, PlanarOptions, SolidDomain, SolidOptions};
 use crate::error::{check_finite, Error, Result};
 use crate::io::vtu::UnstructuredGrid;
 use crate::spline::{SplineMap, UntangleOptions, ValidityOptions, ValidityReport};
@@ -129,7 +129,8 @@ where
     }
 }
 
-/// Options of `igaparam_domain_build`; get the defaults from `igaparam_domain_options_default`.
+/// Options of `igaparam_domain_build`; get the defaults from `igaparam_domain_options_default`
+/// (planar) or `igaparam_domain_options_default_solid`.
 #[repr(C)]
 #[derive(Clone, Copy, Debug)]
 pub struct igaparam_domain_options {
@@ -137,7 +138,8 @@ pub struct igaparam_domain_options {
     /// triangle formed by its end images and the image of its parametric midpoint, or a boundary
     /// cell face (solid) while the four tetrahedra of consecutive corner images and the image of
     /// its centre, measured in coordinates that map the bounding box onto the unit box, exceed
-    /// `tolerance × √d^d` (for a square or cube box: `tolerance × diagonal^d`; default 1e-5).
+    /// `tolerance × √d^d` (for a square or cube box: `tolerance × diagonal^d`; default 1e-5 for a
+    /// planar domain, 1e-3 for a solid).
     pub tolerance: f64,
     /// Level of the initial uniform refinement (default 2).
     pub min_level: u32,
@@ -192,10 +194,21 @@ pub struct igaparam_domain_report {
     pub seconds: f64,
 }
 
-/// The default domain options.
+/// The default options of a planar domain (tolerance 1e-5).
 #[no_mangle]
 pub extern "C" fn igaparam_domain_options_default() -> igaparam_domain_options {
-    let d = PlanarOptions::default();
+    c_options(&PlanarOptions::default())
+}
+
+/// The default options of a solid: those of `igaparam_domain_options_default` with a
+/// tolerance of 1e-3 (a tolerance bounds a volume in 3D; 1e-5 refines for many minutes).
+/// `igaparam_domain_build` with NULL options uses these for a solid.
+#[no_mangle]
+pub extern "C" fn igaparam_domain_options_default_solid() -> igaparam_domain_options {
+    c_options(&SolidOptions::solid())
+}
+
+fn c_options(d: &PlanarOptions) -> igaparam_domain_options {
     igaparam_domain_options {
         tolerance: d.tolerance,
         min_level: d.min_level as u32,
@@ -481,7 +494,8 @@ pub(super) fn fit_domain(
 /// Adapts a T-mesh to the boundary (refining boundary cells until `options.tolerance` or
 /// `options.max_level` is met), places its vertices (boundary ones on the curves, inner ones by
 /// the Coons patch) and optimizes them; the result is kept in the handle, replacing that of an
-/// earlier build. `options` may be NULL for the defaults; `report` may be NULL. On any error or
+/// earlier build. `options` may be NULL for the defaults (`igaparam_domain_options_default`, or
+/// `igaparam_domain_options_default_solid` for a solid); `report` may be NULL. On any error or
 /// cancellation the handle is unchanged (an earlier build stays) and `*report` is not written.
 #[no_mangle]
 pub extern "C" fn igaparam_domain_build(
@@ -492,7 +506,10 @@ pub extern "C" fn igaparam_domain_build(
     run("igaparam_domain_build", || {
         let d = non_null_mut(domain, "domain")?;
         let raw = if options.is_null() {
-            igaparam_domain_options_default()
+            match d {
+                igaparam_domain::Planar(..) => igaparam_domain_options_default(),
+                igaparam_domain::Solid(..) => igaparam_domain_options_default_solid(),
+            }
         } else {
             *non_null(options, "options")?
         };

@@ -657,6 +657,35 @@ static void test_solid_scaled(void) {
   igaparam_domain_free(d);
 }
 
+/* A solid built with NULL options uses the solid defaults (tolerance 1e-3), not the planar ones. */
+static void test_solid_defaults(void) {
+  igaparam_domain_options planar = igaparam_domain_options_default();
+  igaparam_domain_options solid = igaparam_domain_options_default_solid();
+  CHECK(planar.tolerance == 1e-5 && solid.tolerance == 1e-3, "default tolerances %g, %g",
+        planar.tolerance, solid.tolerance);
+  CHECK(solid.max_level == planar.max_level && solid.boundary_offset == planar.boundary_offset,
+        "the solid defaults differ from the planar ones in more than the tolerance");
+  igaparam_domain *a = NULL, *b = NULL;
+  const char *path = joined(data_dir, "duck3d_BRep.xml");
+  EXPECT(igaparam_domain_new_solid_from_file(path, &a), IGAPARAM_STATUS_OK);
+  EXPECT(igaparam_domain_new_solid_from_file(path, &b), IGAPARAM_STATUS_OK);
+  if (!a || !b) return;
+  igaparam_domain_report ra, rb;
+  solid.threads = 2;
+  EXPECT(igaparam_domain_build(a, NULL, &ra), IGAPARAM_STATUS_OK);
+  EXPECT(igaparam_domain_build(b, &solid, &rb), IGAPARAM_STATUS_OK);
+  printf("duck B-rep with the solid defaults: %zu cells, level %u, boundary error %.3e, %zu invalid\n",
+         ra.cells, ra.max_level, ra.boundary_error, ra.invalid_cells);
+  CHECK(ra.cells == rb.cells && ra.vertices == rb.vertices && ra.boundary_error == rb.boundary_error &&
+            ra.min_quality == rb.min_quality,
+        "NULL options: %zu cells, error %g; solid defaults: %zu cells, error %g", ra.cells,
+        ra.boundary_error, rb.cells, rb.boundary_error);
+  CHECK(ra.boundary_error <= 1e-3 && ra.invalid_cells == 0, "boundary error %g, %zu invalid",
+        ra.boundary_error, ra.invalid_cells);
+  igaparam_domain_free(a);
+  igaparam_domain_free(b);
+}
+
 int main(int argc, char **argv) {
   if (argc != 3) {
     fprintf(stderr, "usage: %s DATA_DIR OUT_DIR\n", argv[0]);
@@ -668,6 +697,7 @@ int main(int argc, char **argv) {
   test_unit_square();
   test_solid();
   test_solid_scaled();
+  test_solid_defaults();
   test_file("male_bdry.xml", "domain_male.vtu");
   test_file("gran_canaria.txt", "domain_gran_canaria.vtu");
   test_boundary_offset("gran_canaria.txt");

@@ -210,3 +210,12 @@ def test_errors():
     assert repr(domain) == "<igaparam.Domain (closed)>"
     with pytest.raises(ValueError, match="closed"):
         domain.dimension
+
+
+def test_solid_defaults():
+    """A solid's build defaults to tolerance 1e-3 (a planar domain's is 1e-5)."""
+    path = BOUNDARY / "duck3d_BRep.xml"
+    with Domain.solid_from_file(path) as a, Domain.solid_from_file(path) as b:
+        ra, rb = a.build(threads=2), b.build(tolerance=1e-3, threads=2)
+        assert ra.as_dict() | {"seconds": 0} == rb.as_dict() | {"seconds": 0}
+        assert ra.boundary_error <= 1e-3 and ra.invalid_cells == 0

@@ -220,6 +220,7 @@ _PROTOTYPES = {
     "igaparam_cell_type_node_count": (_status, [ctypes.c_int, _size_p]),
     "igaparam_mesh_invalid_cell_count": (_status, [_mesh_p, _size_p]),
     "igaparam_domain_options_default": (DomainOptions, []),
+    "igaparam_domain_options_default_solid": (DomainOptions, []),
     "igaparam_domain_new_from_file": (_status, [ctypes.c_char_p, ctypes.POINTER(_domain_p)]),
     "igaparam_domain_new_from_polylines": (
         _status,

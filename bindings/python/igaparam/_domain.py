@@ -263,11 +263,11 @@ class Domain(_Handle):
         again replaces the previous T-mesh; on any error the domain keeps its previous state.
 
         Args:
-            tolerance: boundary tolerance (library default 1e-5): a boundary cell edge (planar
-                domain) or face (solid) is refined while the triangle of its end images and the
-                image of its midpoint (the four tetrahedra of consecutive corner images and the
-                image of its centre), measured in coordinates that map the bounding box onto the
-                unit box, exceed ``tolerance × √d^d``.
+            tolerance: boundary tolerance (default 1e-5 for a planar domain, 1e-3 for a solid):
+                a boundary cell edge (planar domain) or face (solid) is refined while the
+                triangle of its end images and the image of its midpoint (the four tetrahedra of
+                consecutive corner images and the image of its centre), measured in coordinates
+                that map the bounding box onto the unit box, exceed ``tolerance × √d^d``.
             min_level: level of the initial uniform refinement (default 2).
             max_level: deepest level of the adaptation, at most 16 (default 9).
             max_sweeps: largest number of optimization sweeps (default 200).
@@ -292,7 +292,10 @@ class Domain(_Handle):
                 infinite ``tolerance`` or ``boundary_offset``, ``Status.INVALID_ARGUMENT`` for a
                 negative ``boundary_offset``, ...), a build that failed or was cancelled.
         """
-        options = self._lib.igaparam_domain_options_default()
+        if self.dimension == 3:
+            options = self._lib.igaparam_domain_options_default_solid()
+        else:
+            options = self._lib.igaparam_domain_options_default()
         if tolerance is not None:
             options.tolerance = float(tolerance)
         if boundary_offset is not None:
