@@ -353,6 +353,8 @@ def test_prototypes_match_header():
         (_capi.FitReport, "igaparam_fit_report"),
         (_capi.ValidityReport, "igaparam_validity_report"),
         (_capi.ValidityOptions, "igaparam_validity_options"),
+        (_capi.AdaptOptions, "igaparam_adapt_options"),
+        (_capi.AdaptReport, "igaparam_adapt_report"),
     ]:
         assert [field[0] for field in struct._fields_] == header_struct_fields(c_name), c_name
     bins = re.search(r"#define IGAPARAM_HISTOGRAM_BINS (\d+)", HEADER.read_text()).group(1)
@@ -360,7 +362,7 @@ def test_prototypes_match_header():
 
 
 def test_exports():
-    assert {"Spline", "FitReport", "ValidityReport"} <= set(igaparam.__all__)
+    assert {"Spline", "FitReport", "ValidityReport", "AdaptReport"} <= set(igaparam.__all__)
 
 
 def test_readme_spline_example(male, tmp_path, monkeypatch):
@@ -437,3 +439,25 @@ def test_3d_refine_and_round_trip(cube, tmp_path):
     with Spline.read_gismo(tmp_path / "refined.xml") as read:
         assert read.element_count == 15
         check_affine(read, params)
+
+
+def test_fit_adaptive_on_rotor():
+    """The adaptive loop refines the rotor's T-mesh until its map is certified with q_S >= 0.1;
+    the domain keeps the refined T-mesh. A cancelled loop leaves the domain as it was."""
+    with Domain.from_file(BOUNDARY / "rotor_bdry.xml") as domain:
+        built = domain.build(threads=2)
+        with pytest.raises(ValueError):
+            Spline.fit_adaptive(domain, max_rounds=-1)
+        with pytest.raises(IgaparamError) as error:
+            Spline.fit_adaptive(domain, threads=2, progress=lambda stage, done, total: False)
+        assert error.value.status == Status.CANCELLED
+        assert domain.cell_count == built.cells
+        with Spline.fit_adaptive(domain, target_quality=0.1, threads=2) as spline:
+            report = spline.adapt_report
+            assert report.rounds >= 1 and report.refined_cells > 0
+            assert report.reached and report.certified_positive and report.min_quality >= 0.1
+            assert report.elements == spline.element_count == domain.cell_count > built.cells
+            assert report.basis == spline.basis_count
+            validity = spline.check_validity()
+            assert validity.certified_positive
+            assert validity.min_quality == pytest.approx(report.min_quality, rel=1e-12)

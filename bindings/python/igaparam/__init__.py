@@ -25,11 +25,12 @@ else next to this package, else with ``ctypes.util.find_library("igaparam")``.
 from ._capi import CellType, Stage, Status
 from ._domain import Domain, DomainReport
 from ._mesh import IgaparamError, Mesh, RelocateReport, cell_type_code, nodes_per_cell, version
-from ._spline import FitReport, Spline, ValidityReport
+from ._spline import AdaptReport, FitReport, Spline, ValidityReport
 
 __version__ = "0.1.0"
 
 __all__ = [
+    "AdaptReport",
     "CellType",
     "Domain",
     "DomainReport",

@@ -169,6 +169,36 @@ class FitReport(ctypes.Structure):
     ]
 
 
+class AdaptOptions(ctypes.Structure):
+    """``igaparam_adapt_options``."""
+
+    _fields_ = [
+        ("target_quality", ctypes.c_double),
+        ("max_rounds", ctypes.c_uint32),
+        ("max_level", ctypes.c_uint32),
+        ("max_sweeps", ctypes.c_uint32),
+        ("threads", ctypes.c_uint32),
+        ("progress", PROGRESS_FN),
+        ("progress_user", ctypes.c_void_p),
+    ]
+
+
+class AdaptReport(ctypes.Structure):
+    """``igaparam_adapt_report``."""
+
+    _fields_ = [
+        ("rounds", ctypes.c_uint32),
+        ("reached", ctypes.c_int32),
+        ("refined_cells", ctypes.c_size_t),
+        ("elements", ctypes.c_size_t),
+        ("basis", ctypes.c_size_t),
+        ("certified_positive", ctypes.c_int32),
+        ("min_quality", ctypes.c_double),
+        ("mean_quality", ctypes.c_double),
+        ("seconds", ctypes.c_double),
+    ]
+
+
 class ValidityReport(ctypes.Structure):
     """``igaparam_validity_report``."""
 
@@ -253,6 +283,11 @@ _PROTOTYPES = {
     "igaparam_spline_fit_domain": (
         _status,
         [_domain_p, ctypes.POINTER(_spline_p), ctypes.POINTER(FitReport)],
+    ),
+    "igaparam_adapt_options_default": (AdaptOptions, []),
+    "igaparam_domain_fit_adaptive": (
+        _status,
+        [_domain_p, ctypes.POINTER(AdaptOptions), ctypes.POINTER(_spline_p), ctypes.POINTER(AdaptReport)],
     ),
     "igaparam_spline_read_gismo": (_status, [ctypes.c_char_p, ctypes.POINTER(_spline_p)]),
     "igaparam_spline_free": (None, [_spline_p]),

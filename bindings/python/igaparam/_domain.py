@@ -9,7 +9,7 @@ import numpy as np
 
 from . import _capi
 from ._handle import _Handle
-from ._mesh import _check, _progress_callback, _ptr
+from ._mesh import _attach_progress, _check, _ptr, _set_counts
 
 __all__ = ["Domain", "DomainReport"]
 
@@ -300,16 +300,9 @@ class Domain(_Handle):
             options.tolerance = float(tolerance)
         if boundary_offset is not None:
             options.boundary_offset = float(boundary_offset)
-        for name, value in (("min_level", min_level), ("max_level", max_level), ("max_sweeps", max_sweeps),
-                            ("threads", threads), ("repair_rounds", repair_rounds)):
-            if value is not None:
-                if int(value) < 0:
-                    raise ValueError(f"{name} must be >= 0")
-                setattr(options, name, int(value))
-        raised = []
-        callback = _progress_callback(progress, raised)  # kept alive during the call
-        if callback is not None:
-            options.progress = callback
+        _set_counts(options, min_level=min_level, max_level=max_level, max_sweeps=max_sweeps, threads=threads,
+                    repair_rounds=repair_rounds)
+        raised, _callback = _attach_progress(options, progress)
         report = _capi.DomainReport()
         status = self._lib.igaparam_domain_build(self._h(), ctypes.byref(options), ctypes.byref(report))
         if raised:

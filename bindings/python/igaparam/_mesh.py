@@ -115,6 +115,26 @@ def _as_int64(values, name, ndim):
     return np.ascontiguousarray(array, dtype=np.int64)
 
 
+def _set_counts(options, **counts):
+    """Sets the integer fields of a C options struct given (not None), refusing negative ones."""
+    for name, value in counts.items():
+        if value is not None:
+            if int(value) < 0:
+                raise ValueError(f"{name} must be >= 0")
+            setattr(options, name, int(value))
+
+
+def _attach_progress(options, progress):
+    """Sets ``options.progress`` from a Python ``progress`` (see :func:`_progress_callback`).
+    Returns the list that collects the exceptions it raised and the C callback, which the
+    caller keeps alive during the call."""
+    raised = []
+    callback = _progress_callback(progress, raised)
+    if callback is not None:
+        options.progress = callback
+    return raised, callback
+
+
 def _progress_callback(progress, raised):
     """A C progress callback calling ``progress(stage, done, total)`` (None if ``progress`` is
     None): False cancels; an exception cancels and is appended to ``raised`` (re-raise it after
@@ -342,17 +362,7 @@ class Mesh(_Handle):
         options.target = _option_code(target, _TARGETS, "target")
         options.placement = _option_code(placement, _PLACEMENTS, "placement")
         options.optimize = 0 if laplacian_only else 1
-        if int(threads) < 0:
-            raise ValueError("threads must be >= 0")
-        options.threads = int(threads)
-        for name, value in (
-            ("max_sweeps", max_sweeps),
-            ("max_newton_iterations", max_newton_iterations),
-        ):
-            if value is not None:
-                if int(value) < 0:
-                    raise ValueError(f"{name} must be >= 0")
-                setattr(options, name, int(value))
+        _set_counts(options, threads=threads, max_sweeps=max_sweeps, max_newton_iterations=max_newton_iterations)
         for name, value in (
             ("move_tolerance", move_tolerance),
             ("gradient_tolerance", gradient_tolerance),
@@ -361,11 +371,7 @@ class Mesh(_Handle):
             if value is not None:
                 setattr(options, name, float(value))
 
-        raised = []
-        callback = _progress_callback(progress, raised)  # kept alive during the call
-        if callback is not None:
-            options.progress = callback
-
+        raised, _callback = _attach_progress(options, progress)
         report = _capi.RelocateReport()
         status = self._lib.igaparam_mesh_relocate(self._h(), ctypes.byref(options), ctypes.byref(report))
         if raised:

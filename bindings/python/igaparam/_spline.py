@@ -11,16 +11,32 @@ import numpy as np
 
 from . import _capi
 from ._handle import _Handle
-from ._mesh import _check, _ptr
+from ._mesh import _attach_progress, _check, _ptr, _set_counts
 
-__all__ = ["Spline", "FitReport", "ValidityReport"]
+__all__ = ["Spline", "FitReport", "ValidityReport", "AdaptReport"]
 
 # size_t as a numpy dtype, for the buffers of function indices.
 _SIZE_T = np.dtype(f"u{ctypes.sizeof(ctypes.c_size_t)}")
 
 
+class _StructReport:
+    """A report read field by field from the C struct of the same field names."""
+
+    @classmethod
+    def _from_c(cls, report):
+        values = {}
+        for field in dataclasses.fields(cls):
+            value = getattr(report, field.name)
+            values[field.name] = bool(value) if field.type in (bool, "bool") else value
+        return cls(**values)
+
+    def as_dict(self):
+        """The report as a dict."""
+        return dataclasses.asdict(self)
+
+
 @dataclasses.dataclass(frozen=True)
-class FitReport:
+class FitReport(_StructReport):
     """What a fit (:meth:`Spline.fit`, :meth:`Spline.refine`) did (``igaparam_fit_report``).
 
     Attributes:
@@ -50,22 +66,35 @@ class FitReport:
     boundary_offset: float
     seconds: float
 
-    @classmethod
-    def _from_c(cls, report):
-        return cls(
-            basis_count=report.basis_count,
-            element_count=report.element_count,
-            residual=report.residual,
-            least_squares=bool(report.least_squares),
-            quasi_interpolation=bool(report.quasi_interpolation),
-            untangled=report.untangled,
-            boundary_offset=report.boundary_offset,
-            seconds=report.seconds,
-        )
 
-    def as_dict(self):
-        """The report as a dict."""
-        return dataclasses.asdict(self)
+
+@dataclasses.dataclass(frozen=True)
+class AdaptReport(_StructReport):
+    """What :meth:`Spline.fit_adaptive` did (``igaparam_adapt_report``).
+
+    Attributes:
+        rounds: refinement rounds done (0 when the first fit met the target).
+        reached: True when the map returned meets the target (every element certified valid
+            with a smallest sampled mean ratio of at least ``target_quality``).
+        refined_cells: T-mesh cells refined over all rounds.
+        elements: elements of the map returned (= cells of the domain's final T-mesh).
+        basis: basis functions of the map returned.
+        certified_positive: True when every element of the map returned is certified valid.
+        min_quality: smallest sampled mean ratio of the map returned.
+        mean_quality: mean sampled mean ratio of the map returned.
+        seconds: wall-clock seconds of the call.
+    """
+
+    rounds: int
+    reached: bool
+    refined_cells: int
+    elements: int
+    basis: int
+    certified_positive: bool
+    min_quality: float
+    mean_quality: float
+    seconds: float
+
 
 
 @dataclasses.dataclass(frozen=True)
@@ -148,6 +177,8 @@ class Spline(_Handle):
         self._lib = _capi.library()
         self._handle = handle
         self.fit_report: Optional[FitReport] = fit_report
+        #: What :meth:`fit_adaptive` did, for a spline it made.
+        self.adapt_report: Optional[AdaptReport] = None
 
     @classmethod
     def fit(cls, domain):
@@ -170,6 +201,54 @@ class Spline(_Handle):
         lib = _capi.library()
         _check(lib.igaparam_spline_fit_domain(domain._h(), ctypes.byref(handle), ctypes.byref(report)))
         return cls(handle, FitReport._from_c(report))
+
+    @classmethod
+    def fit_adaptive(
+        cls, domain, target_quality=None, max_rounds=None, max_level=None, max_sweeps=None, threads=0,
+        progress=None,
+    ):
+        """The method's adaptive loop: fits the spline map of a built domain, refines the T-mesh
+        cells whose element is not certified valid or has a sampled mean ratio under
+        ``target_quality``, optimizes the T-mesh again and refits, for at most ``max_rounds``
+        rounds. The domain keeps its refined T-mesh; on an error or a cancellation it is
+        unchanged.
+
+        Args:
+            domain: a :class:`Domain` on which :meth:`Domain.build` succeeded.
+            target_quality: smallest sampled mean ratio wanted, in [0, 1) (default 0.1).
+            max_rounds: largest number of refinement rounds (default 4).
+            max_level: cells at this level are not refined further, at most 16 (default 10).
+            max_sweeps: optimization sweeps after each refinement (default 200).
+            threads: worker threads; 0 uses one per core (the result does not depend on it).
+            progress: None, or a callable ``progress(stage, done, total)`` called before each
+                refinement; return False to cancel (``Status.CANCELLED``). An exception raised
+                by it cancels the loop and is re-raised.
+
+        Returns:
+            Spline, with the loop's :class:`AdaptReport` in ``adapt_report``.
+
+        Raises:
+            ValueError: a negative count.
+            IgaparamError: the domain is not built, options rejected by the library, a failed
+                or cancelled loop.
+        """
+        lib = _capi.library()
+        options = lib.igaparam_adapt_options_default()
+        if target_quality is not None:
+            options.target_quality = float(target_quality)
+        _set_counts(options, max_rounds=max_rounds, max_level=max_level, max_sweeps=max_sweeps, threads=threads)
+        raised, _callback = _attach_progress(options, progress)
+        handle = ctypes.c_void_p()
+        report = _capi.AdaptReport()
+        status = lib.igaparam_domain_fit_adaptive(
+            domain._h(), ctypes.byref(options), ctypes.byref(handle), ctypes.byref(report)
+        )
+        if raised:
+            raise raised[0]
+        _check(status)
+        spline = cls(handle)
+        spline.adapt_report = AdaptReport._from_c(report)
+        return spline
 
     @classmethod
     def read_gismo(cls, path):
