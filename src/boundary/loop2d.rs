@@ -6,6 +6,7 @@ use std::path::Path;
 use super::curve::{distance, Curve2, Point2};
 use super::gismo_xml::read_gismo_curves;
 use crate::error::{Error, ErrorKind, Result};
+use crate::optimize::small::bounding_box;
 
 /// A side of the unit square.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -117,13 +118,7 @@ impl BoundaryLoop2 {
                 "a boundary curve evaluates to a non-finite point",
             ));
         }
-        let (mut lo, mut hi) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
-        for p in &samples {
-            for d in 0..2 {
-                lo[d] = lo[d].min(p[d]);
-                hi[d] = hi[d].max(p[d]);
-            }
-        }
+        let (lo, hi) = bounding_box(samples.iter().copied());
         let diag = distance(lo, hi);
         let tol = options.rel_tol * diag;
 

@@ -15,6 +15,7 @@ use super::bspline::{BSplineSurface, Vec3};
 use super::gismo_xml::read_gismo_surfaces;
 use super::trimesh::{signed_areas, CubeFaces, CUBE_FACE_NAMES};
 use crate::error::{Error, ErrorKind, Result};
+use crate::optimize::small::bounding_box;
 
 /// How a face's in-plane coordinates `(a, b)` become the surface's unit parameters `(s, t)`:
 /// `(x, y) = swap ? (b, a) : (a, b)`, then `s = flip_s ? 1 − x : x`, `t = flip_t ? 1 − y : y`.
@@ -210,18 +211,6 @@ fn dist3(a: Vec3, b: Vec3) -> f64 {
     ((a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2) + (a[2] - b[2]).powi(2)).sqrt()
 }
 
-fn box_of(points: impl Iterator<Item = Vec3>) -> (Vec3, Vec3) {
-    let mut lo = [f64::INFINITY; 3];
-    let mut hi = [f64::NEG_INFINITY; 3];
-    for p in points {
-        for d in 0..3 {
-            lo[d] = lo[d].min(p[d]);
-            hi[d] = hi[d].max(p[d]);
-        }
-    }
-    (lo, hi)
-}
-
 /// `e` with its message prefixed by the file or folder it is about.
 fn in_file(path: &Path, e: Error) -> Error {
     Error::new(e.kind, format!("{}: {}", path.display(), e.message))
@@ -321,7 +310,7 @@ impl SolidBoundary {
             let (nu, nv) = s.num_control_points();
             (0..nv).flat_map(move |j| (0..nu).map(move |i| s.control_point(i, j)))
         });
-        let bbox = box_of(cps);
+        let bbox = bounding_box(cps);
         let tol = REL_TOL * dist3(bbox.0, bbox.1);
         // Corner points (s, t) ∈ {0,1}^2 at index s + 2t, and their clusters.
         let unit = |s: &BSplineSurface, a: f64, b: f64| {
@@ -471,7 +460,7 @@ impl SolidBoundary {
     /// zmax`, parameterized as by [`SolidBoundary::from_obj_dir`] (same rules and errors, without
     /// the I/O).
     pub fn from_cube_faces(cube: &CubeFaces) -> Result<Self> {
-        let bbox = box_of(cube.faces.iter().flat_map(|m| m.vertices.iter().copied()));
+        let bbox = bounding_box(cube.faces.iter().flat_map(|m| m.vertices.iter().copied()));
         let params = match cube.parameterize() {
             Ok(p) => p,
             Err(first) => {

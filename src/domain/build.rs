@@ -304,7 +304,7 @@ impl<const D: usize, B: CubeMap<D>> Domain<D, B> {
         if !invalid_cells(&pool, &problem, &x).is_empty() {
             // The transfinite start folds too much (deep necks): grow the domain instead from its
             // bounding box, where the parametric grid is valid, following the boundary in steps.
-            let (lo, hi) = bounding_box(&x);
+            let (lo, hi) = bounding_box(x.iter().copied());
             let start: Vec<[f64; D]> = mesh
                 .parametric()
                 .into_iter()

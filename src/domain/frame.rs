@@ -2,7 +2,7 @@
 //! the affine frame, each axis scaled by its own extent, in which the T-mesh is optimized.
 
 use super::build::CubeMap;
-use crate::optimize::small::{det, Matrix};
+use crate::optimize::small::{bounding_box, det, Matrix};
 
 /// Samples per side of the parametric square or cube face used to measure the boundary.
 const SAMPLES: usize = 16;
@@ -118,18 +118,14 @@ impl<const D: usize> Frame<D> {
     /// box is flat or not finite.
     pub(super) fn of(boundary: &impl CubeMap<D>) -> Option<Self> {
         let n = SAMPLES;
-        let (mut lo, mut hi) = ([f64::INFINITY; D], [f64::NEG_INFINITY; D]);
-        for i in 0..(n + 1).pow(D as u32) {
-            let p: [f64; D] =
-                std::array::from_fn(|k| (i / (n + 1).pow(k as u32) % (n + 1)) as f64 / n as f64);
-            if p.iter().any(|&v| v == 0.0 || v == 1.0) {
-                let x = boundary.boundary_point(p);
-                for k in 0..D {
-                    lo[k] = lo[k].min(x[k]);
-                    hi[k] = hi[k].max(x[k]);
-                }
-            }
-        }
+        let (lo, hi) = bounding_box(
+            (0..(n + 1).pow(D as u32))
+                .map(|i| -> [f64; D] {
+                    std::array::from_fn(|k| (i / (n + 1).pow(k as u32) % (n + 1)) as f64 / n as f64)
+                })
+                .filter(|p| p.iter().any(|&v| v == 0.0 || v == 1.0))
+                .map(|p| boundary.boundary_point(p)),
+        );
         let extent: [f64; D] = std::array::from_fn(|k| hi[k] - lo[k]);
         if extent.iter().any(|&e| !(e.is_finite() && e > 0.0)) {
             return None;

@@ -121,8 +121,10 @@ pub fn mul_transpose_vec<const D: usize>(a: &Matrix<D>, v: &Vector<D>) -> Vector
 }
 
 /// Corners of the box around the points.
-pub fn bounding_box<const D: usize>(points: &[[f64; D]]) -> ([f64; D], [f64; D]) {
-    points.iter().fold(
+pub fn bounding_box<const D: usize>(
+    points: impl IntoIterator<Item = [f64; D]>,
+) -> ([f64; D], [f64; D]) {
+    points.into_iter().fold(
         ([f64::INFINITY; D], [f64::NEG_INFINITY; D]),
         |(lo, hi), p| {
             (

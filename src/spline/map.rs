@@ -12,7 +12,7 @@ use super::untangle::UntangleOptions;
 use super::validity::{ValidityOptions, ValidityReport};
 use crate::error::{check_finite, Error, Result};
 use crate::optimize::metric::mean_ratio;
-use crate::optimize::small::{det, inverse, Matrix};
+use crate::optimize::small::{bounding_box, det, inverse, Matrix};
 
 /// Per fit point: the data and the sparse row of basis values.
 type FitRow<const D: usize> = ([f64; D], Vec<(usize, f64)>);
@@ -361,14 +361,7 @@ impl<const D: usize, S: SplineSpace<D>> SplineMap<D, S> {
                 })
             })
             .collect::<Vec<_>>();
-        let mut lo = [f64::INFINITY; D];
-        let mut hi = [f64::NEG_INFINITY; D];
-        for (_, y) in &starts {
-            for k in 0..D {
-                lo[k] = lo[k].min(y[k]);
-                hi[k] = hi[k].max(y[k]);
-            }
-        }
+        let (lo, hi) = bounding_box(starts.iter().map(|&(_, y)| y));
         let size = (0..D).map(|k| hi[k] - lo[k]).fold(0.0, f64::max);
         InverseMap {
             map: self,

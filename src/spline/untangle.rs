@@ -134,7 +134,7 @@ impl<const D: usize> SplineMap<D, ThbSpace<D>> {
         cap: f64,
     ) -> (ValidityReport, usize, f64) {
         // Unit-box coordinates: each axis scaled by the extent of the control points.
-        let (lo, hi) = bounding_box(&self.control);
+        let (lo, hi) = bounding_box(self.control.iter().copied());
         let scale: [f64; D] = std::array::from_fn(|k| {
             let e = hi[k] - lo[k];
             if e > 0.0 && e.is_finite() {
