@@ -7,16 +7,17 @@
 // INPUT is a G+Smo XML B-rep (four curves, or six surfaces), a coastline .txt, or a folder of six
 // surface files xmin, xmax, ymin, ymax, zmin, zmax (.obj, .off, .stl or .ply, read by OpenMesh).
 // The default tolerance is 1e-5 for a planar domain, 1e-3 for a solid. Builds the optimized
-// T-mesh, fits its cubic THB-spline map and certifies it (with --adapt, the
-// adaptive loop refines the T-mesh where the map's mean ratio is under Q or not certified, for
-// at most R rounds). --boundary-offset caps the seam relief of the build (how far, relative to
-// the bounding box, a boundary vertex may leave the boundary; 0 keeps them all on it). --scale
-// multiplies the coordinates of a solid (faces or B-rep) per axis, for data whose axes have different
-// units (Floater's parameterization of each face, and q_S, depend on them). Writes
+// T-mesh, fits its cubic THB-spline map and certifies it (with --adapt, the adaptive loop
+// refines the T-mesh where the map's mean ratio is under Q or not certified, for at most R
+// rounds). --boundary-offset caps the seam relief of the build (how far, relative to the
+// bounding box, a boundary vertex may leave the boundary; 0 keeps them all on it). --scale
+// multiplies the coordinates of a solid (faces or B-rep) per axis, for data whose axes have
+// different units (Floater's parameterization of each face, and q_S, depend on them). Writes
 // OUT_PREFIX_tmesh.vtu with VTK (physical T-mesh: one quad or hexahedron per cell through its
-// corners, point data `parametric`, cell data `quality` and `level`), OUT_PREFIX_spline.vtu (the spline map sampled per element, point data `quality` =
-// q_S and `det`) and OUT_PREFIX.xml (the map as G+Smo XML), prints a summary and, as its last
-// line, one JSON object. Exit codes: 0 success, 1 error, 2 usage.
+// corners, point data `parametric`, cell data `quality` and `level`), OUT_PREFIX_spline.vtu
+// (the spline map sampled per element, point data `quality` = q_S and `det`) and OUT_PREFIX.xml
+// (the map as G+Smo XML), prints a summary and, as its last line, one JSON object. Exit codes:
+// 0 success, 1 error, 2 usage.
 
 #include <OpenMesh/Core/IO/MeshIO.hh>
 #include <OpenMesh/Core/Mesh/TriMesh_ArrayKernelT.hh>
@@ -40,6 +41,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <optional>
 #include <sstream>
 #include <stdexcept>
 #include <string>
@@ -294,8 +296,8 @@ int main(int argc, char** argv) {
   igaparam_domain_options options = igaparam_domain_options_default();
   igaparam_adapt_options adapt = igaparam_adapt_options_default();
   bool adaptive = false, spline_wanted = true;
-  std::array<double, 3> scale{};
-  bool scaled = false, tolerance_given = false;
+  std::optional<std::array<double, 3>> scale;
+  bool tolerance_given = false;
   try {
     for (int i = 3; i < argc; i++) {
       std::string a = argv[i];
@@ -323,7 +325,6 @@ int main(int argc, char** argv) {
         options.boundary_offset = std::stod(v, &used);
       } else if (a == "--scale") {
         scale = parse_scale(v);
-        scaled = true;
         used = v.size();
       } else {
         return usage(argv[0]);
@@ -335,7 +336,7 @@ int main(int argc, char** argv) {
   }
   try {
     Domain domain;
-    open_domain(input, domain, scaled ? &scale : nullptr);
+    open_domain(input, domain, scale ? &*scale : nullptr);
     size_t dim = 0;
     check(igaparam_domain_dimension(domain.d, &dim), "dimension");
     if (dim == 3 && !tolerance_given) options.tolerance = igaparam_domain_options_default_solid().tolerance;
