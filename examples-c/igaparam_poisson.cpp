@@ -29,11 +29,14 @@
 // projection of the exact solution, the interior system solved, L2 / H1-seminorm errors (and,
 // with --estimator, the residual indicator) by a finer quadrature. Adaptive series
 // (--adaptive): solve, mark the elements with η_e > γ max η (--gamma, default 0.5), refine
-// them, until a step has --max-dofs dofs (default 20000) or after --max-steps solves (60);
-// then the uniform series of the same map (--levels) for comparison. Prints a table and, as its
-// last line, one JSON object with the series and the rates: in h between the last two levels
-// (uniform), fitted in dofs over the last steps, those with at least 1/--fit-span (default 4) of
-// the last step's dofs (adaptive).
+// them with --layers layers of elements around them (default 1: a THB space gains functions only
+// where whole supports are refined), until a step has --max-dofs dofs (default 20000) or after
+// --max-steps solves (60); then the uniform series of the same map (--levels) for comparison.
+// Prints a table and, as its last line (also written to --json), one JSON object with the
+// series and the rates: in h between the last two levels (uniform), fitted in dofs over the last
+// steps, those with at least 1/--fit-span (default 4) of the last step's dofs (adaptive).
+// --vtu writes u_h and its error sampled on the last space, --spline-vtu that space's elements
+// (igaparam_spline_write_vtu, cell data `level`).
 //
 // Checks (exit status 3 when one fails): --check-rates (uniform L2 and H1 rates),
 // --check-estimator-rate (uniform rate of the indicator), --check-adaptive (adaptive H1 rate in

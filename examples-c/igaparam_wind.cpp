@@ -253,10 +253,14 @@ void write_outputs(const Options &o, const WindSolution &s, const igaparam_splin
   picture.width = o.width;
   picture.height = o.height;
   picture.title = "adjusted wind over the terrain: streamlines from near the ground and higher up";
-  char sub[200];
-  std::snprintf(sub, sizeof sub, "%s initial wind (%g, %g, %g), %zu elements, vertical scale x%g",
-                o.wind.logarithmic ? "logarithmic" : "constant", o.wind.velocity[0], o.wind.velocity[1],
-                o.wind.velocity[2], s.space.elements.size(), o.stretch);
+  char sub[256];
+  double top[3];
+  std::array<double, 3> lid_centre{0.5, 0.5, 0.5};
+  lid_centre[terrain.axis] = 1.0 - terrain.side;
+  check(igaparam_spline_evaluate(spline, 1, lid_centre.data(), top, nullptr), "evaluate");
+  std::snprintf(sub, sizeof sub, "%s initial wind (%g, %g, %g), %zu elements, lid at z = %.3g (above the view), "
+                "vertical scale x%g", o.wind.logarithmic ? "logarithmic" : "constant", o.wind.velocity[0],
+                o.wind.velocity[1], o.wind.velocity[2], s.space.elements.size(), top[2], o.stretch);
   picture.subtitle = sub;
   render_streamlines::render_png(grid, seeds(spline, terrain, o.wind), face_grid(spline, terrain, n), n, picture,
                                  o.png);

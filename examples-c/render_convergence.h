@@ -56,7 +56,7 @@ inline void render_loglog_png(const std::vector<Curve> &curves, const std::strin
   if (curves.empty()) throw std::runtime_error("no curve to draw");
   render_picture::require_display();
   namespace rd = render_picture::detail;
-  rd::ChartWindow view(width, height, title, vtkChartLegend::TOP);
+  rd::ChartWindow view(width, height, title, vtkChartLegend::LEFT, vtkChartLegend::BOTTOM);
   vtkChartXY *chart = view.chart;
   std::vector<vtkSmartPointer<vtkTable>> tables;
   for (std::size_t i = 0; i < curves.size(); i++) {

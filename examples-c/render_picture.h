@@ -319,7 +319,7 @@ inline void add_colour_bar(vtkRenderer* renderer, vtkScalarsToColors* table, con
 }
 
 /// An offscreen window of `width` × `height` pixels whose renderer holds an XY chart with a
-/// title and a legend in the corner (right, then BOTTOM or TOP). A plain window with the chart
+/// title and a legend in a corner (vtkChartLegend::LEFT or RIGHT, BOTTOM or TOP). A plain window with the chart
 /// in a context actor: a vtkContextView would bring an interactor, which an offscreen window
 /// does not want.
 struct ChartWindow {
@@ -328,7 +328,7 @@ struct ChartWindow {
   vtkNew<vtkContextActor> actor;
   vtkNew<vtkChartXY> chart;
 
-  ChartWindow(int width, int height, const std::string& title, int legend_corner) {
+  ChartWindow(int width, int height, const std::string& title, int legend_side, int legend_end) {
     window->SetOffScreenRendering(1);
     window->SetSize(width, height);
     renderer->SetBackground(1, 1, 1);
@@ -338,8 +338,8 @@ struct ChartWindow {
     chart->SetTitle(title);
     style_text(chart->GetTitleProperties(), height / 30, true);
     chart->SetShowLegend(true);
-    chart->GetLegend()->SetHorizontalAlignment(vtkChartLegend::RIGHT);
-    chart->GetLegend()->SetVerticalAlignment(legend_corner);
+    chart->GetLegend()->SetHorizontalAlignment(legend_side);
+    chart->GetLegend()->SetVerticalAlignment(legend_end);
     chart->GetLegend()->SetLabelSize(height / 36);
   }
 
@@ -549,7 +549,7 @@ inline void render_sorted_quality_png(const std::vector<QualityCurve>& curves, c
                                       const std::string& path, int width = 1000, int height = 650) {
   if (curves.empty()) throw std::runtime_error("no quality curve to draw");
   require_display();
-  detail::ChartWindow view(width, height, title, vtkChartLegend::BOTTOM);
+  detail::ChartWindow view(width, height, title, vtkChartLegend::RIGHT, vtkChartLegend::BOTTOM);
   vtkChartXY* chart = view.chart;
   std::vector<vtkSmartPointer<vtkTable>> tables;
   for (std::size_t i = 0; i < curves.size(); i++) {

@@ -7,7 +7,7 @@
 
 #include <vtkAlgorithmOutput.h>
 #include <vtkCellType.h>
-#include <vtkOutlineFilter.h>
+#include <vtkOutlineSource.h>
 #include <vtkStreamTracer.h>
 #include <vtkTransform.h>
 #include <vtkTransformPolyDataFilter.h>
@@ -56,7 +56,7 @@ struct Picture {
   std::string title, subtitle;
   int width = 1200, height = 800;
   double stretch = 1.0;                  // vertical exaggeration
-  double azimuth = -35, elevation = 30;  // camera, degrees, looking from the south-west upwind
+  double azimuth = -35, elevation = 25;  // camera, degrees, looking from the south-west upwind
 };
 
 namespace detail {
@@ -156,7 +156,7 @@ inline void render_png(vtkUnstructuredGrid *grid, const std::vector<double> &see
   vtkNew<vtkPolyDataMapper> line_mapper;
   line_mapper->SetInputConnection(tubes->GetOutputPort());
   double speed[2];
-  grid->GetPointData()->GetArray("u")->GetRange(speed, -1);
+  tubes->GetOutput()->GetPointData()->GetArray("u")->GetRange(speed, -1);  // along the streamlines
   auto speed_colours = rd::viridis(speed[0], speed[1]);
   speed_colours->SetVectorModeToMagnitude();
   line_mapper->SetLookupTable(speed_colours);
@@ -181,11 +181,16 @@ inline void render_png(vtkUnstructuredGrid *grid, const std::vector<double> &see
   ground_actor->GetProperty()->SetDiffuse(0.7);
   renderer->AddActor(ground_actor);
 
-  vtkNew<vtkOutlineFilter> outline;
-  outline->SetInputData(grid);
-  auto outline_stretched = detail::stretched(outline->GetOutputPort(), picture.stretch);
+  // The view: the domain from the terrain up to a third above the highest seed (the air far
+  // above is uniform), framed by its outline.
+  double top = bounds[4];
+  for (size_t i = 2; i < seeds.size(); i += 3) top = std::max(top, seeds[i]);
+  top = std::min(bounds[5], top + 0.35 * (top - bounds[4]));
+  vtkNew<vtkOutlineSource> outline;
+  outline->SetBounds(bounds[0], bounds[1], bounds[2], bounds[3], bounds[4] * picture.stretch, top * picture.stretch);
+  outline->Update();
   vtkNew<vtkPolyDataMapper> outline_mapper;
-  outline_mapper->SetInputConnection(outline_stretched->GetOutputPort());
+  outline_mapper->SetInputConnection(outline->GetOutputPort());
   vtkNew<vtkActor> outline_actor;
   outline_actor->SetMapper(outline_mapper);
   outline_actor->GetProperty()->SetColor(0.4, 0.4, 0.4);
@@ -206,8 +211,8 @@ inline void render_png(vtkUnstructuredGrid *grid, const std::vector<double> &see
   camera->Azimuth(picture.azimuth);
   camera->Elevation(picture.elevation);
   camera->OrthogonalizeViewUp();
-  renderer->ResetCamera();
-  camera->Zoom(1.15);
+  renderer->ResetCamera(outline->GetOutput()->GetBounds());
+  camera->Zoom(1.1);
   renderer->ResetCameraClippingRange();
   rd::write_png(window, path);
 }
