@@ -2,6 +2,7 @@
 
 import ctypes
 import dataclasses
+import os
 
 import numpy as np
 
@@ -234,6 +235,54 @@ class Mesh(_Handle):
         )
         self._handle = handle
         self._cell_type = code
+
+    @classmethod
+    def _from_handle(cls, handle):
+        """A Mesh owning ``handle`` (an ``igaparam_mesh *`` of the library)."""
+        mesh = cls.__new__(cls)
+        mesh._lib = _capi.library()
+        mesh._handle = handle
+        code = ctypes.c_int()
+        _check(mesh._lib.igaparam_mesh_cell_type(handle, ctypes.byref(code)))
+        mesh._cell_type = code.value
+        return mesh
+
+    @classmethod
+    def read_vtu(cls, path):
+        """Reads a mesh from a ``.vtu`` file in any storage VTK and meshio write (ASCII, binary,
+        appended raw or base64, zlib-compressed): one supported cell type in VTK's node order;
+        its point arrays ``fixed_components`` (masks) and ``moved`` (new positions), when
+        present, constrain and move the nodes (see ``igaparam_mesh_read_vtu`` in igaparam.h).
+
+        Raises:
+            IgaparamError: ``Status.IO`` for a file that cannot be read or understood,
+                ``Status.INVALID_MESH`` for unsupported or mixed cells or bad masks.
+        """
+        handle = ctypes.c_void_p()
+        _check(_capi.library().igaparam_mesh_read_vtu(os.fsencode(path), ctypes.byref(handle)))
+        return cls._from_handle(handle)
+
+    def write_vtu(self, path, encoding="binary", compress=True):
+        """Writes the mesh to a ``.vtu`` file: current positions, cells (VTK order), point data
+        ``displacement`` and ``fixed_components``, cell data ``quality``.
+
+        Args:
+            path: the file.
+            encoding: 'binary' (base64 in each array, valid XML), 'appended' (raw bytes in an
+                appended section, VTK's default, the smallest), 'appended-base64' or 'ascii'.
+            compress: zlib-compress the binary data (not with 'ascii').
+        """
+        codes = {
+            "ascii": _capi.VTU_ASCII,
+            "binary": _capi.VTU_BINARY,
+            "appended": _capi.VTU_APPENDED,
+            "appended-base64": _capi.VTU_APPENDED_BASE64,
+        }
+        code = _option_code(encoding, codes, "encoding")
+        if compress and code == _capi.VTU_ASCII:
+            raise ValueError("ASCII .vtu files cannot be compressed: pass compress=False")
+        code |= _capi.VTU_ZLIB if compress else 0
+        _check(self._lib.igaparam_mesh_write_vtu_format(self._h(), os.fsencode(path), code))
 
     def __repr__(self):
         if self.closed:
