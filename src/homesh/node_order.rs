@@ -153,9 +153,9 @@ impl Mesh {
         };
         Err(Error::mesh(format!(
             "all {cells} cells are inverted or folded in the given positions (det J <= 0 in every cell){plane}: \
-             most likely the connectivity lists the nodes of each cell in another order than the {} order it was \
-             given as (a Gmsh mesh needs the Gmsh order), or the cells are oriented the wrong way (clockwise \
-             quadrilaterals, left-handed hexahedra)",
+             most likely a wrong node order (the connectivity lists the nodes of each cell in another order \
+             than the {} node order it was given as; a Gmsh mesh needs the Gmsh node order) or cells oriented \
+             the wrong way (clockwise quadrilaterals, left-handed hexahedra)",
             self.order.name()
         )))
     }

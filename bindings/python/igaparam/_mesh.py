@@ -10,7 +10,15 @@ from . import _capi
 from ._handle import _Handle
 from ._capi import CellType, Stage, Status
 
-__all__ = ["IgaparamError", "Mesh", "RelocateReport", "version", "nodes_per_cell", "cell_type_code"]
+__all__ = [
+    "IgaparamError",
+    "Mesh",
+    "RelocateReport",
+    "version",
+    "nodes_per_cell",
+    "cell_type_code",
+    "node_coordinates",
+]
 
 
 class IgaparamError(Exception):
@@ -51,18 +59,27 @@ def version():
 
 
 _CELL_NAMES = {name: int(code) for name, code in CellType.__members__.items()}
+# meshio's names of the supported cell types (VTK's node order, as meshio keeps it).
+MESHIO_NAMES = {"QUAD": 9, "QUAD8": 23, "QUAD9": 28, "HEXAHEDRON": 12, "HEXAHEDRON20": 25, "HEXAHEDRON27": 29}
+_MESHIO_BY_CODE = {code: name.lower() for name, code in MESHIO_NAMES.items()}
+_ORDERS = {"vtk": _capi.ORDER_VTK, "gmsh": _capi.ORDER_GMSH}
+_ORDER_NAMES = {code: name for name, code in _ORDERS.items()}
 _TARGETS = {"initial": _capi.TARGET_INITIAL, "master": _capi.TARGET_MASTER}
 _PLACEMENTS = {"laplacian": _capi.PLACEMENT_LAPLACIAN, "current": _capi.PLACEMENT_CURRENT}
 
 
 def cell_type_code(cell_type):
-    """The VTK code of a cell type given as a code (e.g. 28) or a name ('Q4', 'Q8', 'Q9', 'H8',
-    'H20', 'H27')."""
+    """The VTK code of a cell type given as a code (e.g. 28), a name ('Q4', 'Q8', 'Q9', 'H8',
+    'H20', 'H27') or a meshio name ('quad', 'quad8', 'quad9', 'hexahedron', 'hexahedron20',
+    'hexahedron27')."""
     if isinstance(cell_type, str):
-        try:
-            return _CELL_NAMES[cell_type.upper()]
-        except KeyError:
-            raise ValueError(f"unknown cell type {cell_type!r}: expected one of {sorted(_CELL_NAMES)}") from None
+        key = cell_type.upper()
+        if key in _CELL_NAMES:
+            return _CELL_NAMES[key]
+        if key in MESHIO_NAMES:
+            return MESHIO_NAMES[key]
+        names = sorted(_CELL_NAMES) + sorted(name.lower() for name in MESHIO_NAMES)
+        raise ValueError(f"unknown cell type {cell_type!r}: expected one of {names}")
     if isinstance(cell_type, (bool, np.bool_)) or not isinstance(cell_type, (int, np.integer)):
         raise TypeError(f"cell_type must be an int (VTK code) or a name, not {type(cell_type).__name__}")
     return int(cell_type)
@@ -73,6 +90,21 @@ def nodes_per_cell(cell_type):
     out = ctypes.c_size_t()
     _check(_capi.library().igaparam_cell_type_node_count(cell_type_code(cell_type), ctypes.byref(out)))
     return out.value
+
+
+def node_coordinates(cell_type, order="vtk"):
+    """Reference coordinates in [-1, 1]^d of the local nodes of ``cell_type`` in ``order``
+    ('vtk' or 'gmsh'): a float64 array of shape (nodes per cell, d), row i for local node i."""
+    code = cell_type_code(cell_type)
+    k = nodes_per_cell(code)
+    d = 2 if code in (9, 23, 28) else 3
+    out = np.empty((k, d), dtype=np.float64)
+    _check(
+        _capi.library().igaparam_cell_type_copy_node_coordinates(
+            code, _option_code(order, _ORDERS, "order"), _ptr(out, ctypes.c_double), out.size
+        )
+    )
+    return out
 
 
 def _option_code(value, codes, what):
@@ -195,8 +227,15 @@ class Mesh(_Handle):
             'H20', 'H27').
         points: node coordinates, shape (n, 3) (or (n, 2): z = 0), converted to float64. They
             are the reference shape of the targets. For quadrilaterals z is carried unchanged.
-        cells: connectivity, shape (m, k) with k the nodes per cell of ``cell_type``, in VTK's
-            node order, converted to int64.
+        cells: connectivity, shape (m, k) with k the nodes per cell of ``cell_type``, in
+            ``order``, converted to int64.
+        order: the local node order of ``cells``: 'vtk' (VTK's and meshio's, the default) or
+            'gmsh' (Gmsh's); see ``igaparam_node_order`` in igaparam.h for the tables and
+            :func:`node_coordinates`. :attr:`cells` gives them back in this order.
+
+    ``cell_type`` may also be a meshio name ('quad9', 'hexahedron27', ...). A mesh every cell
+    of which is inverted or folded is refused (``Status.INVALID_MESH``; likely a wrong node
+    order or cells oriented the wrong way).
 
     All nodes start free (see :meth:`set_fixed`). The arrays are copied. Release the handle
     with :meth:`close` or a ``with`` block (it is also released when the object is collected).
@@ -210,7 +249,7 @@ class Mesh(_Handle):
     _kind = "mesh"
     _free = "igaparam_mesh_free"
 
-    def __init__(self, cell_type, points, cells):
+    def __init__(self, cell_type, points, cells, order="vtk"):
         self._handle = None
         self._lib = _capi.library()
         code = cell_type_code(cell_type)
@@ -224,8 +263,9 @@ class Mesh(_Handle):
             )
         handle = _capi.ctypes.c_void_p()
         _check(
-            self._lib.igaparam_mesh_new(
+            self._lib.igaparam_mesh_new_ordered(
                 code,
+                _option_code(order, _ORDERS, "order"),
                 xyz.shape[0],
                 _ptr(xyz, ctypes.c_double),
                 connectivity.shape[0],
@@ -235,6 +275,57 @@ class Mesh(_Handle):
         )
         self._handle = handle
         self._cell_type = code
+
+    @classmethod
+    def from_meshio(cls, mesh):
+        """A Mesh from a ``meshio.Mesh`` (VTK node order, as meshio keeps it): its one block
+        type of supported cells ('quad', 'quad8', 'quad9', 'hexahedron', 'hexahedron20',
+        'hexahedron27'; blocks of lower dimension, such as boundary lines or faces, are left
+        out). The point data ``fixed_components`` and ``moved``, when present, constrain and
+        move the nodes as in :meth:`read_vtu`.
+
+        Raises:
+            ValueError: no supported cells, or several types of them.
+        """
+        blocks = [b for b in mesh.cells if b.type.upper() in MESHIO_NAMES]
+        dims = {MESHIO_NAMES[b.type.upper()] in (12, 25, 29) for b in blocks}
+        if True in dims:
+            blocks = [b for b in blocks if b.type.upper().startswith("HEX")]
+        types = sorted({b.type for b in blocks})
+        if len(types) != 1:
+            raise ValueError(
+                f"the meshio mesh must hold one supported cell type, it holds {types or 'none'} "
+                f"(of {[b.type for b in mesh.cells]})"
+            )
+        cells = np.concatenate([np.asarray(b.data) for b in blocks])
+        out = cls(types[0], mesh.points, cells)
+        data = mesh.point_data
+        if "fixed_components" in data:
+            mask = np.asarray(data["fixed_components"]).reshape(-1)
+            if not np.all((mask == np.round(mask)) & (mask >= 0) & (mask <= 7)):
+                out.close()
+                raise ValueError("point data fixed_components must hold masks in 0..7")
+            mask = mask.astype(np.uint8)
+            if "moved" in data:
+                moved = np.asarray(data["moved"], dtype=np.float64).reshape(-1, 3)
+                bits = ((mask[:, None] >> np.arange(3)) & 1) == 1
+                out.move_nodes(np.where(bits, moved, out.reference))
+            out.set_fixed(mask)
+        return out
+
+    def to_meshio(self):
+        """The mesh as a ``meshio.Mesh``: current positions, cells (VTK order), point data
+        ``fixed_components`` and ``displacement``, cell data ``quality``."""
+        import meshio
+
+        positions = self.positions
+        cells = self.cells_in("vtk")
+        return meshio.Mesh(
+            positions,
+            [(_MESHIO_BY_CODE[self._cell_type], cells)],
+            point_data={"fixed_components": self.fixed, "displacement": positions - self.reference},
+            cell_data={"quality": [self.cell_quality()]},
+        )
 
     @classmethod
     def _from_handle(cls, handle):
@@ -317,6 +408,26 @@ class Mesh(_Handle):
     def cell_type(self):
         """The VTK code of the cell type."""
         return self._cell_type
+
+    @property
+    def order(self):
+        """The node order :attr:`cells` is given in: 'vtk' or 'gmsh' (as at creation)."""
+        out = ctypes.c_int()
+        _check(self._lib.igaparam_mesh_order(self._h(), ctypes.byref(out)))
+        return _ORDER_NAMES[out.value]
+
+    @property
+    def cells(self):
+        """The connectivity, a new int64 array of shape (m, k), in the mesh's :attr:`order`."""
+        return self.cells_in(self.order)
+
+    def cells_in(self, order):
+        """The connectivity, shape (m, k), with each cell's nodes in ``order`` ('vtk' or 'gmsh')."""
+        k = nodes_per_cell(self._cell_type)
+        out = np.empty((self.cell_count, k), dtype=np.int64)
+        code = _option_code(order, _ORDERS, "order")
+        _check(self._lib.igaparam_mesh_copy_connectivity(self._h(), code, _ptr(out, ctypes.c_int64), out.size))
+        return out
 
     @property
     def invalid_cell_count(self):
