@@ -1,10 +1,14 @@
 """The :class:`Mesh` class, its relocation report and errors."""
 
+from __future__ import annotations
+
 import ctypes
 import dataclasses
 import os
+from typing import Callable, Optional, Union
 
 import numpy as np
+import numpy.typing as npt
 
 from . import _capi
 from ._handle import _Handle
@@ -40,7 +44,7 @@ class IgaparamError(Exception):
         super().__init__(f"{message} (status {int(status)}, {name})")
 
 
-def _last_error_message():
+def _last_error_message() -> str:
     lib = _capi.library()
     size = lib.igaparam_last_error_message(None, 0)
     buf = ctypes.create_string_buffer(size)
@@ -48,12 +52,12 @@ def _last_error_message():
     return buf.value.decode("utf-8", errors="replace")
 
 
-def _check(status):
+def _check(status: int) -> None:
     if status != Status.OK:
         raise IgaparamError(status, _last_error_message())
 
 
-def version():
+def version() -> str:
     """The library version, e.g. ``"0.1.0"``."""
     return _capi.library().igaparam_version().decode()
 
@@ -68,7 +72,7 @@ _TARGETS = {"initial": _capi.TARGET_INITIAL, "master": _capi.TARGET_MASTER}
 _PLACEMENTS = {"laplacian": _capi.PLACEMENT_LAPLACIAN, "current": _capi.PLACEMENT_CURRENT}
 
 
-def cell_type_code(cell_type):
+def cell_type_code(cell_type: Union[int, str]) -> int:
     """The VTK code of a cell type given as a code (e.g. 28), a name ('Q4', 'Q8', 'Q9', 'H8',
     'H20', 'H27') or a meshio name ('quad', 'quad8', 'quad9', 'hexahedron', 'hexahedron20',
     'hexahedron27')."""
@@ -85,14 +89,14 @@ def cell_type_code(cell_type):
     return int(cell_type)
 
 
-def nodes_per_cell(cell_type):
+def nodes_per_cell(cell_type: Union[int, str]) -> int:
     """Nodes of one cell of ``cell_type`` (a VTK code or a name), e.g. 9 for 'Q9'."""
     out = ctypes.c_size_t()
     _check(_capi.library().igaparam_cell_type_node_count(cell_type_code(cell_type), ctypes.byref(out)))
     return out.value
 
 
-def node_coordinates(cell_type, order="vtk"):
+def node_coordinates(cell_type: Union[int, str], order: str = "vtk") -> npt.NDArray[np.float64]:
     """Reference coordinates in [-1, 1]^d of the local nodes of ``cell_type`` in ``order``
     ('vtk' or 'gmsh'): a float64 array of shape (nodes per cell, d), row i for local node i."""
     code = cell_type_code(cell_type)
@@ -213,7 +217,7 @@ class RelocateReport:
         values["converged"] = bool(values["converged"])
         return cls(**values)
 
-    def as_dict(self):
+    def as_dict(self) -> dict:
         """The report as a dict."""
         return dataclasses.asdict(self)
 
@@ -249,7 +253,7 @@ class Mesh(_Handle):
     _kind = "mesh"
     _free = "igaparam_mesh_free"
 
-    def __init__(self, cell_type, points, cells, order="vtk"):
+    def __init__(self, cell_type: Union[int, str], points: npt.ArrayLike, cells: npt.ArrayLike, order: str = "vtk"):
         self._handle = None
         self._lib = _capi.library()
         code = cell_type_code(cell_type)
@@ -277,7 +281,7 @@ class Mesh(_Handle):
         self._cell_type = code
 
     @classmethod
-    def from_meshio(cls, mesh):
+    def from_meshio(cls, mesh) -> "Mesh":
         """A Mesh from a ``meshio.Mesh`` (VTK node order, as meshio keeps it): its one block
         type of supported cells ('quad', 'quad8', 'quad9', 'hexahedron', 'hexahedron20',
         'hexahedron27'; blocks of lower dimension, such as boundary lines or faces, are left
@@ -339,7 +343,7 @@ class Mesh(_Handle):
         return mesh
 
     @classmethod
-    def read_vtu(cls, path):
+    def read_vtu(cls, path: Union[str, "os.PathLike[str]"]) -> "Mesh":
         """Reads a mesh from a ``.vtu`` file in any storage VTK and meshio write (ASCII, binary,
         appended raw or base64, zlib-compressed): one supported cell type in VTK's node order;
         its point arrays ``fixed_components`` (masks) and ``moved`` (new positions), when
@@ -353,7 +357,7 @@ class Mesh(_Handle):
         _check(_capi.library().igaparam_mesh_read_vtu(os.fsencode(path), ctypes.byref(handle)))
         return cls._from_handle(handle)
 
-    def write_vtu(self, path, encoding="binary", compress=True):
+    def write_vtu(self, path: Union[str, "os.PathLike[str]"], encoding: str = "binary", compress: bool = True) -> None:
         """Writes the mesh to a ``.vtu`` file: current positions, cells (VTK order), point data
         ``displacement`` and ``fixed_components``, cell data ``quality``.
 
@@ -388,40 +392,40 @@ class Mesh(_Handle):
         return out.value
 
     @property
-    def node_count(self):
+    def node_count(self) -> int:
         """Number of nodes n."""
         return self._size(self._lib.igaparam_mesh_node_count)
 
     @property
-    def cell_count(self):
+    def cell_count(self) -> int:
         """Number of cells m."""
         return self._size(self._lib.igaparam_mesh_cell_count)
 
     @property
-    def dimension(self):
+    def dimension(self) -> int:
         """Spatial dimension of the cells: 2 (quadrilaterals) or 3 (hexahedra)."""
         out = ctypes.c_int()
         _check(self._lib.igaparam_mesh_dimension(self._h(), ctypes.byref(out)))
         return out.value
 
     @property
-    def cell_type(self):
+    def cell_type(self) -> int:
         """The VTK code of the cell type."""
         return self._cell_type
 
     @property
-    def order(self):
+    def order(self) -> str:
         """The node order :attr:`cells` is given in: 'vtk' or 'gmsh' (as at creation)."""
         out = ctypes.c_int()
         _check(self._lib.igaparam_mesh_order(self._h(), ctypes.byref(out)))
         return _ORDER_NAMES[out.value]
 
     @property
-    def cells(self):
+    def cells(self) -> npt.NDArray[np.int64]:
         """The connectivity, a new int64 array of shape (m, k), in the mesh's :attr:`order`."""
         return self.cells_in(self.order)
 
-    def cells_in(self, order):
+    def cells_in(self, order: str) -> npt.NDArray[np.int64]:
         """The connectivity, shape (m, k), with each cell's nodes in ``order`` ('vtk' or 'gmsh')."""
         k = nodes_per_cell(self._cell_type)
         out = np.empty((self.cell_count, k), dtype=np.int64)
@@ -430,13 +434,13 @@ class Mesh(_Handle):
         return out
 
     @property
-    def invalid_cell_count(self):
+    def invalid_cell_count(self) -> int:
         """Number of cells with det J <= 0 at some Gauss–Lobatto point."""
         return self._size(self._lib.igaparam_mesh_invalid_cell_count)
 
     # Constraints and motion.
 
-    def set_fixed(self, mask):
+    def set_fixed(self, mask: npt.ArrayLike) -> None:
         """Sets the constraint of every node.
 
         Args:
@@ -456,7 +460,7 @@ class Mesh(_Handle):
         array = np.ascontiguousarray(array, dtype=np.uint8)
         _check(self._lib.igaparam_mesh_set_fixed(self._h(), array.shape[0], _ptr(array, ctypes.c_uint8)))
 
-    def move_nodes(self, xyz, indices=None):
+    def move_nodes(self, xyz: npt.ArrayLike, indices: Optional[npt.ArrayLike] = None) -> None:
         """Sets the positions of some nodes (typically the boundary's, before :meth:`relocate`);
         the reference shape is not changed.
 
@@ -480,7 +484,7 @@ class Mesh(_Handle):
             )
         )
 
-    def reset_reference(self):
+    def reset_reference(self) -> None:
         """Makes the current positions the reference shape of the targets."""
         _check(self._lib.igaparam_mesh_reset_reference(self._h()))
 
@@ -488,17 +492,17 @@ class Mesh(_Handle):
 
     def relocate(
         self,
-        threads=0,
-        target="initial",
-        laplacian_only=False,
-        max_sweeps=None,
-        progress=None,
-        placement="laplacian",
-        move_tolerance=None,
-        gradient_tolerance=None,
-        max_newton_iterations=None,
-        relaxation=None,
-    ):
+        threads: int = 0,
+        target: str = "initial",
+        laplacian_only: bool = False,
+        max_sweeps: Optional[int] = None,
+        progress: Optional[Callable[[Stage, int, int], Optional[bool]]] = None,
+        placement: str = "laplacian",
+        move_tolerance: Optional[float] = None,
+        gradient_tolerance: Optional[float] = None,
+        max_newton_iterations: Optional[int] = None,
+        relaxation: Optional[float] = None,
+    ) -> "RelocateReport":
         """Relocates the free coordinates of the nodes so that every cell is valid and close to
         its target shape. On any error the mesh is unchanged.
 
@@ -547,23 +551,23 @@ class Mesh(_Handle):
         return out
 
     @property
-    def positions(self):
+    def positions(self) -> npt.NDArray[np.float64]:
         """Current node positions, a new float64 array of shape (n, 3)."""
         return self._copy_xyz(self._lib.igaparam_mesh_copy_positions)
 
     @property
-    def reference(self):
+    def reference(self) -> npt.NDArray[np.float64]:
         """Reference positions (the shape the targets are taken from), shape (n, 3)."""
         return self._copy_xyz(self._lib.igaparam_mesh_copy_reference)
 
     @property
-    def fixed(self):
+    def fixed(self) -> npt.NDArray[np.uint8]:
         """Constraint mask of every node (see :meth:`set_fixed`), a new uint8 array of shape (n,)."""
         out = np.empty(self.node_count, dtype=np.uint8)
         _check(self._lib.igaparam_mesh_copy_fixed(self._h(), _ptr(out, ctypes.c_uint8), out.size))
         return out
 
-    def cell_quality(self, target="initial"):
+    def cell_quality(self, target: str = "initial") -> npt.NDArray[np.float64]:
         """Quality of every cell against ``target`` ('initial' or 'master'): float64 array of
         shape (m,), in (0, 1], 0 for a cell with det J <= 0 somewhere."""
         code = _option_code(target, _TARGETS, "target")
