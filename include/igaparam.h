@@ -314,7 +314,8 @@ typedef struct {
 } igaparam_relocate_options;
 
 /**
- * A cell type: one of the `IGAPARAM_CELL_*` values (VTK's cell type codes).
+ * A cell type: one of the `IGAPARAM_CELL_*` values (VTK's cell type codes). The local order of
+ * each type's nodes, VTK's and Gmsh's, is tabulated at `igaparam_node_order`.
  */
 typedef int igaparam_cell_type;
 

@@ -16,7 +16,8 @@ pub struct igaparam_mesh {
     pub(super) mesh: Mesh,
 }
 
-/// A cell type: one of the `IGAPARAM_CELL_*` values (VTK's cell type codes).
+/// A cell type: one of the `IGAPARAM_CELL_*` values (VTK's cell type codes). The local order of
+/// each type's nodes, VTK's and Gmsh's, is tabulated at `igaparam_node_order`.
 pub type igaparam_cell_type = c_int;
 /// Bilinear quadrilateral, 4 nodes (VTK_QUAD).
 pub const IGAPARAM_CELL_QUAD4: igaparam_cell_type = 9;
