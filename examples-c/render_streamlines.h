@@ -113,21 +113,16 @@ inline vtkSmartPointer<vtkLookupTable> terrain_colours(double lo, double hi) {
 
 }  // namespace detail
 
-/// Draws the streamlines of the point vectors `u` of `grid` from the seeds (3 values each)
-/// over the terrain (an n × n grid of points) to the PNG `path`. Throws NoDisplayError when no
-/// display can be opened.
-inline void render_png(vtkUnstructuredGrid *grid, const std::vector<double> &seeds, const std::vector<double> &terrain,
-                       int n, const Picture &picture, const std::string &path) {
-  render_picture::require_display();
-  namespace rd = render_picture::detail;
+namespace detail {
+
+// The streamlines of the point vectors `u` of `grid` from the seeds, scaled vertically by
+// `stretch`, as tubes.
+inline vtkSmartPointer<vtkTubeFilter> streamline_tubes(vtkUnstructuredGrid *grid, const std::vector<double> &seeds,
+                                                       double stretch, double diagonal) {
   vtkNew<vtkPolyData> seed_points;
-  vtkNew<vtkPoints> sp;
-  for (size_t i = 0; i + 2 < seeds.size(); i += 3) sp->InsertNextPoint(&seeds[i]);
-  seed_points->SetPoints(sp);
-  double bounds[6];
-  grid->GetBounds(bounds);
-  const double diagonal = std::sqrt(std::pow(bounds[1] - bounds[0], 2) + std::pow(bounds[3] - bounds[2], 2) +
-                                    std::pow(bounds[5] - bounds[4], 2));
+  vtkNew<vtkPoints> points;
+  for (size_t i = 0; i + 2 < seeds.size(); i += 3) points->InsertNextPoint(&seeds[i]);
+  seed_points->SetPoints(points);
   vtkNew<vtkStreamTracer> tracer;
   tracer->SetInputData(grid);
   tracer->SetSourceData(seed_points);
@@ -139,63 +134,92 @@ inline void render_png(vtkUnstructuredGrid *grid, const std::vector<double> &see
   tracer->SetInitialIntegrationStep(0.2);
   tracer->SetMaximumNumberOfSteps(20000);
   tracer->SetComputeVorticity(false);
-  auto lines = detail::stretched(tracer->GetOutputPort(), picture.stretch);
-  vtkNew<vtkTubeFilter> tubes;
+  auto lines = stretched(tracer->GetOutputPort(), stretch);
+  auto tubes = vtkSmartPointer<vtkTubeFilter>::New();
   tubes->SetInputConnection(lines->GetOutputPort());
   tubes->SetRadius(0.0025 * diagonal);
   tubes->SetNumberOfSides(10);
   tubes->Update();
   if (tubes->GetOutput()->GetNumberOfPoints() == 0) throw std::runtime_error("no streamline could be traced");
+  return tubes;
+}
 
+// Adds the tubes coloured by the speed |u| along them; returns the colour table.
+inline vtkSmartPointer<vtkLookupTable> add_tubes(vtkRenderer *renderer, vtkTubeFilter *tubes) {
+  double speed[2];
+  tubes->GetOutput()->GetPointData()->GetArray("u")->GetRange(speed, -1);
+  auto colours = render_picture::detail::viridis(speed[0], speed[1]);
+  colours->SetVectorModeToMagnitude();
+  vtkNew<vtkPolyDataMapper> mapper;
+  mapper->SetInputConnection(tubes->GetOutputPort());
+  mapper->SetLookupTable(colours);
+  mapper->SetScalarModeToUsePointFieldData();
+  mapper->SelectColorArray("u");
+  mapper->SetScalarRange(speed);
+  mapper->ScalarVisibilityOn();
+  vtkNew<vtkActor> actor;
+  actor->SetMapper(mapper);
+  renderer->AddActor(actor);
+  return colours;
+}
+
+// Adds the terrain (n × n points), shaded by elevation over [lo, hi].
+inline void add_terrain(vtkRenderer *renderer, const std::vector<double> &terrain, int n, double stretch, double lo,
+                        double hi) {
+  vtkNew<vtkTrivialProducer> ground;
+  ground->SetOutput(terrain_surface(terrain, n));
+  auto ground_stretched = stretched(ground->GetOutputPort(), stretch);
+  vtkNew<vtkPolyDataMapper> mapper;
+  mapper->SetInputConnection(ground_stretched->GetOutputPort());
+  mapper->SetLookupTable(terrain_colours(lo, hi));
+  mapper->UseLookupTableScalarRangeOn();
+  vtkNew<vtkActor> actor;
+  actor->SetMapper(mapper);
+  actor->GetProperty()->SetAmbient(0.35);
+  actor->GetProperty()->SetDiffuse(0.7);
+  renderer->AddActor(actor);
+}
+
+// Adds the outline of the box `bounds` (already stretched).
+inline void add_outline(vtkRenderer *renderer, const double *bounds) {
+  vtkNew<vtkOutlineSource> outline;
+  outline->SetBounds(bounds[0], bounds[1], bounds[2], bounds[3], bounds[4], bounds[5]);
+  vtkNew<vtkPolyDataMapper> mapper;
+  mapper->SetInputConnection(outline->GetOutputPort());
+  vtkNew<vtkActor> actor;
+  actor->SetMapper(mapper);
+  actor->GetProperty()->SetColor(0.4, 0.4, 0.4);
+  renderer->AddActor(actor);
+}
+
+}  // namespace detail
+
+/// Draws the streamlines of the point vectors `u` of `grid` from the seeds (3 values each)
+/// over the terrain (an n × n grid of points) to the PNG `path`: the view holds the air from
+/// the terrain up to a third above the highest seed (the air far above is uniform), framed by
+/// its outline. Throws NoDisplayError when no display can be opened.
+inline void render_png(vtkUnstructuredGrid *grid, const std::vector<double> &seeds, const std::vector<double> &terrain,
+                       int n, const Picture &picture, const std::string &path) {
+  render_picture::require_display();
+  namespace rd = render_picture::detail;
+  double bounds[6];
+  grid->GetBounds(bounds);
+  const double diagonal = std::sqrt(std::pow(bounds[1] - bounds[0], 2) + std::pow(bounds[3] - bounds[2], 2) +
+                                    std::pow(bounds[5] - bounds[4], 2));
+  const auto tubes = detail::streamline_tubes(grid, seeds, picture.stretch, diagonal);
   // The scene in the band between the colour bar and the titles, drawn over the whole window's
   // renderer, which holds those.
   vtkNew<vtkRenderer> renderer, overlay;
   renderer->SetBackground(1, 1, 1);
   renderer->SetViewport(0.0, 0.14, 1.0, picture.subtitle.empty() ? 0.92 : 0.88);
   overlay->SetBackground(1, 1, 1);
-  vtkNew<vtkPolyDataMapper> line_mapper;
-  line_mapper->SetInputConnection(tubes->GetOutputPort());
-  double speed[2];
-  tubes->GetOutput()->GetPointData()->GetArray("u")->GetRange(speed, -1);  // along the streamlines
-  auto speed_colours = rd::viridis(speed[0], speed[1]);
-  speed_colours->SetVectorModeToMagnitude();
-  line_mapper->SetLookupTable(speed_colours);
-  line_mapper->SetScalarModeToUsePointFieldData();
-  line_mapper->SelectColorArray("u");
-  line_mapper->SetScalarRange(speed);
-  line_mapper->ScalarVisibilityOn();
-  vtkNew<vtkActor> line_actor;
-  line_actor->SetMapper(line_mapper);
-  renderer->AddActor(line_actor);
-
-  vtkNew<vtkTrivialProducer> ground;
-  ground->SetOutput(detail::terrain_surface(terrain, n));
-  auto ground_stretched = detail::stretched(ground->GetOutputPort(), picture.stretch);
-  vtkNew<vtkPolyDataMapper> ground_mapper;
-  ground_mapper->SetInputConnection(ground_stretched->GetOutputPort());
-  ground_mapper->SetLookupTable(detail::terrain_colours(bounds[4], bounds[4] + 0.15 * (bounds[5] - bounds[4])));
-  ground_mapper->UseLookupTableScalarRangeOn();
-  vtkNew<vtkActor> ground_actor;
-  ground_actor->SetMapper(ground_mapper);
-  ground_actor->GetProperty()->SetAmbient(0.35);
-  ground_actor->GetProperty()->SetDiffuse(0.7);
-  renderer->AddActor(ground_actor);
-
-  // The view: the domain from the terrain up to a third above the highest seed (the air far
-  // above is uniform), framed by its outline.
+  const auto speed_colours = detail::add_tubes(renderer, tubes);
+  detail::add_terrain(renderer, terrain, n, picture.stretch, bounds[4], bounds[4] + 0.15 * (bounds[5] - bounds[4]));
   double top = bounds[4];
   for (size_t i = 2; i < seeds.size(); i += 3) top = std::max(top, seeds[i]);
   top = std::min(bounds[5], top + 0.35 * (top - bounds[4]));
-  vtkNew<vtkOutlineSource> outline;
-  outline->SetBounds(bounds[0], bounds[1], bounds[2], bounds[3], bounds[4] * picture.stretch, top * picture.stretch);
-  outline->Update();
-  vtkNew<vtkPolyDataMapper> outline_mapper;
-  outline_mapper->SetInputConnection(outline->GetOutputPort());
-  vtkNew<vtkActor> outline_actor;
-  outline_actor->SetMapper(outline_mapper);
-  outline_actor->GetProperty()->SetColor(0.4, 0.4, 0.4);
-  renderer->AddActor(outline_actor);
-
+  double view[6] = {bounds[0], bounds[1], bounds[2], bounds[3], bounds[4] * picture.stretch, top * picture.stretch};
+  detail::add_outline(renderer, view);
   rd::add_colour_bar(overlay, speed_colours, "wind speed |u| (units of the initial wind)", picture.height);
   rd::add_title_lines(overlay, picture.title, picture.subtitle, picture.height);
 
@@ -211,7 +235,7 @@ inline void render_png(vtkUnstructuredGrid *grid, const std::vector<double> &see
   camera->Azimuth(picture.azimuth);
   camera->Elevation(picture.elevation);
   camera->OrthogonalizeViewUp();
-  renderer->ResetCamera(outline->GetOutput()->GetBounds());
+  renderer->ResetCamera(view);
   camera->Zoom(1.1);
   renderer->ResetCameraClippingRange();
   rd::write_png(window, path);
