@@ -1,5 +1,6 @@
 //! Relocates the free nodes of an ASCII `.vtu` mesh with `fixed_components` / `moved` arrays.
-//! `cargo run --release --example relocate_vtu -- IN.vtu [threads] [master]`
+//! `cargo run --release --example relocate_vtu -- IN.vtu [threads] [master|initial]
+//! [stationarity tolerance]`
 
 use igaparam::{io::vtu, Mesh, RelocateOptions, TargetKind};
 
@@ -14,8 +15,15 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     if args.get(3).map(|s| s == "master").unwrap_or(false) {
         options.target = TargetKind::Master;
     }
+    if let Some(t) = args.get(4) {
+        options.stationarity_tolerance = t.parse()?;
+    }
+    if let Some(t) = args.get(5) {
+        options.move_tolerance = t.parse()?;
+    }
+    let start = std::time::Instant::now();
     let report = mesh.relocate(&options, &mut |stage, done, total| {
-        eprintln!("{stage:?} {done}/{total}");
+        eprintln!("{:8.3} s {stage:?} {done}/{total}", start.elapsed().as_secs_f64());
         true
     })?;
     println!("{report:#?}");

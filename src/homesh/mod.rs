@@ -4,13 +4,33 @@
 
 mod cell_type;
 mod from_vtu;
+mod newton;
 mod relocate;
+mod sensitivity;
 
 pub use cell_type::CellType;
-pub use relocate::{Placement, RelocateOptions, RelocateReport, Stage};
+pub use relocate::{Method, Placement, RelocateOptions, RelocateReport, Stage, DEFAULT_NEWTON_TOLERANCE};
+
+use std::sync::Arc;
 
 use crate::error::{check_finite, Error, Result};
+use crate::optimize::blocks::BlockLayout;
+use crate::optimize::solver::SolverSetup;
 use crate::optimize::{CellPattern, CellSpec, Problem, TargetKind};
+
+/// A Hessian solver of either dimension (`HessianSolver<2>` or `<3>`), shared between a mesh
+/// and its clones.
+type Solver = Arc<dyn std::any::Any + Send + Sync>;
+
+/// Node positions with, where known, the solver of the Hessian there (for the constraints and
+/// reference of the mesh when it was stored).
+#[derive(Clone, Debug)]
+struct State {
+    positions: Vec<[f64; 3]>,
+    solver: Option<Solver>,
+    /// Whether `positions` are a stationary point of the objective (to the tolerance asked for).
+    stationary: bool,
+}
 
 /// A quad or hex mesh with one cell type, reference and current node positions, and per-node
 /// constraints.
@@ -24,6 +44,17 @@ pub struct Mesh {
     positions: Vec<[f64; 3]>,
     connectivity: Vec<u32>,
     fixed: Vec<u8>,
+    /// The state of the last successful relocation: where `Placement::Incremental` starts.
+    last: Option<State>,
+    /// Whether the sensitivities of `last` hold for the mesh as it is; else why not.
+    sensitivity: std::result::Result<(), String>,
+    /// The optimum at the reference shape's prescribed coordinates, for the target it was
+    /// computed with: where path following from the reference starts.
+    reference_state: Option<(TargetKind, State)>,
+    /// The layout of the Hessian (depends on the connectivity only), built when first needed.
+    layout: Option<Arc<BlockLayout>>,
+    /// The Hessian solvers' setup for the current constraints, built when first needed.
+    setup: Option<Arc<SolverSetup>>,
 }
 
 impl Mesh {
@@ -73,6 +104,11 @@ impl Mesh {
             positions,
             connectivity: conn,
             fixed: vec![0; node_count],
+            last: None,
+            sensitivity: Err("no relocation has run yet".into()),
+            reference_state: None,
+            layout: None,
+            setup: None,
         })
     }
 
@@ -127,7 +163,12 @@ impl Mesh {
                 mask[i]
             )));
         }
-        self.fixed = mask.to_vec();
+        if self.fixed != mask {
+            self.fixed = mask.to_vec();
+            self.setup = None;
+            self.forget_solvers();
+            self.invalidate_sensitivity("the constraints were changed since the last relocation");
+        }
         Ok(())
     }
 
@@ -160,6 +201,7 @@ impl Mesh {
                 for (&v, p) in idx.iter().zip(xyz.chunks(3)) {
                     self.positions[v] = [p[0], p[1], p[2]];
                 }
+                self.invalidate_sensitivity(MOVED);
             }
             None => {
                 if count > n {
@@ -168,6 +210,7 @@ impl Mesh {
                 for (v, p) in xyz.chunks(3).enumerate() {
                     self.positions[v] = [p[0], p[1], p[2]];
                 }
+                self.invalidate_sensitivity(MOVED);
             }
         }
         Ok(())
@@ -177,6 +220,23 @@ impl Mesh {
     /// shape-optimization loop).
     pub fn reset_reference(&mut self) {
         self.reference = self.positions.clone();
+        self.forget_solvers();
+        self.invalidate_sensitivity("the reference shape was reset since the last relocation");
+    }
+
+    /// Drops the sensitivities of the last relocation, if there are, saying why.
+    fn invalidate_sensitivity(&mut self, why: &str) {
+        if self.sensitivity.is_ok() {
+            self.sensitivity = Err(why.to_string());
+        }
+    }
+
+    /// Drops the stored Hessians (after a change of the constraints or of the targets).
+    fn forget_solvers(&mut self) {
+        self.reference_state = None;
+        if let Some(last) = self.last.as_mut() {
+            last.solver = None;
+        }
     }
 
     /// The optimizer's view of the mesh in dimension `D`.
@@ -225,10 +285,67 @@ impl Mesh {
     }
 }
 
+/// Why a mesh whose nodes were moved has no sensitivities.
+const MOVED: &str = "nodes were moved since the last relocation";
+
 /// The first `D` coordinates of each point.
 fn project<const D: usize>(points: &[[f64; 3]]) -> Vec<[f64; D]> {
     points
         .iter()
         .map(|p| std::array::from_fn(|k| p[k]))
         .collect()
+}
+
+#[cfg(test)]
+mod probe {
+    #[test]
+    #[ignore]
+    fn probe_amg() {
+        use crate::optimize::amg::Amg;
+        use crate::optimize::blocks::BlockLayout;
+        use crate::optimize::global::GlobalObjective;
+        use crate::optimize::solver::SolverSetup;
+        let file = std::env::var("PROBE_FILE").unwrap_or("airfoil_0012_q9.vtu".into());
+        let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data").join(&file);
+        let grid = crate::io::vtu::read(&path).unwrap();
+        let mesh = super::Mesh::from_grid_with_motion(&grid).unwrap();
+        if mesh.dimension() == 2 { run::<2>(&mesh); } else { run::<3>(&mesh); }
+        fn run<const D: usize>(mesh: &super::Mesh) {
+            let pool = rayon::ThreadPoolBuilder::new().num_threads(2).build().unwrap();
+            let p = mesh.problem::<D>(crate::TargetKind::Reference).unwrap();
+            let layout = BlockLayout::new(&p);
+            let o = GlobalObjective::new(&p, &layout, None, 0.0);
+            let x = super::project::<D>(mesh.reference());
+            let h = o.evaluate(&pool, &x, true).hessian.unwrap();
+            let free = SolverSetup::free_mask(&p);
+            let t = std::time::Instant::now();
+            let amg = Amg::new(&pool, &p, &layout, &h, &free, &x).unwrap();
+            eprintln!("amg setup {:?}, {} levels", t.elapsed(), amg.level_count());
+            let n = p.node_count();
+            let mut rng = 12345u64;
+            let mut b = vec![[0.0; D]; n];
+            for v in 0..n { for k in 0..D { if free[v] & (1<<k) != 0 { rng = rng.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407); b[v][k] = (rng >> 11) as f64 / (1u64<<53) as f64 - 0.5; } } }
+            let dot = |a: &[[f64; D]], b: &[[f64; D]]| -> f64 { a.iter().zip(b).map(|(x,y)| (0..D).map(|k| x[k]*y[k]).sum::<f64>()).sum() };
+            let t = std::time::Instant::now();
+            let mut xs = vec![[0.0; D]; n];
+            let mut r = b.clone();
+            let mut z = amg.apply(&pool, &r);
+            let mut pp = z.clone();
+            let mut rz = dot(&r,&z);
+            let b0 = dot(&b,&b).sqrt();
+            let mut ap = vec![[0.0; D]; n];
+            for it in 0..2000 {
+                h.product(&pool, &layout, &free, &free, &pp, &mut ap);
+                let alpha = rz / dot(&pp,&ap);
+                for v in 0..n { for k in 0..D { xs[v][k] += alpha*pp[v][k]; r[v][k] -= alpha*ap[v][k]; } }
+                let rn = dot(&r,&r).sqrt()/b0;
+                if it % 10 == 0 || rn < 1e-12 { eprintln!("it {it} res {rn:e} {:?}", t.elapsed()); }
+                if rn < 1e-12 { break; }
+                z = amg.apply(&pool, &r);
+                let rz2 = dot(&r,&z);
+                for v in 0..n { for k in 0..D { pp[v][k] = z[v][k] + rz2/rz*pp[v][k]; } }
+                rz = rz2;
+            }
+        }
+    }
 }
