@@ -5,11 +5,15 @@
 mod cell_type;
 mod from_vtu;
 mod newton;
+mod node_order;
 mod relocate;
 mod sensitivity;
 
 pub use cell_type::CellType;
-pub use relocate::{Method, Placement, RelocateOptions, RelocateReport, Stage, DEFAULT_NEWTON_TOLERANCE};
+pub use node_order::NodeOrder;
+pub use relocate::{
+    Method, Placement, RelocateOptions, RelocateReport, Stage, DEFAULT_NEWTON_TOLERANCE,
+};
 
 use std::sync::Arc;
 
@@ -30,6 +34,8 @@ struct State {
     solver: Option<Solver>,
     /// Whether `positions` are a stationary point of the objective (to the tolerance asked for).
     stationary: bool,
+    /// Worker threads of the relocation that made this state.
+    threads: usize,
 }
 
 /// A quad or hex mesh with one cell type, reference and current node positions, and per-node
@@ -55,12 +61,23 @@ pub struct Mesh {
     layout: Option<Arc<BlockLayout>>,
     /// The Hessian solvers' setup for the current constraints, built when first needed.
     setup: Option<Arc<SolverSetup>>,
+    /// The node order the connectivity was given in (kept in VTK's order here).
+    order: NodeOrder,
 }
 
 impl Mesh {
     /// Builds a mesh from `xyz` (`#nodes × 3`, flat) and `connectivity` (`#cells × nodes per
-    /// cell`, VTK node order). The positions become the reference shape; all nodes start free.
+    /// cell`, VTK node order; see [`Mesh::new_ordered`] for others). The positions become the
+    /// reference shape; all nodes start free. A mesh every cell of which is inverted or folded
+    /// is refused: its node order or orientation is wrong.
     pub fn new(cell_type: CellType, xyz: &[f64], connectivity: &[i64]) -> Result<Mesh> {
+        let mesh = Mesh::new_unchecked(cell_type, xyz, connectivity)?;
+        mesh.check_orientation()?;
+        Ok(mesh)
+    }
+
+    /// [`Mesh::new`] without the check of the cells' orientation.
+    fn new_unchecked(cell_type: CellType, xyz: &[f64], connectivity: &[i64]) -> Result<Mesh> {
         if xyz.is_empty() || xyz.len() % 3 != 0 {
             return Err(Error::invalid(format!(
                 "xyz has {} values, expected 3 per node and at least one node",
@@ -109,6 +126,7 @@ impl Mesh {
             reference_state: None,
             layout: None,
             setup: None,
+            order: NodeOrder::Vtk,
         })
     }
 
@@ -222,6 +240,12 @@ impl Mesh {
         self.reference = self.positions.clone();
         self.forget_solvers();
         self.invalidate_sensitivity("the reference shape was reset since the last relocation");
+    }
+
+    /// Worker threads of the last relocation (0 before any): the sensitivity products of the C
+    /// API use them.
+    pub fn last_threads(&self) -> usize {
+        self.last.as_ref().map_or(0, |last| last.threads)
     }
 
     /// Drops the sensitivities of the last relocation, if there are, saying why.

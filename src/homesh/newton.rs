@@ -118,6 +118,7 @@ impl Mesh {
             positions: self.reference.clone(),
             solver: None,
             stationary: false,
+            threads: options.threads,
         });
         let stored_solver = state
             .solver
@@ -156,6 +157,7 @@ impl Mesh {
                         positions,
                         solver: Some(solver.clone() as Solver),
                         stationary: true,
+                        threads: options.threads,
                     };
                     self.reference_state = Some((options.target, state));
                 }

@@ -245,6 +245,7 @@ impl Mesh {
             positions: self.positions.clone(),
             stationary: sensitivity.is_ok() || report.gradient_norm <= options.stationarity_tolerance,
             solver,
+            threads: options.threads,
         });
         self.sensitivity = sensitivity;
         report.seconds = start.elapsed().as_secs_f64();
