@@ -190,7 +190,10 @@ fn sensitivities_are_refused_without_a_stationary_point() {
     );
     let mut nan = v.clone();
     nan[7] = f64::NAN;
-    assert_eq!(mesh.adjoint(1, &nan).unwrap_err().kind, ErrorKind::NotFinite);
+    assert_eq!(
+        mesh.adjoint(1, &nan).unwrap_err().kind,
+        ErrorKind::NotFinite
+    );
     let xyz: Vec<f64> = mesh.positions().iter().flatten().copied().collect();
     mesh.move_nodes(None, &xyz).unwrap();
     refused(&mesh, "moved");

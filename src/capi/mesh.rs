@@ -621,7 +621,9 @@ pub extern "C" fn igaparam_mesh_tangent(
         let handle = non_null(mesh, "mesh")?;
         // The input is read before the output is written, so the two may be one array.
         let threads = handle.mesh.last_threads();
-        let result = handle.mesh.tangent(threads, slice(dx_prescribed, size, "dx_prescribed")?)?;
+        let result = handle
+            .mesh
+            .tangent(threads, slice(dx_prescribed, size, "dx_prescribed")?)?;
         slice_mut(dx, size, "dx")?.copy_from_slice(&result);
         Ok(())
     })

@@ -24,8 +24,11 @@ const MAX_NEWTON_ITERATIONS: u32 = 100;
 const START_TOLERANCE: f64 = 1e-6;
 
 /// A relocated state with its solver, and whether its sensitivities are valid (else why not).
-pub(super) type Relocated<const D: usize> =
-    (Vec<Vector<D>>, Option<Solver>, std::result::Result<(), String>);
+pub(super) type Relocated<const D: usize> = (
+    Vec<Vector<D>>,
+    Option<Solver>,
+    std::result::Result<(), String>,
+);
 
 impl Mesh {
     /// The layout of the Hessian, built once per mesh.
@@ -42,7 +45,7 @@ impl Mesh {
     ) -> Result<Arc<SolverSetup>> {
         if self.setup.is_none() {
             let layout = self.layout_for(problem);
-            self.setup = Some(Arc::new(SolverSetup::new(problem, &layout)?));
+            self.setup = Some(Arc::new(SolverSetup::new(problem, layout)?));
         }
         Ok(self.setup.clone().expect("setup"))
     }
@@ -59,19 +62,17 @@ impl Mesh {
         report: &mut RelocateReport,
         progress: &mut dyn FnMut(Stage, usize, usize) -> bool,
     ) -> Result<Option<Relocated<D>>> {
-        let layout = self.layout_for(problem);
         let setup = self.setup_for(problem)?;
         if !progress(Stage::Placement, 0, 1) {
             return Err(crate::error::Error::cancelled());
         }
-        let Some(start) = self.path_start(pool, problem, &layout, &setup, options, report)? else {
+        let Some(start) = self.path_start(pool, problem, &setup, options, report)? else {
             return Ok(None);
         };
         let done = report.newton_iterations as usize;
         let outcome = path::follow(
             pool,
             problem,
-            &layout,
             &setup,
             start,
             goal,
@@ -90,7 +91,11 @@ impl Mesh {
             true => Ok(()),
             false => Err(NOT_ASKED.to_string()),
         };
-        Ok(Some((outcome.x, Some(outcome.solver as Solver), sensitivity)))
+        Ok(Some((
+            outcome.x,
+            Some(outcome.solver as Solver),
+            sensitivity,
+        )))
     }
 
     /// Where path following starts: the last relocated state (`Incremental`) or the optimum at
@@ -100,7 +105,6 @@ impl Mesh {
         &mut self,
         pool: &ThreadPool,
         problem: &Problem<D>,
-        layout: &Arc<BlockLayout>,
         setup: &Arc<SolverSetup>,
         options: &RelocateOptions,
         report: &mut RelocateReport,
@@ -139,8 +143,7 @@ impl Mesh {
                 let (stats, solver) = stationary::minimise(
                     pool,
                     problem,
-                    layout.clone(),
-                    setup.clone(),
+                    setup,
                     &mut x,
                     &start_options,
                     None,
@@ -191,7 +194,8 @@ impl Mesh {
             let objective = GlobalObjective::new(problem, &layout, None, 0.0);
             let free = SolverSetup::free_mask(problem);
             let eval = objective.evaluate(pool, x, false);
-            report.gradient_norm = stationary::scaled_gradient_norm(&objective, &free, &eval.gradient);
+            report.gradient_norm =
+                stationary::scaled_gradient_norm(&objective, &free, &eval.gradient);
             return Ok((None, Err(NOT_ASKED.into())));
         }
         let setup = self.setup_for(problem)?;
@@ -203,8 +207,7 @@ impl Mesh {
         let (stats, solver) = stationary::minimise(
             pool,
             problem,
-            layout,
-            setup,
+            &setup,
             x,
             &stationary_options,
             None,

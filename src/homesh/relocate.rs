@@ -243,7 +243,8 @@ impl Mesh {
         self.positions = super::newton::lift(&self.positions, &x);
         self.last = Some(super::State {
             positions: self.positions.clone(),
-            stationary: sensitivity.is_ok() || report.gradient_norm <= options.stationarity_tolerance,
+            stationary: report.gradient_norm
+                <= options.stationarity_tolerance.max(DEFAULT_NEWTON_TOLERANCE),
             solver,
             threads: options.threads,
         });

@@ -13,8 +13,8 @@ use rayon::ThreadPool;
 
 use super::{Mesh, Solver};
 use crate::error::{check_finite, Error, Result};
-use crate::optimize::small::Vector;
 use crate::optimize::implicit::EXACT;
+use crate::optimize::small::Vector;
 use crate::optimize::solver::HessianSolver;
 
 impl Mesh {
@@ -93,7 +93,9 @@ impl Mesh {
 
 /// The first `D` components of each point of a flat `#nodes × 3` array.
 fn split<const D: usize>(flat: &[f64]) -> Vec<Vector<D>> {
-    flat.chunks(3).map(|p| std::array::from_fn(|k| p[k])).collect()
+    flat.chunks(3)
+        .map(|p| std::array::from_fn(|k| p[k]))
+        .collect()
 }
 
 /// `flat` (`#nodes × 3`) with its first `D` components of each point replaced by `points`: the

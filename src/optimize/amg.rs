@@ -122,7 +122,15 @@ impl Amg {
             let (tentative, coarse_grouping, coarse_null) =
                 tentative_prolongator(&grouping, &aggregates, &null_space, modes);
             if std::env::var_os("IGAPARAM_DEBUG").is_some() {
-                eprintln!("level {}: {} unknowns, {} stored, {} groups -> {} coarse ({:?})", levels.len(), a.rows(), a.stored(), grouping.count(), tentative.columns, clock.elapsed());
+                eprintln!(
+                    "level {}: {} unknowns, {} stored, {} groups -> {} coarse ({:?})",
+                    levels.len(),
+                    a.rows(),
+                    a.stored(),
+                    grouping.count(),
+                    tentative.columns,
+                    clock.elapsed()
+                );
             }
             if tentative.columns as f64 > 0.8 * a.rows() as f64 {
                 break;
@@ -149,7 +157,11 @@ impl Amg {
         let n = a.rows();
         let (pattern, positions) = CholeskyPattern::of_csr(&a).ok()?;
         if std::env::var_os("IGAPARAM_DEBUG").is_some() {
-            eprintln!("coarsest: {n} unknowns, {} stored, factor {}", a.stored(), pattern.factor_size());
+            eprintln!(
+                "coarsest: {n} unknowns, {} stored, factor {}",
+                a.stored(),
+                pattern.factor_size()
+            );
         }
         let factor = pattern
             .factorize(positions.iter().map(|&p| a.value[p]).collect())
@@ -172,7 +184,10 @@ impl Amg {
 
     /// One V-cycle applied to a residual given per node.
     pub fn apply<const D: usize>(&self, pool: &ThreadPool, r: &[Vector<D>]) -> Vec<Vector<D>> {
-        let n = self.levels.first().map_or(self.coarsest_size, |l| l.a.rows());
+        let n = self
+            .levels
+            .first()
+            .map_or(self.coarsest_size, |l| l.a.rows());
         let mut b = vec![0.0; n];
         for (i, &d) in self.dof.iter().enumerate() {
             if d != u32::MAX {
@@ -252,7 +267,11 @@ fn fine_level<const D: usize>(
 
 /// Groups the unknowns numbered by `dof` (`node·d + k`) by node, with the rigid motions at the
 /// nodes' positions `x` as near-null space (row-major, `d(d+1)/2` values per unknown).
-fn node_grouping<const D: usize>(dof: &[u32], nodes: usize, x: &[Vector<D>]) -> (Grouping, Vec<f64>) {
+fn node_grouping<const D: usize>(
+    dof: &[u32],
+    nodes: usize,
+    x: &[Vector<D>],
+) -> (Grouping, Vec<f64>) {
     let modes = D * (D + 1) / 2;
     let mut start = vec![0usize];
     let mut null_space = Vec::new();
@@ -494,7 +513,10 @@ fn tentative_prolongator(
         let mut r = vec![vec![0.0; modes]; modes];
         let mut kept = Vec::new();
         for m in 0..modes {
-            let mut column: Vec<f64> = unknowns.iter().map(|&u| null_space[u * modes + m]).collect();
+            let mut column: Vec<f64> = unknowns
+                .iter()
+                .map(|&u| null_space[u * modes + m])
+                .collect();
             let original = column.iter().map(|v| v * v).sum::<f64>().sqrt();
             for (c, qc) in q.iter().enumerate() {
                 let dot: f64 = qc.iter().zip(&column).map(|(a, b)| a * b).sum();
@@ -522,13 +544,19 @@ fn tentative_prolongator(
         start.push(first_column + q.len());
     }
     let columns = *start.last().expect("start");
-    (Csr::from_rows(columns, rows), Grouping { start }, coarse_null)
+    (
+        Csr::from_rows(columns, rows),
+        Grouping { start },
+        coarse_null,
+    )
 }
 
 /// `λ_max(D⁻¹A)` by 20 power iterations from a fixed start, with a 10% margin.
 fn spectral_radius(pool: &ThreadPool, a: &Csr, inverse_diagonal: &[f64]) -> f64 {
     let n = a.rows();
-    let mut v: Vec<f64> = (0..n).map(|i| 1.0 + ((i * 7919) % 13) as f64 / 13.0).collect();
+    let mut v: Vec<f64> = (0..n)
+        .map(|i| 1.0 + ((i * 7919) % 13) as f64 / 13.0)
+        .collect();
     let mut w = vec![0.0; n];
     let mut lambda = 1.0;
     for _ in 0..20 {
@@ -559,7 +587,8 @@ fn smooth_prolongator(
             let (tc, tv) = tentative.row(i);
             let (ac, av) = ap.row(i);
             let scale = omega * inverse_diagonal[i];
-            let mut row: Vec<(u32, f64)> = ac.iter().zip(av).map(|(&c, &v)| (c, -scale * v)).collect();
+            let mut row: Vec<(u32, f64)> =
+                ac.iter().zip(av).map(|(&c, &v)| (c, -scale * v)).collect();
             for (&c, &v) in tc.iter().zip(tv) {
                 match row.binary_search_by_key(&c, |e| e.0) {
                     Ok(p) => row[p].1 += v,
@@ -603,7 +632,11 @@ fn chebyshev(pool: &ThreadPool, level: &Level, x: &mut [f64], residual: &mut [f6
             break;
         }
         let rho_next = 1.0 / (2.0 * sigma - rho);
-        for ((di, r), w) in d.iter_mut().zip(residual.iter()).zip(&level.inverse_diagonal) {
+        for ((di, r), w) in d
+            .iter_mut()
+            .zip(residual.iter())
+            .zip(&level.inverse_diagonal)
+        {
             *di = rho_next * rho * *di + 2.0 * rho_next / delta * r * w;
         }
         rho = rho_next;

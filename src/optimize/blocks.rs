@@ -67,7 +67,9 @@ impl BlockLayout {
             for (r, &v) in nodes.iter().enumerate() {
                 for (s, &w) in nodes.iter().enumerate() {
                     let block = match couples[r * nodes.len() + s] {
-                        true => layout.find(v as usize, w as usize).map_or(NONE, |b| b as u32),
+                        true => layout
+                            .find(v as usize, w as usize)
+                            .map_or(NONE, |b| b as u32),
                         false => NONE,
                     };
                     layout.cell_blocks.push(block);
@@ -97,7 +99,9 @@ impl BlockLayout {
     /// Index of block `(v, w)`, if stored.
     pub fn find(&self, v: usize, w: usize) -> Option<usize> {
         let (range, cols) = self.row(v);
-        cols.binary_search(&(w as u32)).ok().map(|i| range.start + i)
+        cols.binary_search(&(w as u32))
+            .ok()
+            .map(|i| range.start + i)
     }
 
     /// The blocks of the ordered pairs of cell `c`'s real nodes (row-major), [`NONE`] where a

@@ -60,11 +60,7 @@ impl Csr {
         pool.install(|| {
             y.par_iter_mut().enumerate().for_each(|(i, yi)| {
                 let (cols, vals) = self.row(i);
-                *yi = cols
-                    .iter()
-                    .zip(vals)
-                    .map(|(&c, v)| v * x[c as usize])
-                    .sum();
+                *yi = cols.iter().zip(vals).map(|(&c, v)| v * x[c as usize]).sum();
             })
         });
     }
@@ -161,9 +157,16 @@ mod tests {
     fn products_and_transposes_agree_with_dense_arithmetic() {
         let a = Csr::from_rows(
             3,
-            vec![vec![(0, 1.0), (2, 2.0)], vec![(1, -1.0)], vec![(0, 3.0), (1, 4.0)]],
+            vec![
+                vec![(0, 1.0), (2, 2.0)],
+                vec![(1, -1.0)],
+                vec![(0, 3.0), (1, 4.0)],
+            ],
         );
-        let b = Csr::from_rows(2, vec![vec![(0, 1.0)], vec![(0, 2.0), (1, 1.0)], vec![(1, 5.0)]]);
+        let b = Csr::from_rows(
+            2,
+            vec![vec![(0, 1.0)], vec![(0, 2.0), (1, 1.0)], vec![(1, 5.0)]],
+        );
         let c = a.product(&pool(), &b);
         // Dense: a = [[1,0,2],[0,-1,0],[3,4,0]], b = [[1,0],[2,1],[0,5]].
         assert_eq!(c.row(0), (&[0u32, 1][..], &[1.0, 10.0][..]));

@@ -107,8 +107,8 @@ impl<'p, const D: usize> GlobalObjective<'p, D> {
                 out.value += local.value;
                 let nodes = self.problem.cell_nodes(c);
                 for (&v, g) in nodes.iter().zip(&local.gradient) {
-                    for k in 0..D {
-                        out.gradient[v as usize][k] += g[k];
+                    for (o, gk) in out.gradient[v as usize].iter_mut().zip(g) {
+                        *o += gk;
                     }
                 }
                 if let Some(h) = out.hessian.as_mut() {

@@ -33,8 +33,14 @@ impl<const D: usize> HessianSolver<D> {
     ) -> Result<Vec<Vector<D>>> {
         let prescribed = self.prescribed();
         let mut coupling = vec![[0.0; D]; dx.len()];
-        self.hessian()
-            .product(pool, self.layout(), self.free(), &prescribed, dx, &mut coupling);
+        self.hessian().product(
+            pool,
+            self.layout(),
+            self.free(),
+            &prescribed,
+            dx,
+            &mut coupling,
+        );
         let minus: Vec<Vector<D>> = coupling.iter().map(|c| c.map(|v| -v)).collect();
         let free_motion = self.checked_solve(pool, &minus, tolerance)?;
         let mut out = mask(&prescribed, dx);
@@ -53,8 +59,14 @@ impl<const D: usize> HessianSolver<D> {
         let prescribed = self.prescribed();
         let lambda = self.checked_solve(pool, w, EXACT)?;
         let mut coupling = vec![[0.0; D]; w.len()];
-        self.hessian()
-            .product(pool, self.layout(), &prescribed, self.free(), &lambda, &mut coupling);
+        self.hessian().product(
+            pool,
+            self.layout(),
+            &prescribed,
+            self.free(),
+            &lambda,
+            &mut coupling,
+        );
         let mut out = mask(&prescribed, w);
         for (o, c) in out.iter_mut().zip(&coupling) {
             for k in 0..D {
@@ -79,7 +91,7 @@ impl<const D: usize> HessianSolver<D> {
                  minimum): the sensitivities are not defined",
             ));
         }
-        if !(stats.residual <= ACCEPTED_RESIDUAL.max(10.0 * tolerance)) {
+        if stats.residual.is_nan() || stats.residual > ACCEPTED_RESIDUAL.max(10.0 * tolerance) {
             return Err(Error::invalid(format!(
                 "the Hessian solve reached a relative residual of {:.1e} only",
                 stats.residual

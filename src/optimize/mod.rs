@@ -19,9 +19,9 @@ pub mod node;
 pub mod path;
 pub mod pattern;
 pub mod problem;
-pub mod sparse;
 pub mod small;
 pub mod solver;
+pub mod sparse;
 pub mod stationary;
 pub mod sweep;
 

@@ -13,7 +13,6 @@ use std::sync::Arc;
 
 use rayon::ThreadPool;
 
-use super::blocks::BlockLayout;
 use super::problem::Problem;
 use super::small::Vector;
 use super::solver::{HessianSolver, SolverSetup};
@@ -67,7 +66,6 @@ pub struct PathStart<const D: usize> {
 pub fn follow<const D: usize>(
     pool: &ThreadPool,
     problem: &Problem<D>,
-    layout: &Arc<BlockLayout>,
     setup: &Arc<SolverSetup>,
     start: PathStart<D>,
     goal: &[Vector<D>],
@@ -116,8 +114,7 @@ pub fn follow<const D: usize>(
                 let (stats, solver) = minimise(
                     pool,
                     problem,
-                    layout.clone(),
-                    setup.clone(),
+                    setup,
                     &mut x,
                     &options,
                     Some(outcome.solver.preconditioner().clone()),
@@ -148,12 +145,7 @@ pub fn follow<const D: usize>(
 }
 
 /// Component `k` of a prescribed node at fraction `t` of its motion from `origin` to `goal`.
-fn prescribed_at<const D: usize>(
-    origin: &Vector<D>,
-    goal: &Vector<D>,
-    k: usize,
-    t: f64,
-) -> f64 {
+fn prescribed_at<const D: usize>(origin: &Vector<D>, goal: &Vector<D>, k: usize, t: f64) -> f64 {
     match t >= 1.0 {
         true => goal[k],
         false => origin[k] + t * (goal[k] - origin[k]),

@@ -40,6 +40,7 @@ pub struct SolveStats {
 pub struct SolverSetup {
     /// Per node, the bits of its free coordinates (nodes without cells have none).
     pub free: Vec<u8>,
+    layout: Arc<BlockLayout>,
     direct: Option<FreeHessian>,
 }
 
@@ -56,17 +57,21 @@ impl SolverSetup {
     /// factorisation is computed here when it applies.
     pub fn new<const D: usize>(
         problem: &super::Problem<D>,
-        layout: &BlockLayout,
+        layout: Arc<BlockLayout>,
     ) -> Result<Self> {
         let free = Self::free_mask(problem);
         let coordinates: usize = free.iter().map(|m| m.count_ones() as usize).sum();
         let direct = if D == 2 || coordinates <= DIRECT_3D_COORDINATES {
-            let analysis = FreeHessian::new(problem, layout)?;
+            let analysis = FreeHessian::new(problem, &layout)?;
             (analysis.factor_size() <= DIRECT_FACTOR_LIMIT).then_some(analysis)
         } else {
             None
         };
-        Ok(SolverSetup { free, direct })
+        Ok(SolverSetup {
+            free,
+            layout,
+            direct,
+        })
     }
 
     /// Per node, the bits of its free coordinates: those of its free mask, none for a node in no
@@ -78,6 +83,11 @@ impl SolverSetup {
                 false => problem.free_mask(v) & ((1 << D) - 1),
             })
             .collect()
+    }
+
+    /// The layout of the Hessian.
+    pub fn layout(&self) -> &Arc<BlockLayout> {
+        &self.layout
     }
 
     /// Whether solves are direct (exact to round-off) rather than iterative.
@@ -92,7 +102,7 @@ pub enum Preconditioner<const D: usize> {
     /// A sparse Cholesky factor.
     Direct(Factor),
     /// Smoothed-aggregation multigrid.
-    Multigrid(Amg),
+    Multigrid(Box<Amg>),
     /// Inverses of the nodes' diagonal blocks.
     BlockJacobi(Vec<Matrix<D>>),
 }
@@ -106,16 +116,18 @@ impl<const D: usize> Preconditioner<D> {
         pool: &ThreadPool,
         problem: &super::Problem<D>,
         setup: &SolverSetup,
-        layout: &BlockLayout,
         hessian: &BlockMatrix<D>,
         x: &[Vector<D>],
     ) -> Result<Option<Self>> {
+        let layout = &setup.layout;
         Ok(match &setup.direct {
             Some(analysis) => analysis.factorize(hessian)?.map(Preconditioner::Direct),
-            None => Some(match Amg::new(pool, problem, layout, hessian, &setup.free, x) {
-                Some(amg) => Preconditioner::Multigrid(amg),
-                None => Preconditioner::BlockJacobi(block_jacobi(setup, layout, hessian)),
-            }),
+            None => Some(
+                match Amg::new(pool, problem, layout, hessian, &setup.free, x) {
+                    Some(amg) => Preconditioner::Multigrid(Box::new(amg)),
+                    None => Preconditioner::BlockJacobi(block_jacobi(setup, layout, hessian)),
+                },
+            ),
         })
     }
 
@@ -152,11 +164,9 @@ impl<const D: usize> Preconditioner<D> {
                 z
             }
             Preconditioner::Multigrid(amg) => amg.apply(pool, r),
-            Preconditioner::BlockJacobi(inverses) => r
-                .iter()
-                .zip(inverses)
-                .map(|(r, m)| mul_vec(m, r))
-                .collect(),
+            Preconditioner::BlockJacobi(inverses) => {
+                r.iter().zip(inverses).map(|(r, m)| mul_vec(m, r)).collect()
+            }
         }
     }
 }
@@ -165,7 +175,6 @@ impl<const D: usize> Preconditioner<D> {
 /// needs, so it can be kept for later solves (sensitivities, path following).
 pub struct HessianSolver<const D: usize> {
     setup: Arc<SolverSetup>,
-    layout: Arc<BlockLayout>,
     hessian: BlockMatrix<D>,
     preconditioner: Arc<Preconditioner<D>>,
 }
@@ -174,13 +183,11 @@ impl<const D: usize> HessianSolver<D> {
     /// A solver of `hessian` with `preconditioner`.
     pub fn new(
         setup: Arc<SolverSetup>,
-        layout: Arc<BlockLayout>,
         hessian: BlockMatrix<D>,
         preconditioner: Arc<Preconditioner<D>>,
     ) -> Self {
         HessianSolver {
             setup,
-            layout,
             hessian,
             preconditioner,
         }
@@ -193,7 +200,7 @@ impl<const D: usize> HessianSolver<D> {
 
     /// The layout of the Hessian.
     pub fn layout(&self) -> &BlockLayout {
-        &self.layout
+        &self.setup.layout
     }
 
     /// The free coordinates: per node, their bits.
@@ -219,7 +226,8 @@ impl<const D: usize> HessianSolver<D> {
         let free = &self.setup.free;
         let b: Vec<Vector<D>> = mask(free, b);
         let apply = |x: &[Vector<D>], y: &mut [Vector<D>]| {
-            self.hessian.product(pool, &self.layout, free, free, x, y)
+            self.hessian
+                .product(pool, &self.setup.layout, free, free, x, y)
         };
         let precondition = |r: &[Vector<D>]| self.preconditioner.apply(pool, &self.setup, r);
         conjugate_gradients(&apply, &precondition, &b, tolerance, max_iterations)
@@ -271,18 +279,16 @@ fn block_jacobi<const D: usize>(
     (0..layout.node_count())
         .map(|v| {
             let free = setup.free[v];
-            let mut m = layout
+            let on = |k: usize| free & (1 << k) != 0;
+            let block = layout
                 .find(v, v)
                 .map_or([[0.0; D]; D], |b| hessian.blocks[b]);
-            for k in 0..D {
-                if free & (1 << k) == 0 {
-                    for l in 0..D {
-                        m[k][l] = 0.0;
-                        m[l][k] = 0.0;
-                    }
-                    m[k][k] = 1.0;
-                }
-            }
+            let m: Matrix<D> = std::array::from_fn(|k| {
+                std::array::from_fn(|l| match (on(k), on(l)) {
+                    (true, true) => block[k][l],
+                    _ => f64::from(u8::from(k == l)),
+                })
+            });
             inverse(&m).unwrap_or_else(|| {
                 std::array::from_fn(|k| {
                     std::array::from_fn(|l| match k == l && m[k][k] != 0.0 {
@@ -320,7 +326,7 @@ fn conjugate_gradients<const D: usize>(
     while stats.iterations < max_iterations && stats.residual > tolerance {
         apply(&p, &mut ap);
         let curvature = dot(&p, &ap);
-        if !(curvature > 0.0) {
+        if curvature.is_nan() || curvature <= 0.0 {
             stats.negative_curvature = true;
             break;
         }

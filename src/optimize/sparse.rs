@@ -7,13 +7,13 @@
 
 use faer::dyn_stack::{MemBuffer, MemStack};
 use faer::linalg::cholesky::llt::factor::LltRegularization;
+use faer::reborrow::Reborrow;
 use faer::sparse::linalg::cholesky::{
     factorize_symbolic_cholesky, CholeskySymbolicParams, LltRef, SymbolicCholesky,
     SymmetricOrdering,
 };
 use faer::sparse::linalg::SupernodalThreshold;
 use faer::sparse::{SparseColMatRef, SymbolicSparseColMat};
-use faer::reborrow::Reborrow;
 use faer::{Conj, MatMut, Par, Side};
 
 use super::blocks::{BlockLayout, BlockMatrix};
@@ -108,7 +108,9 @@ impl CholeskyPattern {
     pub fn new(n: usize, col_ptr: Vec<usize>, row_idx: Vec<usize>) -> Result<Self> {
         let diagonal = col_ptr[..n].to_vec();
         if (0..n).any(|j| row_idx.get(diagonal[j]) != Some(&j)) {
-            return Err(Error::invalid("a column of the matrix has no diagonal value"));
+            return Err(Error::invalid(
+                "a column of the matrix has no diagonal value",
+            ));
         }
         let structure = SymbolicSparseColMat::new_checked(n, n, col_ptr, None, row_idx);
         let symbolic = factorize_symbolic_cholesky(

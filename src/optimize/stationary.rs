@@ -12,7 +12,6 @@ use std::sync::Arc;
 
 use rayon::ThreadPool;
 
-use super::blocks::BlockLayout;
 use super::global::{Evaluation, GlobalObjective};
 use super::problem::Problem;
 use super::small::Vector;
@@ -73,18 +72,16 @@ const LAGGED_ITERATIONS: usize = 4;
 /// comes from a nearby state and is used while it pays. Returns the stats and the solver of the
 /// Hessian at the final `x` (when one could be made): the sensitivities' operator where the
 /// tolerance was met, the predictor of path following. `progress(iterations)` may cancel.
-#[allow(clippy::too_many_arguments)]
 pub fn minimise<const D: usize>(
     pool: &ThreadPool,
     problem: &Problem<D>,
-    layout: Arc<BlockLayout>,
-    setup: Arc<SolverSetup>,
+    setup: &Arc<SolverSetup>,
     x: &mut [Vector<D>],
     options: &StationaryOptions,
     preconditioner: Option<Arc<Preconditioner<D>>>,
     progress: &mut dyn FnMut(usize) -> bool,
 ) -> Result<(StationaryStats, Option<HessianSolver<D>>)> {
-    let objective = GlobalObjective::new(problem, &layout, None, 0.0);
+    let objective = GlobalObjective::new(problem, setup.layout(), None, 0.0);
     let free = setup.free.clone();
     let mut stats = StationaryStats {
         gradient_norm: f64::INFINITY,
@@ -100,12 +97,12 @@ pub fn minimise<const D: usize>(
         let hessian = eval.hessian.take().expect("Hessian evaluated");
         let (lagged, fresh) = match preconditioner.take() {
             Some(p) => (true, p),
-            None => match Preconditioner::new(pool, problem, &setup, &layout, &hessian, x)? {
+            None => match Preconditioner::new(pool, problem, setup, &hessian, x)? {
                 Some(p) => (false, Arc::new(p)),
                 None => return Ok((stats, None)),
             },
         };
-        let mut solver = HessianSolver::new(setup.clone(), layout.clone(), hessian, fresh);
+        let mut solver = HessianSolver::new(setup.clone(), hessian, fresh);
         if stats.gradient_norm <= options.tolerance {
             stats.converged = true;
             return Ok((stats, Some(solver)));
@@ -124,10 +121,10 @@ pub fn minimise<const D: usize>(
         if lagged && (solved.residual > inner || solved.negative_curvature) {
             // The earlier preconditioner stopped paying: make one from this Hessian.
             let hessian = solver.hessian().clone();
-            let Some(p) = Preconditioner::new(pool, problem, &setup, &layout, &hessian, x)? else {
+            let Some(p) = Preconditioner::new(pool, problem, setup, &hessian, x)? else {
                 return Ok((stats, Some(solver)));
             };
-            solver = HessianSolver::new(setup.clone(), layout.clone(), hessian, Arc::new(p));
+            solver = HessianSolver::new(setup.clone(), hessian, Arc::new(p));
             (step, solved) = solver.solve(pool, &minus_g, inner);
         }
         if solver.preconditioner().modified() || solved.iterations == 0 {
@@ -136,9 +133,20 @@ pub fn minimise<const D: usize>(
             step = solver.precondition(pool, &minus_g);
         }
         if std::env::var_os("IGAPARAM_DEBUG").is_some() {
-            eprintln!("newton {} g {:e} F {} solve {:?} lagged {lagged}", stats.iterations, stats.gradient_norm, eval.value, solved);
+            eprintln!(
+                "newton {} g {:e} F {} solve {:?} lagged {lagged}",
+                stats.iterations, stats.gradient_norm, eval.value, solved
+            );
         }
-        match line_search(pool, &objective, &free, x, &eval, &step, stats.gradient_norm) {
+        match line_search(
+            pool,
+            &objective,
+            &free,
+            x,
+            &eval,
+            &step,
+            stats.gradient_norm,
+        ) {
             Some((next, next_eval)) => {
                 x.copy_from_slice(&next);
                 eval = next_eval;
@@ -168,7 +176,7 @@ fn line_search<const D: usize>(
         .zip(&step)
         .map(|(g, p)| (0..D).map(|k| g[k] * p[k]).sum::<f64>())
         .sum();
-    if !(slope < 0.0) {
+    if slope.is_nan() || slope >= 0.0 {
         return None;
     }
     let problem = objective.problem();
@@ -189,7 +197,10 @@ fn line_search<const D: usize>(
             .collect();
         let value = objective.value(pool, &trial);
         if std::env::var_os("IGAPARAM_DEBUG").is_some() {
-            eprintln!("  alpha {alpha:e} value {value} (F {} slope {slope:e})", eval.value);
+            eprintln!(
+                "  alpha {alpha:e} value {value} (F {} slope {slope:e})",
+                eval.value
+            );
         }
         if value.is_finite() {
             if value <= eval.value + 1e-4 * alpha * slope {
