@@ -36,6 +36,16 @@
  */
 #define IGAPARAM_HISTOGRAM_BINS 10
 
+/**
+ * Where the Newton method stops when no stationarity tolerance is asked for.
+ */
+#define DEFAULT_NEWTON_TOLERANCE 1e-8
+
+/**
+ * Relative residual to which the solves of the sensitivities are carried.
+ */
+#define EXACT 1e-13
+
 
 
 /**
@@ -56,6 +66,11 @@ typedef enum {
    * rounds of `total` at most.
    */
   IGAPARAM_STAGE_ADAPTATION = 2,
+  /**
+   * Newton iterations on the global objective (`stationarity_tolerance`): `done` so far,
+   * `total` 0.
+   */
+  IGAPARAM_STAGE_STATIONARITY = 3,
 } igaparam_stage;
 
 /**
@@ -259,6 +274,11 @@ typedef int igaparam_target;
 typedef int igaparam_placement;
 
 /**
+ * How the free nodes are carried to the optimum: one of the `IGAPARAM_METHOD_*` values.
+ */
+typedef int igaparam_method;
+
+/**
  * Options of `igaparam_mesh_relocate`; get the defaults from `igaparam_relocate_options_default`.
  */
 typedef struct {
@@ -267,7 +287,8 @@ typedef struct {
    */
   igaparam_target target;
   /**
-   * `IGAPARAM_PLACEMENT_LAPLACIAN` (default) or `IGAPARAM_PLACEMENT_CURRENT`.
+   * `IGAPARAM_PLACEMENT_LAPLACIAN` (default), `IGAPARAM_PLACEMENT_CURRENT` or
+   * `IGAPARAM_PLACEMENT_INCREMENTAL`.
    */
   igaparam_placement placement;
   /**
@@ -303,6 +324,19 @@ typedef struct {
    * on it.
    */
   uint32_t threads;
+  /**
+   * When positive, the result is a stationary point of the one global objective
+   * F = sum over cells of their mean distortion (regularisation 0, so F is infinite at a
+   * fold): the report's `gradient_norm` is at most this (e.g. 1e-10), reached by Newton's
+   * method with the sparse Hessian on a valid mesh; `igaparam_mesh_adjoint` and
+   * `igaparam_mesh_tangent` then differentiate the result. 0 (default): no such guarantee
+   * (the sweeps stop on their own rule, the Newton method at 1e-8).
+   */
+  double stationarity_tolerance;
+  /**
+   * `IGAPARAM_METHOD_AUTO` (default), `IGAPARAM_METHOD_SWEEPS` or `IGAPARAM_METHOD_NEWTON`.
+   */
+  igaparam_method method;
   /**
    * Progress callback, or NULL (default).
    */
@@ -366,9 +400,20 @@ typedef struct {
    */
   uint32_t steps;
   /**
-   * 1 when the sweeps met their stopping rule (valid mesh, small moves), else 0.
+   * 1 when the sweeps met their stopping rule (valid mesh, small moves) and, when asked for,
+   * the Newton stage its `stationarity_tolerance`; else 0.
    */
   int converged;
+  /**
+   * Scaled max-norm of the gradient of F at the end: over the free coordinates,
+   * |dF/dx| times the node's local cell size divided by its number of cells (the gradient of
+   * the node's own objective times its size; dimensionless). Infinite for an invalid mesh.
+   */
+  double gradient_norm;
+  /**
+   * Newton iterations of the stationarity stage.
+   */
+  uint32_t newton_iterations;
   /**
    * Wall-clock seconds of the call.
    */
@@ -624,6 +669,33 @@ typedef struct {
  * The current positions, as they are.
  */
 #define IGAPARAM_PLACEMENT_CURRENT 1
+
+/**
+ * Warm start for loops: the positions of the last successful relocation plus the harmonic
+ * extension of the prescribed motion since then (the first relocation of a mesh starts as
+ * `IGAPARAM_PLACEMENT_LAPLACIAN`); the targets stay the reference shapes. Use it when the
+ * boundary moves a little at every call, as in a shape-optimization loop.
+ */
+#define IGAPARAM_PLACEMENT_INCREMENTAL 2
+
+/**
+ * `IGAPARAM_METHOD_NEWTON` where the Hessian's Cholesky factor is small (2D meshes, 3D meshes
+ * up to about 20,000 nodes), else `IGAPARAM_METHOD_SWEEPS` (default).
+ */
+#define IGAPARAM_METHOD_AUTO 0
+
+/**
+ * The per-node optimizer's coloured Gauss–Seidel sweeps, large motions in steps placed
+ * harmonically; with `stationarity_tolerance > 0`, followed by the Newton stage.
+ */
+#define IGAPARAM_METHOD_SWEEPS 1
+
+/**
+ * Path following of the optimum of the global objective: each step predicted by the tangent of
+ * the optimum (the linearised response of the mesh to the motion) and corrected by Newton's
+ * method; the sweeps are the fallback where a step cannot be made (e.g. a tangled start).
+ */
+#define IGAPARAM_METHOD_NEWTON 2
 
 /**
  * Numbers as text: large, for reading by eye.
@@ -1006,6 +1078,40 @@ igaparam_status igaparam_cell_type_node_count(igaparam_cell_type cell_type_code,
  * Writes to `*out` the number of cells with det J <= 0 at some Gauss–Lobatto point.
  */
 igaparam_status igaparam_mesh_invalid_cell_count(const igaparam_mesh *mesh, size_t *out);
+
+/**
+ * The adjoint product of the last relocation: `dj_dx` holds the partial derivatives dJ/dx of a
+ * scalar J of the node positions (`size` = 3 × num_nodes doubles, x0 y0 z0 x1 ...);
+ * `dj_dprescribed` (`size` doubles) receives the total derivative of J with respect to every
+ * prescribed coordinate, dJ/dx_p = dJ/dx_p (partial) − H_pf H_ff⁻¹ dJ/dx_f, through the
+ * relocation's dependence of the free coordinates on the prescribed ones (implicit function
+ * theorem at the stationary point; H the Hessian of F), and 0 at the free coordinates.
+ *
+ * Free coordinates: those whose constraint bit is clear, of nodes that belong to a cell
+ * (sliding nodes have both kinds); all others are prescribed, and z of every node of a 2D mesh.
+ * Needs a last relocation with `stationarity_tolerance > 0` that reached it on a valid mesh;
+ * `igaparam_mesh_move_nodes`, `igaparam_mesh_set_fixed`, `igaparam_mesh_reset_reference` and
+ * a new relocation invalidate the state (the call then fails and says why). The factorisation
+ * of H_ff (2D meshes and small 3D ones) is kept on the handle, so further products at one
+ * state cost a solve each; larger 3D meshes solve by preconditioned conjugate gradients.
+ * Uses the thread count of the last relocation.
+ */
+igaparam_status igaparam_mesh_adjoint(const igaparam_mesh *mesh,
+                                      size_t size,
+                                      const double *dj_dx,
+                                      double *dj_dprescribed);
+
+/**
+ * The tangent product of the last relocation (the transpose of `igaparam_mesh_adjoint`):
+ * `dx_prescribed` (`size` = 3 × num_nodes doubles) is a motion of the prescribed coordinates
+ * (its entries at free coordinates are ignored); `dx` (`size` doubles) receives the first-order
+ * motion of every node: the given motion at prescribed coordinates, −H_ff⁻¹ H_fp dx_p at free
+ * ones. Same conditions as `igaparam_mesh_adjoint`.
+ */
+igaparam_status igaparam_mesh_tangent(const igaparam_mesh *mesh,
+                                      size_t size,
+                                      const double *dx_prescribed,
+                                      double *dx);
 
 /**
  * Reads a mesh from a VTK XML unstructured grid (`.vtu`) at `path` (NUL-terminated UTF-8), in

@@ -112,6 +112,11 @@ fn capi() {
 }
 
 #[test]
+fn sensitivity_capi() {
+    run("test_sensitivity.c", &[], &[]);
+}
+
+#[test]
 fn domain_capi() {
     let out = work_dir("domain-out");
     run("test_domain.c", &[&boundary_data(), &out], &[]);

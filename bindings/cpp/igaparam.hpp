@@ -203,6 +203,22 @@ class Mesh {
     return report;
   }
 
+  /// The total derivative of a scalar J with respect to the prescribed coordinates through the
+  /// last relocation, given dJ/dx at every node (3 per node); see igaparam_mesh_adjoint.
+  std::vector<double> adjoint(const std::vector<double>& dj_dx) const {
+    std::vector<double> out(dj_dx.size());
+    detail::check(igaparam_mesh_adjoint(mesh_, dj_dx.size(), dj_dx.data(), out.data()));
+    return out;
+  }
+
+  /// The first-order motion of every node for a motion of the prescribed coordinates (3 per
+  /// node) through the last relocation; see igaparam_mesh_tangent.
+  std::vector<double> tangent(const std::vector<double>& dx_prescribed) const {
+    std::vector<double> out(dx_prescribed.size());
+    detail::check(igaparam_mesh_tangent(mesh_, dx_prescribed.size(), dx_prescribed.data(), out.data()));
+    return out;
+  }
+
   /// Current node positions, 3 per node (x0 y0 z0 x1 ...).
   std::vector<double> positions() const {
     std::vector<double> xyz(3 * node_count());

@@ -48,6 +48,8 @@ class Stage(enum.IntEnum):
 
     PLACEMENT = 0
     OPTIMIZATION = 1
+    ADAPTATION = 2
+    STATIONARITY = 3
 
 
 class CellType(enum.IntEnum):
@@ -65,6 +67,11 @@ TARGET_INITIAL = 0
 TARGET_MASTER = 1
 PLACEMENT_LAPLACIAN = 0
 PLACEMENT_CURRENT = 1
+PLACEMENT_INCREMENTAL = 2
+# IGAPARAM_METHOD_*: how relocation reaches the optimum.
+METHOD_AUTO = 0
+METHOD_SWEEPS = 1
+METHOD_NEWTON = 2
 # IGAPARAM_VTU_*: storages of written .vtu files; ZLIB is a flag for the binary ones.
 VTU_ASCII = 0
 VTU_BINARY = 1
@@ -92,6 +99,8 @@ class RelocateOptions(ctypes.Structure):
         ("max_newton_iterations", ctypes.c_uint32),
         ("relaxation", ctypes.c_double),
         ("threads", ctypes.c_uint32),
+        ("stationarity_tolerance", ctypes.c_double),
+        ("method", ctypes.c_int),  # igaparam_method
         ("progress", PROGRESS_FN),
         ("progress_user", ctypes.c_void_p),
     ]
@@ -112,6 +121,8 @@ class RelocateReport(ctypes.Structure):
         ("sweeps", ctypes.c_uint32),
         ("steps", ctypes.c_uint32),
         ("converged", ctypes.c_int),
+        ("gradient_norm", ctypes.c_double),
+        ("newton_iterations", ctypes.c_uint32),
         ("seconds", ctypes.c_double),
     ]
 
@@ -258,6 +269,8 @@ _PROTOTYPES = {
     "igaparam_mesh_copy_fixed": (_status, [_mesh_p, _uint8_p, ctypes.c_size_t]),
     "igaparam_cell_type_node_count": (_status, [ctypes.c_int, _size_p]),
     "igaparam_mesh_invalid_cell_count": (_status, [_mesh_p, _size_p]),
+    "igaparam_mesh_adjoint": (_status, [_mesh_p, ctypes.c_size_t, _double_p, _double_p]),
+    "igaparam_mesh_tangent": (_status, [_mesh_p, ctypes.c_size_t, _double_p, _double_p]),
     "igaparam_mesh_read_vtu": (_status, [ctypes.c_char_p, ctypes.POINTER(_mesh_p)]),
     "igaparam_mesh_write_vtu": (_status, [_mesh_p, ctypes.c_char_p]),
     "igaparam_mesh_write_vtu_format": (_status, [_mesh_p, ctypes.c_char_p, ctypes.c_int]),
