@@ -179,7 +179,7 @@ impl<const D: usize, B: CubeMap<D>> Domain<D, B> {
         let mut motion = 0.0f64;
         for (v, anchor) in self.boundary_anchors().into_iter().enumerate() {
             if let (Some(a), Some(before)) = (anchor, old[v]) {
-                let moved: [f64; D] = std::array::from_fn(|k| a[k] + goal[v][k] - before[k]);
+                let moved: [f64; D] = std::array::from_fn(|k| goal[v][k] + (a[k] - before[k]));
                 let d = (0..D).map(|k| (moved[k] - goal[v][k]).powi(2)).sum::<f64>();
                 motion = motion.max(d.sqrt());
                 goal[v] = moved;
