@@ -9,43 +9,23 @@ mod morph;
 use common::{curved_box, MappedCube};
 use igaparam::boundary::{BSplineCurve, BoundaryLoop2, SolidBoundary};
 use igaparam::domain::{
-    CubeMap, Domain, DomainOptions, PlanarDomain, SolidDomain, UpdateOptions, UpdateReport,
+    CubeMap, Domain, DomainOptions, DomainReport, PlanarDomain, SolidDomain, UpdateOptions,
+    UpdateReport,
 };
-use igaparam::spline::{
-    FitRecord, FitRule, SplineMap, ThbSpace, UntangleOptions, ValidityOptions, ValidityReport,
-};
+use igaparam::spline::{FitRecord, FitRule, SplineMap, ThbSpace, ValidityOptions, ValidityReport};
+use morph::{elements, fit, untangle};
 
 fn none() -> impl FnMut(usize, usize) -> bool {
     |_, _| true
 }
 
-fn untangle<const D: usize, B: CubeMap<D>>(domain: &Domain<D, B>) -> UntangleOptions {
-    UntangleOptions {
-        boundary_offset: domain.options().boundary_offset,
-        ..Default::default()
-    }
-}
-
-/// The checked fit of a domain and its record.
-fn fit<const D: usize, B: CubeMap<D>>(domain: &Domain<D, B>) -> (SplineMap<D>, FitRecord) {
-    let (map, report, _) = SplineMap::fit_tmesh_checked(
-        domain.mesh(),
-        domain.positions(),
-        &ValidityOptions::default(),
-        &untangle(domain),
-    )
-    .expect("fit");
-    let record = map
-        .fit_record(domain.mesh(), domain.positions(), &report)
-        .expect("record");
-    (map, record)
-}
-
+/// Refits `map` to the domain with `record`, keeping the rule; returns the validity and the
+/// record of the next refit.
 fn refit<const D: usize, B: CubeMap<D>>(
     map: &mut SplineMap<D>,
     domain: &Domain<D, B>,
     record: &FitRecord,
-) -> ValidityReport {
+) -> (ValidityReport, FitRecord) {
     let (_, validity, next) = map
         .refit_tmesh(
             domain.mesh(),
@@ -56,53 +36,39 @@ fn refit<const D: usize, B: CubeMap<D>>(
         )
         .expect("refit");
     assert_eq!(next.rule, record.rule, "the refit changed the rule");
-    validity
+    (validity, next)
 }
 
-/// The levels and boxes of a map's elements.
-fn elements<const D: usize>(map: &SplineMap<D>) -> Vec<(u8, [f64; D], [f64; D])> {
-    (0..map.element_count())
-        .map(|e| {
-            let (lo, hi) = map.element_bounds(e);
-            (map.element_level(e), lo, hi)
-        })
-        .collect()
+/// The puzzle piece built with the default options.
+fn puzzle() -> (PlanarDomain, DomainReport) {
+    let boundary = morph::planar(&morph::puzzle_curves());
+    PlanarDomain::build(boundary, &DomainOptions::default(), &mut none()).unwrap()
 }
 
-/// Runs `steps` steps of a morph (`boundary(s)`, s from 0 to 1): at every step the update keeps
-/// the T-mesh valid and the refit keeps the basis and the elements and is certified. Returns
-/// the last update's report.
+/// Runs `steps` steps of a morph (`boundary(s)`, s from 0 to 1), each checked by
+/// [`morph::Loop::step`]; returns the last update's report.
 fn morph_loop<const D: usize, B: CubeMap<D>>(
     options: &DomainOptions,
     steps: usize,
     boundary: impl Fn(f64) -> B,
 ) -> UpdateReport {
-    let (mut domain, _) = Domain::build(boundary(0.0), options, &mut none()).expect("build");
-    let (mut map, mut record) = fit(&domain);
-    let (basis, list) = (map.basis_count(), elements(&map));
+    let mut morph = morph::Loop::new(boundary(0.0), options);
     let mut last = UpdateReport::default();
     for i in 1..=steps {
-        let s = i as f64 / steps as f64;
-        last = domain
-            .update(boundary(s), &UpdateOptions::default(), &mut none())
-            .expect("update");
-        assert_eq!(last.domain.invalid_cells, 0, "step {i}: folded T-mesh");
-        assert!(last.boundary_motion > 0.0, "step {i}: nothing moved");
-        let (_, validity, next) = map
-            .refit_tmesh(
-                domain.mesh(),
-                domain.positions(),
-                Some(&record),
-                &ValidityOptions::default(),
-                &untangle(&domain),
-            )
-            .expect("refit");
-        record = next;
-        assert_eq!(map.basis_count(), basis, "step {i}: basis count");
-        assert!(elements(&map) == list, "step {i}: element list");
-        assert!(validity.certified_positive, "step {i}: not certified");
+        let step = morph.step(boundary(i as f64 / steps as f64), &UpdateOptions::default());
+        assert!(step.update.boundary_motion > 0.0, "step {i}: nothing moved");
+        last = step.update;
     }
     last
+}
+
+/// The largest coordinate difference of two lists of points.
+fn max_difference<const D: usize>(a: &[[f64; D]], b: &[[f64; D]]) -> f64 {
+    assert_eq!(a.len(), b.len());
+    a.iter()
+        .zip(b)
+        .flat_map(|(p, q)| (0..D).map(move |k| (p[k] - q[k]).abs()))
+        .fold(0.0, f64::max)
 }
 
 #[test]
@@ -133,12 +99,7 @@ fn a_domain_from_curve_arrays_equals_the_one_read_from_their_file() {
 #[test]
 fn an_update_to_the_same_boundary_keeps_the_tolerance_and_the_t_mesh() {
     let curves = morph::puzzle_curves();
-    let (mut domain, built) = PlanarDomain::build(
-        morph::planar(&curves),
-        &DomainOptions::default(),
-        &mut none(),
-    )
-    .unwrap();
+    let (mut domain, built) = puzzle();
     let before = domain.positions().to_vec();
     let report = domain
         .update(
@@ -154,11 +115,7 @@ fn an_update_to_the_same_boundary_keeps_the_tolerance_and_the_t_mesh() {
     assert_eq!(report.domain.boundary_error, built.boundary_error);
     // The optimum it started from moves by less than the sweeps' move tolerance.
     let size = domain.frame().diagonal();
-    let moved = before
-        .iter()
-        .zip(domain.positions())
-        .map(|(a, b)| (a[0] - b[0]).hypot(a[1] - b[1]))
-        .fold(0.0, f64::max);
+    let moved = max_difference(&before, domain.positions());
     assert!(moved < 1e-2 * size, "moved by {moved}");
 }
 
@@ -204,12 +161,7 @@ fn updates_are_the_same_for_any_thread_count() {
 #[test]
 fn refine_restores_the_tolerance_and_the_old_space_no_longer_refits() {
     let curves = morph::puzzle_curves();
-    let (mut domain, built) = PlanarDomain::build(
-        morph::planar(&curves),
-        &DomainOptions::default(),
-        &mut none(),
-    )
-    .unwrap();
+    let (mut domain, built) = puzzle();
     let (mut map, record) = fit(&domain);
     let options = UpdateOptions {
         refine: true,
@@ -277,12 +229,7 @@ fn fit_at(domain: &PlanarDomain, rule: FitRule, x: &[[f64; 2]]) -> Vec<[f64; 2]>
 
 #[test]
 fn each_fit_rule_is_linear_in_the_t_mesh_vertices() {
-    let (domain, _) = PlanarDomain::build(
-        morph::planar(&morph::puzzle_curves()),
-        &DomainOptions::default(),
-        &mut none(),
-    )
-    .unwrap();
+    let (domain, _) = puzzle();
     let x = domain.positions();
     let mut lcg = common::Lcg(7);
     let dx: Vec<[f64; 2]> = x.iter().map(|_| [lcg.next(), lcg.next()]).collect();
@@ -324,26 +271,17 @@ fn a_refit_of_the_fitted_t_mesh_gives_back_the_fit() {
     let (mut map, record) = fit(&domain);
     assert!(!record.correction.is_empty());
     let first = map.control_points().to_vec();
-    let validity = refit(&mut map, &domain, &record);
+    let (validity, _) = refit(&mut map, &domain, &record);
     assert!(validity.certified_positive);
     let scale = map.extent();
-    let moved = first
-        .iter()
-        .zip(map.control_points())
-        .flat_map(|(a, b)| (0..3).map(move |k| (a[k] - b[k]).abs()))
-        .fold(0.0, f64::max);
+    let moved = max_difference(&first, map.control_points());
     assert!(moved <= 1e-12 * scale, "moved by {moved}");
 }
 
 #[test]
 fn a_refined_spline_refits_as_the_refinement_of_the_refit() {
     let curves = morph::puzzle_curves();
-    let (mut domain, _) = PlanarDomain::build(
-        morph::planar(&curves),
-        &DomainOptions::default(),
-        &mut none(),
-    )
-    .unwrap();
+    let (mut domain, _) = puzzle();
     let (coarse, record) = fit(&domain);
     let (mut fine, _) = coarse.refine_uniformly().unwrap();
     let grown = morph::planar(&morph::grown_puzzle(&curves, 0.5));
@@ -354,17 +292,12 @@ fn a_refined_spline_refits_as_the_refinement_of_the_refit() {
     refit(&mut coarse_refit, &domain, &record);
     let (expected, _) = coarse_refit.refine_uniformly().unwrap();
     let (basis, list) = (fine.basis_count(), elements(&fine));
-    let validity = refit(&mut fine, &domain, &record);
+    let (validity, _) = refit(&mut fine, &domain, &record);
     assert!(validity.certified_positive);
     assert_eq!(fine.basis_count(), basis);
     assert!(elements(&fine) == list);
     let scale = fine.extent();
-    let error = expected
-        .control_points()
-        .iter()
-        .zip(fine.control_points())
-        .flat_map(|(a, b)| (0..2).map(move |k| (a[k] - b[k]).abs()))
-        .fold(0.0, f64::max);
+    let error = max_difference(expected.control_points(), fine.control_points());
     assert!(error <= 1e-10 * scale, "differs by {error}");
 }
 

@@ -337,6 +337,23 @@ pub(super) fn current<'a>(
     Ok(d)
 }
 
+/// The progress of the optimization of a T-mesh as the C callback `progress` sees it
+/// (`IGAPARAM_STAGE_OPTIMIZATION`, sweeps done, total 0): false when it asks to cancel.
+pub(super) fn optimization_progress(
+    progress: igaparam_progress_fn,
+    user: *mut c_void,
+) -> impl FnMut(usize, usize) -> bool {
+    move |done, total| {
+        call_progress(
+            progress,
+            user,
+            igaparam_stage::IGAPARAM_STAGE_OPTIMIZATION,
+            done,
+            total,
+        )
+    }
+}
+
 /// The C form of a build report.
 pub(super) fn c_report(r: &DomainReport) -> igaparam_domain_report {
     igaparam_domain_report {
@@ -464,15 +481,7 @@ pub extern "C" fn igaparam_domain_build(
             *non_null(options, "options")?
         };
         let opts = planar_options(&raw)?;
-        let mut progress = |done: usize, total: usize| {
-            call_progress(
-                raw.progress,
-                raw.progress_user,
-                igaparam_stage::IGAPARAM_STAGE_OPTIMIZATION,
-                done,
-                total,
-            )
-        };
+        let mut progress = optimization_progress(raw.progress, raw.progress_user);
         let r = match d {
             igaparam_domain::Planar(boundary, built) => {
                 let (planar, r) = PlanarDomain::build(boundary.clone(), &opts, &mut progress)?;

@@ -5,13 +5,14 @@
 use std::ffi::{c_char, c_void};
 
 use super::boundary::{non_null, non_null_mut, run, Failure};
-use super::domain::{c_path, c_report, igaparam_domain, igaparam_domain_report};
+use super::domain::{
+    c_path, c_report, igaparam_domain, igaparam_domain_report, optimization_progress,
+};
 use super::domain_input::{
     curves_boundary, igaparam_curve, igaparam_surface, planar_file_boundary, polylines_boundary,
     solid_file_boundary, surfaces_boundary, triangulations_boundary,
 };
-use super::mesh::call_progress;
-use super::{igaparam_progress_fn, igaparam_stage, igaparam_status};
+use super::{igaparam_progress_fn, igaparam_status};
 use crate::boundary::{BoundaryLoop2, SolidBoundary};
 use crate::domain::{UpdateOptions, UpdateReport};
 use crate::error::Error;
@@ -299,15 +300,7 @@ pub extern "C" fn igaparam_domain_update(
             threads: raw.threads as usize,
             refine: raw.refine != 0,
         };
-        let mut progress = |done: usize, total: usize| {
-            call_progress(
-                raw.progress,
-                raw.progress_user,
-                igaparam_stage::IGAPARAM_STAGE_OPTIMIZATION,
-                done,
-                total,
-            )
-        };
+        let mut progress = optimization_progress(raw.progress, raw.progress_user);
         let r = match d {
             igaparam_domain::Planar(boundary, Some(built)) => {
                 built.update(boundary.clone(), &opts, &mut progress)?

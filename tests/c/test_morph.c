@@ -17,17 +17,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "dirs.h"
 #include "expect.h"
-
-static char data_dir[512], out_dir[512];
-
-static const char *joined(const char *dir, const char *name) {
-  static char buf[2][1024];
-  static int which;
-  which ^= 1;
-  snprintf(buf[which], sizeof buf[which], "%s/%s", dir, name);
-  return buf[which];
-}
 
 /* ---------------------------------------------------------------------------------------------
  * A planar domain of four curves: a square whose top bulges by `bulge` and whose right side is
@@ -512,12 +503,7 @@ static void test_cancel(void) {
 }
 
 int main(int argc, char **argv) {
-  if (argc < 3) {
-    fprintf(stderr, "usage: %s DATA_DIR OUT_DIR\n", argv[0]);
-    return 2;
-  }
-  snprintf(data_dir, sizeof data_dir, "%s", argv[1]);
-  snprintf(out_dir, sizeof out_dir, "%s", argv[2]);
+  if (!read_dirs(argc, argv)) return 2;
   test_curves_equal_their_file();
   test_surfaces_equal_their_file();
   test_bad_curves();

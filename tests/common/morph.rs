@@ -1,5 +1,5 @@
 //! The morphs of the shape-optimization loop tests and benchmark: the puzzle piece whose knob
-//! on the side u = 0 grows, and the 3D duck whose largest face bulges.
+//! on the side u = 0 grows, and the 3D duck whose back face bulges; the fits they refit.
 #![allow(dead_code)]
 
 use std::path::{Path, PathBuf};
@@ -7,6 +7,12 @@ use std::path::{Path, PathBuf};
 use igaparam::boundary::{
     read_gismo_curves, read_gismo_surfaces, BSplineCurve, BSplineSurface, BoundaryLoop2, Curve2,
     SolidBoundary,
+};
+use std::time::Instant;
+
+use igaparam::domain::{CubeMap, Domain, DomainOptions, DomainReport, UpdateOptions, UpdateReport};
+use igaparam::spline::{
+    FitRecord, FitReport, SplineMap, UntangleOptions, ValidityOptions, ValidityReport,
 };
 
 fn data(name: &str) -> PathBuf {
@@ -102,4 +108,110 @@ pub fn planar(curves: &[BSplineCurve]) -> BoundaryLoop2 {
 /// The solid boundary of six surfaces.
 pub fn solid(surfaces: &[BSplineSurface]) -> SolidBoundary {
     SolidBoundary::from_surfaces(surfaces.to_vec()).expect("solid")
+}
+
+/// The untangling options of a domain's fits: its own boundary offset.
+pub fn untangle<const D: usize, B: CubeMap<D>>(domain: &Domain<D, B>) -> UntangleOptions {
+    UntangleOptions {
+        boundary_offset: domain.options().boundary_offset,
+        ..Default::default()
+    }
+}
+
+/// The checked fit of a domain (as the C API makes it) and its record for refits.
+pub fn fit<const D: usize, B: CubeMap<D>>(domain: &Domain<D, B>) -> (SplineMap<D>, FitRecord) {
+    let (map, report, _) = SplineMap::fit_tmesh_checked(
+        domain.mesh(),
+        domain.positions(),
+        &ValidityOptions::default(),
+        &untangle(domain),
+    )
+    .expect("fit");
+    let record = map
+        .fit_record(domain.mesh(), domain.positions(), &report)
+        .expect("record");
+    (map, record)
+}
+
+/// The levels and boxes of a map's elements.
+pub fn elements<const D: usize>(map: &SplineMap<D>) -> Vec<(u8, [f64; D], [f64; D])> {
+    (0..map.element_count())
+        .map(|e| {
+            let (lo, hi) = map.element_bounds(e);
+            (map.element_level(e), lo, hi)
+        })
+        .collect()
+}
+
+/// A domain, its spline map and the map's fit record, run through the steps of a morph.
+pub struct Loop<const D: usize, B> {
+    pub domain: Domain<D, B>,
+    pub map: SplineMap<D>,
+    pub record: FitRecord,
+    /// The report of the build.
+    pub built: DomainReport,
+    basis: usize,
+    elements: Vec<(u8, [f64; D], [f64; D])>,
+}
+
+/// What one step of a [`Loop`] did.
+pub struct Step {
+    pub update: UpdateReport,
+    pub refit: FitReport,
+    pub validity: ValidityReport,
+    pub update_seconds: f64,
+    pub refit_seconds: f64,
+}
+
+impl<const D: usize, B: CubeMap<D>> Loop<D, B> {
+    /// Builds the domain of `boundary` and fits its map.
+    pub fn new(boundary: B, options: &DomainOptions) -> Self {
+        let (domain, built) = Domain::build(boundary, options, &mut |_, _| true).expect("build");
+        let (map, record) = fit(&domain);
+        let (basis, elements) = (map.basis_count(), self::elements(&map));
+        Loop {
+            domain,
+            map,
+            record,
+            built,
+            basis,
+            elements,
+        }
+    }
+
+    /// Moves the domain onto `boundary` and refits the map; checks that the T-mesh stays valid,
+    /// the rule, the basis and the elements stay, and the map is certified.
+    pub fn step(&mut self, boundary: B, options: &UpdateOptions) -> Step {
+        let clock = Instant::now();
+        let update = self
+            .domain
+            .update(boundary, options, &mut |_, _| true)
+            .expect("update");
+        let update_seconds = clock.elapsed().as_secs_f64();
+        let clock = Instant::now();
+        let (refit, validity, next) = self
+            .map
+            .refit_tmesh(
+                self.domain.mesh(),
+                self.domain.positions(),
+                Some(&self.record),
+                &ValidityOptions::default(),
+                &untangle(&self.domain),
+            )
+            .expect("refit");
+        let refit_seconds = clock.elapsed().as_secs_f64();
+        assert_eq!(update.domain.invalid_cells, 0, "folded T-mesh");
+        assert_eq!(next.rule, self.record.rule, "the refit changed the rule");
+        assert_eq!(self.map.basis_count(), self.basis, "basis count changed");
+        assert!(elements(&self.map) == self.elements, "element list changed");
+        assert!(validity.certified_positive, "not certified");
+        self.record = next;
+        Step {
+            update,
+            refit,
+            validity,
+            update_seconds,
+            refit_seconds,
+        }
+    }
 }
