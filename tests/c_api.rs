@@ -131,6 +131,13 @@ fn spline_capi() {
 }
 
 #[test]
+fn morph_capi() {
+    let out = work_dir("morph-out");
+    run("test_morph.c", &[&boundary_data(), &out], &[]);
+    std::fs::remove_dir_all(&out).ok();
+}
+
+#[test]
 fn cpp_wrapper() {
     let out = work_dir("cpp-out");
     let data = boundary_data().display().to_string();
