@@ -39,12 +39,7 @@
 /**
  * Where the Newton method stops when no stationarity tolerance is asked for.
  */
-#define DEFAULT_NEWTON_TOLERANCE 1e-8
-
-/**
- * Relative residual to which the solves of the sensitivities are carried.
- */
-#define EXACT 1e-13
+#define IGAPARAM_DEFAULT_NEWTON_TOLERANCE 1e-8
 
 
 

@@ -11,7 +11,7 @@ use super::solver::{mask, HessianSolver};
 use crate::error::{Error, Result};
 
 /// Relative residual to which the solves of the sensitivities are carried.
-pub const EXACT: f64 = 1e-13;
+pub(crate) const EXACT: f64 = 1e-13;
 
 /// Largest relative residual an exact solve may end with before the product is refused.
 const ACCEPTED_RESIDUAL: f64 = 1e-9;
