@@ -90,7 +90,7 @@ fn uniform<const D: usize>(level: u8) -> (TMesh<D>, Vec<[f64; D]>) {
 
 fn main() {
     let filter: Option<String> = std::env::args().skip(1).find(|a| !a.starts_with('-'));
-    let wanted = |name: &str| filter.as_ref().map_or(true, |f| name.contains(f.as_str()));
+    let wanted = |name: &str| filter.as_ref().is_none_or(|f| name.contains(f.as_str()));
     println!(
         "| case | elements | basis | bandwidth | fit | certified | build s | fit s | certify s |"
     );

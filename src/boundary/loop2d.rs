@@ -105,7 +105,7 @@ impl Default for LoopOptions {
 /// the unit square: the boundary map sends (side, t) to a point, each side running in the
 /// direction of increasing u or v, so that the corners (0,0), (1,0), (1,1), (0,1) are met
 /// counter-clockwise.
-#[derive(Clone, Debug)]
+#[derive(Clone, Debug, PartialEq)]
 pub struct BoundaryLoop2 {
     sides: [Curve2; 4],
     corner_angles: [f64; 4],
@@ -174,7 +174,7 @@ impl BoundaryLoop2 {
                         (distance(c.start(), end), false),
                         (distance(c.end(), end), true),
                     ] {
-                        if best.map_or(true, |b| d < b.0) {
+                        if best.is_none_or(|b| d < b.0) {
                             best = Some((d, j, rev));
                         }
                     }

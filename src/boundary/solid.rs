@@ -45,7 +45,7 @@ impl Orientation {
 }
 
 /// A face given by a B-spline surface whose knot domain is rescaled to \[0,1\]^2.
-#[derive(Clone, Debug)]
+#[derive(Clone, Debug, PartialEq)]
 struct SplineFace {
     surface: BSplineSurface,
     orientation: Orientation,
@@ -63,7 +63,7 @@ impl SplineFace {
 
 /// A face given by a triangulation with a parameter point `(a, b)` for every vertex and a
 /// uniform bucket grid over \[0,1\]^2 to locate the triangle holding a parameter point.
-#[derive(Clone, Debug)]
+#[derive(Clone, Debug, PartialEq)]
 struct MeshFace {
     uv: Vec<[f64; 2]>,
     points: Vec<Vec3>,
@@ -129,7 +129,7 @@ impl MeshFace {
             }
             let l = self.barycentric(k, q);
             let m = l[0].min(l[1]).min(l[2]);
-            if best.map_or(true, |b| m > b.2) {
+            if best.is_none_or(|b| m > b.2) {
                 best = Some((k, l, m));
             }
         }
@@ -142,7 +142,7 @@ impl MeshFace {
         let i = ((a * n as f64).floor().max(0.0) as usize).min(n - 1);
         let j = ((b * n as f64).floor().max(0.0) as usize).min(n - 1);
         let mut found = self.best(self.buckets[i + j * n].iter().map(|&k| k as usize), q);
-        if found.map_or(true, |(_, l)| l[0].min(l[1]).min(l[2]) < -1e-12) {
+        if found.is_none_or(|(_, l)| l[0].min(l[1]).min(l[2]) < -1e-12) {
             // Outside every triangle of the bucket (only by round-off on the square's boundary):
             // the triangle nearest in the barycentric sense over the whole face.
             found = self.best(0..self.triangles.len(), q);
@@ -164,7 +164,7 @@ impl MeshFace {
     }
 }
 
-#[derive(Clone, Debug)]
+#[derive(Clone, Debug, PartialEq)]
 enum Face {
     Spline(SplineFace),
     Mesh(MeshFace),
@@ -181,7 +181,7 @@ impl Face {
 
 /// The boundary of a solid as a map from the boundary of the unit cube \[0,1\]^3: six faces,
 /// each mapping its cube face onto one side of the solid, agreeing on the cube's edges.
-#[derive(Clone, Debug)]
+#[derive(Clone, Debug, PartialEq)]
 pub struct SolidBoundary {
     faces: [Face; 6],
     corners: [Vec3; 8],
