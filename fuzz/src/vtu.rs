@@ -13,12 +13,7 @@ pub fn run(data: &[u8]) {
         return;
     };
     check_grid(&grid);
-    for encoding in [
-        Encoding::Ascii,
-        Encoding::Binary,
-        Encoding::Appended,
-        Encoding::AppendedBase64,
-    ] {
+    for encoding in Encoding::all() {
         for zlib in [false, true] {
             let format = Format { encoding, zlib };
             let Some(bytes) = checked("vtu::to_bytes", to_bytes(&grid, format)) else {
