@@ -1559,8 +1559,11 @@ igaparam_adapt_options igaparam_adapt_options_default(void);
  * `options->target_quality`, optimizes the T-mesh again and refits, for at most
  * `options->max_rounds` rounds. On success the domain keeps its refined T-mesh and `*out`
  * receives the spline of that T-mesh (`report` may be NULL; `options` may be NULL for the
- * defaults). On failure or cancellation (`IGAPARAM_STATUS_CANCELLED`) the domain is unchanged and
- * `*out` is not written.
+ * defaults). Each fit untangles, and each refinement optimizes, by the rules the domain was
+ * built with (its `boundary_offset`, relief and repair rounds: a domain built with
+ * `boundary_offset = 0` keeps its boundary); `options` gives the threads and sweep limit. On
+ * failure or cancellation (`IGAPARAM_STATUS_CANCELLED`) the domain is unchanged and `*out` is
+ * not written.
  */
 igaparam_status igaparam_domain_fit_adaptive(igaparam_domain *domain,
                                              const igaparam_adapt_options *options,

@@ -24,8 +24,9 @@ pub struct AdaptOptions {
     pub max_level: u8,
     /// Certification and sampling of the spline map.
     pub validity: ValidityOptions,
-    /// Options of the T-mesh optimization after each refinement (its tolerance and levels are
-    /// not used).
+    /// Threads and sweep limit of the T-mesh optimization after each refinement (`threads`,
+    /// `max_sweeps`); its other fields are not used: the boundary offset, relief and repair
+    /// rules are those the domain was built with (see [`refinement_options`]).
     pub domain: DomainOptions,
 }
 
@@ -79,6 +80,17 @@ pub struct AdaptReport {
 }
 
 /// Checks the options of [`adapt`].
+/// The options of the T-mesh optimization after a refinement: the domain's own build options
+/// (a domain built to keep its boundary, `boundary_offset = 0`, keeps it through the loop), with
+/// the loop's threads and sweep limit.
+pub fn refinement_options(built: &DomainOptions, options: &AdaptOptions) -> DomainOptions {
+    DomainOptions {
+        threads: options.domain.threads,
+        max_sweeps: options.domain.max_sweeps,
+        ..*built
+    }
+}
+
 fn check(options: &AdaptOptions) -> Result<()> {
     if !(0.0..1.0).contains(&options.target_quality) {
         return Err(Error::invalid(format!(
@@ -140,7 +152,7 @@ pub fn adapt<const D: usize, B: CubeMap<D>>(
             domain.positions(),
             &options.validity,
             &UntangleOptions {
-                boundary_offset: options.domain.boundary_offset,
+                boundary_offset: domain.options().boundary_offset,
                 ..Default::default()
             },
         )?;
@@ -170,10 +182,39 @@ pub fn adapt<const D: usize, B: CubeMap<D>>(
         if !progress(round as usize, options.max_rounds as usize) {
             return Err(Error::cancelled());
         }
-        let refined = domain.refine_cells(&cells, &options.domain, &mut |_, _| true)?;
+        let refinement = refinement_options(domain.options(), options);
+        let refined = domain.refine_cells(&cells, &refinement, &mut |_, _| true)?;
         if let Some(last) = report.rounds.last_mut() {
             last.invalid_cells = refined.invalid_cells;
         }
         round += 1;
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn refinements_keep_the_domains_own_boundary_rules() {
+        let built = DomainOptions {
+            boundary_offset: 0.0,
+            repair_rounds: 0,
+            threads: 1,
+            max_sweeps: 10,
+            ..DomainOptions::default()
+        };
+        let options = AdaptOptions {
+            domain: DomainOptions {
+                threads: 2,
+                max_sweeps: 50,
+                ..DomainOptions::default()
+            },
+            ..AdaptOptions::default()
+        };
+        let used = refinement_options(&built, &options);
+        assert_eq!(used.boundary_offset, 0.0);
+        assert_eq!(used.repair_rounds, 0);
+        assert_eq!((used.threads, used.max_sweeps), (2, 50));
     }
 }
