@@ -135,7 +135,7 @@ impl BoundaryLoop2 {
                         (distance(c.start(), end), false),
                         (distance(c.end(), end), true),
                     ] {
-                        if best.map_or(true, |b| d < b.0) {
+                        if best.is_none_or(|b| d < b.0) {
                             best = Some((d, j, rev));
                         }
                     }

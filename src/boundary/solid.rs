@@ -129,7 +129,7 @@ impl MeshFace {
             }
             let l = self.barycentric(k, q);
             let m = l[0].min(l[1]).min(l[2]);
-            if best.map_or(true, |b| m > b.2) {
+            if best.is_none_or(|b| m > b.2) {
                 best = Some((k, l, m));
             }
         }
@@ -142,7 +142,7 @@ impl MeshFace {
         let i = ((a * n as f64).floor().max(0.0) as usize).min(n - 1);
         let j = ((b * n as f64).floor().max(0.0) as usize).min(n - 1);
         let mut found = self.best(self.buckets[i + j * n].iter().map(|&k| k as usize), q);
-        if found.map_or(true, |(_, l)| l[0].min(l[1]).min(l[2]) < -1e-12) {
+        if found.is_none_or(|(_, l)| l[0].min(l[1]).min(l[2]) < -1e-12) {
             // Outside every triangle of the bucket (only by round-off on the square's boundary):
             // the triangle nearest in the barycentric sense over the whole face.
             found = self.best(0..self.triangles.len(), q);

@@ -289,7 +289,7 @@ impl<const D: usize> SplineSpace<D> for ThbSpace<D> {
                             .map(|q| b.values[q])
                     });
                     if let Some(v) = value {
-                        if best.map_or(true, |(bv, _)| v > bv) {
+                        if best.is_none_or(|(bv, _)| v > bv) {
                             best = Some((v, p));
                         }
                     }

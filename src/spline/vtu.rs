@@ -39,7 +39,7 @@ impl<const D: usize, S: SplineSpace<D>> SplineMap<D, S> {
                     .eval_with_jacobian(x)
                     .unwrap_or(([f64::NAN; D], [[f64::NAN; D]; D]));
                 grid.points.extend(y);
-                grid.points.extend(std::iter::repeat(0.0).take(3 - D));
+                grid.points.extend(std::iter::repeat_n(0.0, 3 - D));
                 quality.push(mean_ratio(&j));
                 dets.push(det(&j));
             }
