@@ -101,8 +101,8 @@ fn bench_checked<const D: usize>(name: &str, mesh: &TMesh<D>, positions: &[[f64;
     );
     let s = report.stages;
     eprintln!(
-        "  {name}: fit {:.2} s, certification {:.2} s, untangling {:.2} s",
-        s.fit, s.certify, s.untangle
+        "  {name}: fit {:.2} s, certification {:.2} s, untangling {:.2} s, smoothing {:.2} s ({} moved)",
+        s.fit, s.certify, s.untangle, s.smooth, report.smoothed
     );
 }
 

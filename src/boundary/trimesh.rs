@@ -186,6 +186,12 @@ impl TriMesh {
     }
 }
 
+/// Smallest sine of a triangle's angle that [`floater_parameterize`] accepts: thinner triangles
+/// (those of faces whose coordinates mix units, a terrain in degrees and metres) are refused as
+/// degenerate, as one with an angle of 180° is, so that a caller can retry in other
+/// coordinates.
+pub const SLIVER: f64 = 1e-7;
+
 /// Floater's mean-value parameterization of a disk-like triangulation onto the unit square.
 ///
 /// `corners` are the vertices sent to (0,0), (1,0), (1,1), (0,1); they must lie on the boundary
@@ -193,7 +199,8 @@ impl TriMesh {
 /// keep a positive orientation). The boundary vertices between two corners are placed on the
 /// square's side by chord length; every interior vertex is the weighted mean of its neighbours
 /// with w_ij = (tan(α/2) + tan(β/2)) / |v_j − v_i|, α and β the angles at v_i of the two
-/// triangles sharing edge ij. The sparse linear system (an irreducibly diagonally dominant
+/// triangles sharing edge ij; a triangle with an angle whose sine is under [`SLIVER`] is an
+/// error. The sparse linear system (an irreducibly diagonally dominant
 /// M-matrix) is solved by a sparse LU. Returns the (u, v) of every vertex.
 pub fn floater_parameterize(mesh: &TriMesh, corners: [usize; 4]) -> Result<Vec<Point2>> {
     let lp = mesh.boundary_loop()?;
@@ -261,20 +268,36 @@ pub fn floater_parameterize(mesh: &TriMesh, corners: [usize; 4]) -> Result<Vec<P
             // tan(α/2) = |a×b| / (|a||b| + a·b), or (|a||b| − a·b) / |a×b| for obtuse angles:
             // no cancellation, finite for angles up to (not including) π.
             let (cross, dot) = (norm3(cross3(ej, el)), dot3(ej, el));
+            if cross < SLIVER * nj * nl {
+                return Err(Error::mesh(format!(
+                    "triangle {tri:?} is degenerate (an angle whose sine is {:.1e}, under \
+                     {SLIVER:e})",
+                    cross / (nj * nl)
+                )));
+            }
             let half_tan = if dot >= 0.0 {
                 cross / (nj * nl + dot)
-            } else if cross > 0.0 {
-                (nj * nl - dot) / cross
             } else {
-                return Err(Error::mesh(format!(
-                    "triangle {tri:?} is degenerate (an angle of 180°)"
-                )));
+                (nj * nl - dot) / cross
             };
             weights.push((i, j, half_tan / nj));
             weights.push((i, l, half_tan / nl));
         }
     }
     solve_mean_value(&weights, &fixed, &mut uv)?;
+    // Floater's theorem makes the map one-to-one; where the triangles are so thin that their
+    // angles round to 0 or π, the computed one can fold: say so rather than return it.
+    let folded = signed_areas(mesh, &uv)
+        .iter()
+        .filter(|&&a| !(a > 0.0))
+        .count();
+    if folded > 0 {
+        return Err(Error::mesh(format!(
+            "the mean-value map folds {folded} of {} triangles (degenerate triangles: angles \
+             that round to 0 or π)",
+            mesh.triangles.len()
+        )));
+    }
     Ok(uv)
 }
 

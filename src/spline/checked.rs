@@ -65,6 +65,15 @@ impl<const D: usize> SplineMap<D, ThbSpace<D>> {
         let validity = map.validity(options);
         split(&mut stages.certify);
         if validity.certified_positive {
+            let mut map = map;
+            let (validity, smoothed) = map.smooth(
+                validity,
+                options,
+                untangle.smoothing_sweeps,
+                untangle.samples,
+            );
+            split(&mut stages.smooth);
+            report.smoothed = smoothed.moved;
             report.seconds = start.elapsed().as_secs_f64();
             report.stages = stages;
             return Ok((map, report, validity));
@@ -80,6 +89,14 @@ impl<const D: usize> SplineMap<D, ThbSpace<D>> {
         };
         let (validity, untangled) = map.untangle(validity, options, untangle);
         split(&mut stages.untangle);
+        let (validity, smoothed) = map.smooth(
+            validity,
+            options,
+            untangle.smoothing_sweeps,
+            untangle.samples,
+        );
+        split(&mut stages.smooth);
+        report.smoothed = smoothed.moved;
         report.untangled = untangled.moved;
         report.boundary_offset = untangled.boundary_offset;
         report.seconds = start.elapsed().as_secs_f64();

@@ -225,6 +225,20 @@ impl<const D: usize> Region<D> {
         (count, smallest, quality)
     }
 
+    /// The smallest and the mean mean ratio at the samples.
+    pub(super) fn quality(&self) -> (f64, f64) {
+        let (mut smallest, mut sum, mut count) = (f64::INFINITY, 0.0, 0usize);
+        for samples in &self.jacobians {
+            for j in samples {
+                let q = mean_ratio(j);
+                smallest = smallest.min(q);
+                sum += q;
+                count += 1;
+            }
+        }
+        (smallest, sum / count.max(1) as f64)
+    }
+
     /// Updates the Jacobians after free function `i` (of `touches`) moved by `delta`.
     fn shift(&mut self, i: usize, delta: Vector<D>) {
         for &(r, at) in &self.touches[i].1 {

@@ -45,6 +45,9 @@ pub struct FitReport {
     /// box (see [`UntangleOptions::boundary_offset`](super::UntangleOptions::boundary_offset));
     /// 0 when the boundary was kept.
     pub boundary_offset: f64,
+    /// Inner control points moved by the smoothing stage ([`SplineMap::smooth`]); 0 when the
+    /// map was kept as it was.
+    pub smoothed: usize,
     /// Estimated reciprocal condition number (1-norm) of the matrix solved: the collocation
     /// matrix, or the normal equations; 1 for the quasi-interpolant.
     pub reciprocal_condition: f64,
@@ -63,6 +66,8 @@ pub struct FitStages {
     pub certify: f64,
     /// Untangling (with its certifications).
     pub untangle: f64,
+    /// Smoothing (with its certifications).
+    pub smooth: f64,
 }
 
 /// The `4^d` points `((i + ½)/4)` per direction of element `e`.

@@ -18,6 +18,7 @@ mod map;
 mod piece;
 mod quadratic;
 mod quasi;
+mod smooth;
 
 mod space;
 mod thb;
@@ -31,6 +32,7 @@ pub use gismo::{read_gismo_thb, write_gismo_thb};
 pub use map::{InverseMap, SplineMap};
 pub use quadratic::QuadraticMap;
 
+pub use smooth::SmoothReport;
 pub use space::{BasisValues, SplineSpace};
 pub use thb::ThbSpace;
 pub use untangle::{UntangleOptions, UntangleReport};

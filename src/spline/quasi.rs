@@ -134,10 +134,8 @@ impl<const D: usize> SplineMap<D, ThbSpace<D>> {
             least_squares: false,
             quasi_interpolation: true,
             reciprocal_condition: 1.0,
-            untangled: 0,
-            boundary_offset: 0.0,
             seconds: start.elapsed().as_secs_f64(),
-            stages: Default::default(),
+            ..Default::default()
         }
     }
 

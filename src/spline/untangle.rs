@@ -42,6 +42,9 @@ pub struct UntangleOptions {
     /// when moving the inner control points alone leaves elements uncertified. Default 1e-2,
     /// as [`DomainOptions::boundary_offset`](crate::domain::DomainOptions::boundary_offset).
     pub boundary_offset: f64,
+    /// Largest number of sweeps of the smoothing stage ([`SplineMap::smooth`]) that follows
+    /// the untangling (or a fit certified as it is) in the checked fit; 0 turns it off.
+    pub smoothing_sweeps: u32,
 }
 
 impl Default for UntangleOptions {
@@ -52,6 +55,7 @@ impl Default for UntangleOptions {
             samples: 4,
             rings: 1,
             boundary_offset: 1e-2,
+            smoothing_sweeps: 8,
         }
     }
 }
