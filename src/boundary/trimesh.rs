@@ -289,7 +289,7 @@ pub fn floater_parameterize(mesh: &TriMesh, corners: [usize; 4]) -> Result<Vec<P
     // angles round to 0 or π, the computed one can fold: say so rather than return it.
     let folded = signed_areas(mesh, &uv)
         .iter()
-        .filter(|&&a| !(a > 0.0))
+        .filter(|&&a| a.is_nan() || a <= 0.0)
         .count();
     if folded > 0 {
         return Err(Error::mesh(format!(
