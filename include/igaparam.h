@@ -103,6 +103,17 @@ typedef enum {
 } igaparam_status;
 
 /**
+ * How a `.vtu` file stores its arrays.
+ */
+typedef struct Encoding Encoding;
+
+/**
+ * The storage of a written `.vtu` file: an [`Encoding`] and, for the binary ones, zlib
+ * compression (`compressor="vtkZLibDataCompressor"`).
+ */
+typedef struct Format Format;
+
+/**
  * A planar domain bounded by four curves or a solid bounded by six surfaces, and once built its
  * T-mesh parameterization (opaque). Create a planar one with `igaparam_domain_new_from_file` or
  * `igaparam_domain_new_from_polylines`, a solid with `igaparam_domain_new_solid_from_file`,
@@ -303,7 +314,8 @@ typedef struct {
 } igaparam_relocate_options;
 
 /**
- * A cell type: one of the `IGAPARAM_CELL_*` values (VTK's cell type codes).
+ * A cell type: one of the `IGAPARAM_CELL_*` values (VTK's cell type codes). The local order of
+ * each type's nodes, VTK's and Gmsh's, is tabulated at `igaparam_node_order`.
  */
 typedef int igaparam_cell_type;
 
@@ -362,6 +374,33 @@ typedef struct {
    */
   double seconds;
 } igaparam_relocate_report;
+
+/**
+ * The storage of a written `.vtu` file: one of `IGAPARAM_VTU_ASCII`, `IGAPARAM_VTU_BINARY`,
+ * `IGAPARAM_VTU_APPENDED`, `IGAPARAM_VTU_APPENDED_BASE64`, the binary ones optionally OR-ed with
+ * `IGAPARAM_VTU_ZLIB`.
+ */
+typedef int igaparam_vtu_format;
+
+/**
+ * A local node order: one of the `IGAPARAM_ORDER_*` values.
+ *
+ * VTK order (the library's own; meshio's and ParaView's), nodes by reference coordinates in
+ * [-1,1]^d (xi, eta[, zeta]):
+ * - Q4: 0 (-1,-1), 1 (1,-1), 2 (1,1), 3 (-1,1); Q8 adds the mid-edges 4 (0,-1), 5 (1,0),
+ *   6 (0,1), 7 (-1,0); Q9 adds the centre 8 (0,0).
+ * - H8: 0-3 the corners of the face zeta = -1 as in Q4, 4-7 those of zeta = 1;
+ *   H20 adds the mid-edges 8-11 of the bottom face (edges 0-1, 1-2, 2-3, 3-0), 12-15 of the top
+ *   face (4-5, 5-6, 6-7, 7-4), 16-19 of the vertical edges (0-4, 1-5, 2-6, 3-7);
+ *   H27 adds the face centres 20 (xi = -1), 21 (xi = 1), 22 (eta = -1), 23 (eta = 1),
+ *   24 (zeta = -1), 25 (zeta = 1) and the body centre 26.
+ *
+ * Gmsh order: quadrilaterals as VTK. Hexahedra: the same corners 0-7, then the mid-edges of the
+ * edges 0-1, 0-3, 0-4, 1-2, 1-5, 2-3, 2-6, 3-7, 4-5, 4-7, 5-6, 6-7 (8-19), then the face centres
+ * zeta = -1, eta = -1, xi = -1, xi = 1, eta = 1, zeta = 1 (20-25) and the body centre 26.
+ * `igaparam_cell_type_copy_node_coordinates` gives these tables.
+ */
+typedef int igaparam_node_order;
 
 /**
  * Options of `igaparam_spline_check_validity`; get the defaults from
@@ -585,6 +624,48 @@ typedef struct {
  * The current positions, as they are.
  */
 #define IGAPARAM_PLACEMENT_CURRENT 1
+
+/**
+ * Numbers as text: large, for reading by eye.
+ */
+#define IGAPARAM_VTU_ASCII 0
+
+/**
+ * Base64 inside each array (`format="binary"`): valid XML, read by VTK, ParaView and meshio.
+ */
+#define IGAPARAM_VTU_BINARY 1
+
+/**
+ * Raw bytes in an appended section: the smallest, VTK's own default (not valid XML).
+ */
+#define IGAPARAM_VTU_APPENDED 2
+
+/**
+ * Base64 in an appended section.
+ */
+#define IGAPARAM_VTU_APPENDED_BASE64 3
+
+/**
+ * Flag: zlib-compress the binary data (`vtkZLibDataCompressor`).
+ */
+#define IGAPARAM_VTU_ZLIB 16
+
+/**
+ * The default: `IGAPARAM_VTU_BINARY | IGAPARAM_VTU_ZLIB`.
+ */
+#define IGAPARAM_VTU_DEFAULT 17
+
+/**
+ * VTK's node order (the default of `igaparam_mesh_new`).
+ */
+#define IGAPARAM_ORDER_VTK 0
+
+/**
+ * Gmsh's node order (`.msh` files, the Gmsh API).
+ */
+#define IGAPARAM_ORDER_GMSH 1
+
+
 
 
 
@@ -823,7 +904,10 @@ igaparam_relocate_options igaparam_relocate_options_default(void);
  *   node order, each in `0..num_nodes`.
  * - `out`: receives the new handle, to be released with `igaparam_mesh_free`.
  *
- * All nodes start free (see `igaparam_mesh_set_fixed`). The arrays are copied.
+ * All nodes start free (see `igaparam_mesh_set_fixed`). The arrays are copied. For Gmsh's node
+ * order see `igaparam_mesh_new_ordered`; a mesh every cell of which is inverted or folded is
+ * refused with `IGAPARAM_STATUS_INVALID_MESH` (likely a connectivity in another node order, or
+ * cells oriented the wrong way).
  */
 igaparam_status igaparam_mesh_new(igaparam_cell_type cell_type_code,
                                   size_t num_nodes,
@@ -922,6 +1006,82 @@ igaparam_status igaparam_cell_type_node_count(igaparam_cell_type cell_type_code,
  * Writes to `*out` the number of cells with det J <= 0 at some Gauss–Lobatto point.
  */
 igaparam_status igaparam_mesh_invalid_cell_count(const igaparam_mesh *mesh, size_t *out);
+
+/**
+ * Reads a mesh from a VTK XML unstructured grid (`.vtu`) at `path` (NUL-terminated UTF-8), in
+ * any storage VTK and meshio write: ASCII, inline base64, appended raw or base64 data,
+ * uncompressed or zlib-compressed. The cells must all have one supported type (node order VTK's).
+ * The point arrays `fixed_components` (integer masks, see `igaparam_mesh_set_fixed`) and `moved`
+ * (3 components), when present, are applied: every node's fixed coordinates are set to `moved`
+ * and its mask is set; a mask without `moved` fixes the nodes where they are. The file's points
+ * are the reference shape. `out` receives the new handle (release with `igaparam_mesh_free`).
+ * Fails with `IGAPARAM_STATUS_IO` for a file that cannot be read or is not understood,
+ * `IGAPARAM_STATUS_INVALID_MESH` for unsupported or mixed cells or bad masks.
+ */
+igaparam_status igaparam_mesh_read_vtu(const char *path, igaparam_mesh **out);
+
+/**
+ * Writes the mesh to a `.vtu` file at `path` (NUL-terminated UTF-8) in format `format` (an
+ * `IGAPARAM_VTU_*` value): the current positions and the cells (VTK node order), point data
+ * `displacement` (current minus reference positions) and `fixed_components` (UInt8 masks),
+ * cell data `quality` (against the cells' reference shapes, 0 for an invalid cell).
+ * Fails with `IGAPARAM_STATUS_IO` if the file cannot be written.
+ */
+igaparam_status igaparam_mesh_write_vtu_format(const igaparam_mesh *mesh,
+                                               const char *path,
+                                               igaparam_vtu_format format);
+
+/**
+ * `igaparam_mesh_write_vtu_format` with `IGAPARAM_VTU_DEFAULT` (zlib-compressed base64).
+ */
+igaparam_status igaparam_mesh_write_vtu(const igaparam_mesh *mesh, const char *path);
+
+/**
+ * Writes the mesh's cell type (an `IGAPARAM_CELL_*` value) to `*out`.
+ */
+igaparam_status igaparam_mesh_cell_type(const igaparam_mesh *mesh, igaparam_cell_type *out);
+
+/**
+ * `igaparam_mesh_new` for a connectivity whose cells list their nodes in `order` (an
+ * `IGAPARAM_ORDER_*` value, see `igaparam_node_order` for the tables). The mesh keeps the order:
+ * `igaparam_mesh_copy_connectivity` gives the cells back in it. A mesh every cell of which is
+ * inverted or folded in the given positions is refused (`IGAPARAM_STATUS_INVALID_MESH`, with a
+ * message naming the likely cause: a connectivity in another node order, or cells oriented the
+ * wrong way).
+ */
+igaparam_status igaparam_mesh_new_ordered(igaparam_cell_type cell_type_code,
+                                          igaparam_node_order order,
+                                          size_t num_nodes,
+                                          const double *xyz,
+                                          size_t num_cells,
+                                          const int64_t *connectivity,
+                                          igaparam_mesh **out);
+
+/**
+ * Writes to `*out` the node order the mesh's connectivity was given in (`IGAPARAM_ORDER_VTK`
+ * for meshes from `igaparam_mesh_new` and `igaparam_mesh_read_vtu`).
+ */
+igaparam_status igaparam_mesh_order(const igaparam_mesh *mesh, igaparam_node_order *out);
+
+/**
+ * Copies the connectivity into `connectivity` (`len` values, at least `num_cells × nodes per
+ * cell`), each cell's nodes in `order` (an `IGAPARAM_ORDER_*` value; pass the one of
+ * `igaparam_mesh_order` to get the cells back as given).
+ */
+igaparam_status igaparam_mesh_copy_connectivity(const igaparam_mesh *mesh,
+                                                igaparam_node_order order,
+                                                int64_t *connectivity,
+                                                size_t len);
+
+/**
+ * Copies the reference coordinates in [-1,1]^d of the local nodes of `cell_type_code` in
+ * `order` into `xi` (`len` doubles, at least `nodes per cell × d`; d = 2 for quadrilaterals,
+ * 3 for hexahedra): node i at `xi[d i .. d i + d]`.
+ */
+igaparam_status igaparam_cell_type_copy_node_coordinates(igaparam_cell_type cell_type_code,
+                                                         igaparam_node_order order,
+                                                         double *xi,
+                                                         size_t len);
 
 /**
  * The default validity options.

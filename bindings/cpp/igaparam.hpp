@@ -101,16 +101,32 @@ struct ProgressTrampoline {
 /// A quadrilateral or hexahedral mesh (owner of an igaparam_mesh*). Move-only.
 class Mesh {
  public:
-  /// Builds a mesh from `xyz` (3 coordinates per node, flat) and `connectivity` (VTK node order,
-  /// nodes_per_cell(type) indices per cell). The arrays are copied; all nodes start free.
-  Mesh(igaparam_cell_type type, const std::vector<double>& xyz, const std::vector<std::int64_t>& connectivity) {
+  /// Builds a mesh from `xyz` (3 coordinates per node, flat) and `connectivity` (nodes_per_cell(type)
+  /// indices per cell, each cell's nodes in `order`: IGAPARAM_ORDER_VTK or IGAPARAM_ORDER_GMSH).
+  /// The arrays are copied; all nodes start free.
+  Mesh(igaparam_cell_type type, const std::vector<double>& xyz, const std::vector<std::int64_t>& connectivity,
+       igaparam_node_order order = IGAPARAM_ORDER_VTK) {
     detail::require(xyz.size() % 3 == 0, "igaparam::Mesh: xyz must hold 3 coordinates per node");
     const std::size_t per_cell = nodes_per_cell(type);
     // For an unsupported type, pass no cells and let the library report the type.
     detail::require(per_cell == 0 || connectivity.size() % per_cell == 0,
                     "igaparam::Mesh: connectivity must hold " + std::to_string(per_cell) + " indices per cell");
     const std::size_t cells = per_cell == 0 ? 0 : connectivity.size() / per_cell;
-    detail::check(igaparam_mesh_new(type, xyz.size() / 3, xyz.data(), cells, connectivity.data(), &mesh_));
+    detail::check(
+        igaparam_mesh_new_ordered(type, order, xyz.size() / 3, xyz.data(), cells, connectivity.data(), &mesh_));
+  }
+
+  /// Reads a mesh and its prescribed motion (point arrays fixed_components, moved) from a .vtu file
+  /// in any storage (see igaparam_mesh_read_vtu).
+  static Mesh read_vtu(const std::string& path) {
+    igaparam_mesh* handle = nullptr;
+    detail::check(igaparam_mesh_read_vtu(path.c_str(), &handle));
+    return Mesh(handle);
+  }
+
+  /// Writes the mesh to a .vtu file in `format` (IGAPARAM_VTU_*; default zlib-compressed base64).
+  void write_vtu(const std::string& path, igaparam_vtu_format format = IGAPARAM_VTU_DEFAULT) const {
+    detail::check(igaparam_mesh_write_vtu_format(mesh_, path.c_str(), format));
   }
 
   /// Takes ownership of a handle from igaparam_mesh_new (may be NULL).
@@ -138,6 +154,10 @@ class Mesh {
   std::size_t cell_count() const { return query<std::size_t>(igaparam_mesh_cell_count); }
   /// 2 for quadrilaterals, 3 for hexahedra.
   int dimension() const { return query<int>(igaparam_mesh_dimension); }
+  /// The cell type (IGAPARAM_CELL_*).
+  igaparam_cell_type cell_type() const { return query<igaparam_cell_type>(igaparam_mesh_cell_type); }
+  /// The node order the connectivity was given in.
+  igaparam_node_order order() const { return query<igaparam_node_order>(igaparam_mesh_order); }
   /// Cells with det J <= 0 at some Gauss–Lobatto point.
   std::size_t invalid_cell_count() const { return query<std::size_t>(igaparam_mesh_invalid_cell_count); }
 
@@ -202,6 +222,14 @@ class Mesh {
     std::vector<std::uint8_t> mask(node_count());
     detail::check(igaparam_mesh_copy_fixed(mesh_, mask.data(), mask.size()));
     return mask;
+  }
+
+  /// The connectivity, each cell's nodes in `order` (the mesh's own order by default).
+  std::vector<std::int64_t> connectivity() const { return connectivity(order()); }
+  std::vector<std::int64_t> connectivity(igaparam_node_order order) const {
+    std::vector<std::int64_t> cells(cell_count() * nodes_per_cell(cell_type()));
+    detail::check(igaparam_mesh_copy_connectivity(mesh_, order, cells.data(), cells.size()));
+    return cells;
   }
 
   /// Quality of every cell against `target` (IGAPARAM_TARGET_*): in (0, 1], 0 for an invalid cell.

@@ -13,10 +13,11 @@ use crate::optimize::TargetKind;
 /// A quadrilateral or hexahedral finite-element mesh with node constraints (opaque).
 /// Create with `igaparam_mesh_new`, release with `igaparam_mesh_free`.
 pub struct igaparam_mesh {
-    mesh: Mesh,
+    pub(super) mesh: Mesh,
 }
 
-/// A cell type: one of the `IGAPARAM_CELL_*` values (VTK's cell type codes).
+/// A cell type: one of the `IGAPARAM_CELL_*` values (VTK's cell type codes). The local order of
+/// each type's nodes, VTK's and Gmsh's, is tabulated at `igaparam_node_order`.
 pub type igaparam_cell_type = c_int;
 /// Bilinear quadrilateral, 4 nodes (VTK_QUAD).
 pub const IGAPARAM_CELL_QUAD4: igaparam_cell_type = 9;
@@ -171,7 +172,7 @@ pub extern "C" fn igaparam_relocate_options_default() -> igaparam_relocate_optio
     }
 }
 
-fn cell_type(code: igaparam_cell_type) -> Result<CellType> {
+pub(super) fn cell_type(code: igaparam_cell_type) -> Result<CellType> {
     CellType::from_vtk(code as i64).ok_or_else(|| {
         Error::invalid(format!(
             "cell type {code} is not supported; use IGAPARAM_CELL_QUAD4/QUAD8/QUAD9/HEX8/HEX20/HEX27 (VTK codes 9, 23, 28, 12, 25, 29)"
@@ -220,7 +221,10 @@ fn relocate_options(o: &igaparam_relocate_options) -> Result<RelocateOptions> {
 ///   node order, each in `0..num_nodes`.
 /// - `out`: receives the new handle, to be released with `igaparam_mesh_free`.
 ///
-/// All nodes start free (see `igaparam_mesh_set_fixed`). The arrays are copied.
+/// All nodes start free (see `igaparam_mesh_set_fixed`). The arrays are copied. For Gmsh's node
+/// order see `igaparam_mesh_new_ordered`; a mesh every cell of which is inverted or folded is
+/// refused with `IGAPARAM_STATUS_INVALID_MESH` (likely a connectivity in another node order, or
+/// cells oriented the wrong way).
 #[no_mangle]
 pub extern "C" fn igaparam_mesh_new(
     cell_type_code: igaparam_cell_type,
@@ -230,23 +234,16 @@ pub extern "C" fn igaparam_mesh_new(
     connectivity: *const i64,
     out: *mut *mut igaparam_mesh,
 ) -> igaparam_status {
-    run("igaparam_mesh_new", || {
-        let out = non_null_mut(out, "out")?;
-        let ct = cell_type(cell_type_code)?;
-        let len = |n: usize, per: usize, what: &str| {
-            n.checked_mul(per)
-                .ok_or_else(|| Error::invalid(format!("{what} is too large")))
-        };
-        let xyz = slice(xyz, len(num_nodes, 3, "num_nodes")?, "xyz")?;
-        let conn = slice(
-            connectivity,
-            len(num_cells, ct.node_count(), "num_cells")?,
-            "connectivity",
-        )?;
-        let mesh = Mesh::new(ct, xyz, conn)?;
-        *out = Box::into_raw(Box::new(igaparam_mesh { mesh }));
-        Ok(())
-    })
+    super::node_order::new_mesh(
+        "igaparam_mesh_new",
+        cell_type_code,
+        super::node_order::IGAPARAM_ORDER_VTK,
+        num_nodes,
+        xyz,
+        num_cells,
+        connectivity,
+        out,
+    )
 }
 
 /// Releases a mesh. NULL is a no-op.
@@ -258,7 +255,9 @@ pub extern "C" fn igaparam_mesh_free(mesh: *mut igaparam_mesh) {
     }
 }
 
-fn with_mesh<'a>(mesh: *const igaparam_mesh) -> std::result::Result<&'a Mesh, NullArgument> {
+pub(super) fn with_mesh<'a>(
+    mesh: *const igaparam_mesh,
+) -> std::result::Result<&'a Mesh, NullArgument> {
     non_null(mesh, "mesh").map(|m| &m.mesh)
 }
 

@@ -12,11 +12,15 @@
 mod boundary;
 mod domain;
 mod mesh;
+mod mesh_io;
+mod node_order;
 mod spline;
 
 pub use boundary::{igaparam_last_error_message, igaparam_status, igaparam_version};
 pub use domain::*;
 pub use mesh::*;
+pub use mesh_io::*;
+pub use node_order::*;
 pub use spline::*;
 
 /// Major version of the library this header belongs to.

@@ -1,8 +1,11 @@
-//! Meshes and boundary motions read from `.vtu` grids.
+//! Meshes and boundary motions read from `.vtu` grids, and meshes written as `.vtu` files.
+
+use std::path::Path;
 
 use super::{CellType, Mesh};
 use crate::error::{Error, Result};
-use crate::io::vtu::UnstructuredGrid;
+use crate::io::vtu::{self, DataArray, Format, UnstructuredGrid};
+use crate::optimize::TargetKind;
 
 impl Mesh {
     /// Builds a mesh from a grid whose cells all have one supported type.
@@ -57,16 +60,92 @@ impl Mesh {
     }
 
     /// Builds a mesh from a grid and applies the motion given by its point arrays
-    /// `fixed_components` and `moved`, when present.
+    /// `fixed_components` (the constraint masks, integers in 0..=7) and `moved` (3 components:
+    /// the new positions of the fixed coordinates), when present; a mask without `moved` fixes
+    /// the nodes where they are.
     pub fn from_grid_with_motion(grid: &UnstructuredGrid) -> Result<Mesh> {
         let mut mesh = Mesh::from_grid(grid)?;
-        if let (Some(mask), Some(moved)) = (
-            grid.point_array("fixed_components"),
-            grid.point_array("moved"),
-        ) {
-            let bits: Vec<u8> = mask.values.iter().map(|&v| v as u8).collect();
-            mesh.prescribe(&bits, &moved.values)?;
+        let Some(mask) = grid.point_array("fixed_components") else {
+            return Ok(mesh);
+        };
+        if mask.components != 1 {
+            return Err(Error::mesh(format!(
+                "point array `fixed_components` has {} components, expected 1",
+                mask.components
+            )));
         }
+        let bits = mask
+            .values
+            .iter()
+            .enumerate()
+            .map(|(i, &v)| {
+                (v.fract() == 0.0 && (0.0..=7.0).contains(&v))
+                    .then_some(v as u8)
+                    .ok_or_else(|| {
+                        Error::mesh(format!(
+                            "fixed_components[{i}] = {v} is not a mask in 0..=7"
+                        ))
+                    })
+            })
+            .collect::<Result<Vec<u8>>>()?;
+        match grid.point_array("moved") {
+            Some(moved) if moved.components != 3 => Err(Error::mesh(format!(
+                "point array `moved` has {} components, expected 3",
+                moved.components
+            ))),
+            Some(moved) => mesh.prescribe(&bits, &moved.values),
+            None => mesh.set_fixed(&bits),
+        }?;
         Ok(mesh)
+    }
+
+    /// Reads a mesh and its prescribed motion from a `.vtu` file in any storage (see
+    /// [`crate::io::vtu`]): one supported cell type, node order VTK's; the point arrays
+    /// `fixed_components` and `moved`, when present, as in [`Mesh::from_grid_with_motion`].
+    pub fn read_vtu(path: &Path) -> Result<Mesh> {
+        Mesh::from_grid_with_motion(&vtu::read(path)?)
+    }
+
+    /// The mesh as a grid: its current positions and cells (VTK node order), point data
+    /// `displacement` (current minus reference positions) and `fixed_components` (UInt8
+    /// masks), cell data `quality` (against the cells' reference shapes, 0 for invalid cells).
+    pub fn to_grid(&self) -> Result<UnstructuredGrid> {
+        let per = self.cell_type.node_count();
+        let displacement = self
+            .positions
+            .iter()
+            .zip(&self.reference)
+            .flat_map(|(p, r)| [p[0] - r[0], p[1] - r[1], p[2] - r[2]])
+            .collect();
+        let array = |name: &str, components, values| DataArray {
+            name: name.to_string(),
+            components,
+            values,
+        };
+        Ok(UnstructuredGrid {
+            points: self.positions.iter().flatten().copied().collect(),
+            connectivity: self.connectivity.iter().map(|&n| n as i64).collect(),
+            offsets: (1..=self.cell_count()).map(|c| (c * per) as i64).collect(),
+            types: vec![self.cell_type as u8; self.cell_count()],
+            point_data: vec![
+                array("displacement", 3, displacement),
+                array(
+                    "fixed_components",
+                    1,
+                    self.fixed.iter().map(|&m| m as f64).collect(),
+                ),
+            ],
+            cell_data: vec![array(
+                "quality",
+                1,
+                self.cell_quality(TargetKind::Reference)?,
+            )],
+            uint8_arrays: vec!["fixed_components".into()],
+        })
+    }
+
+    /// Writes the mesh (see [`Mesh::to_grid`]) as a `.vtu` file in format `format`.
+    pub fn write_vtu(&self, path: &Path, format: Format) -> Result<()> {
+        vtu::write_as(path, &self.to_grid()?, format)
     }
 }

@@ -4,9 +4,11 @@
 
 mod cell_type;
 mod from_vtu;
+mod node_order;
 mod relocate;
 
 pub use cell_type::CellType;
+pub use node_order::NodeOrder;
 pub use relocate::{Placement, RelocateOptions, RelocateReport, Stage};
 
 use crate::error::{check_finite, Error, Result};
@@ -24,12 +26,23 @@ pub struct Mesh {
     positions: Vec<[f64; 3]>,
     connectivity: Vec<u32>,
     fixed: Vec<u8>,
+    /// The node order the connectivity was given in (kept in VTK's order here).
+    order: NodeOrder,
 }
 
 impl Mesh {
     /// Builds a mesh from `xyz` (`#nodes × 3`, flat) and `connectivity` (`#cells × nodes per
-    /// cell`, VTK node order). The positions become the reference shape; all nodes start free.
+    /// cell`, VTK node order; see [`Mesh::new_ordered`] for others). The positions become the
+    /// reference shape; all nodes start free. A mesh every cell of which is inverted or folded
+    /// is refused: its node order or orientation is wrong.
     pub fn new(cell_type: CellType, xyz: &[f64], connectivity: &[i64]) -> Result<Mesh> {
+        let mesh = Mesh::new_unchecked(cell_type, xyz, connectivity)?;
+        mesh.check_orientation()?;
+        Ok(mesh)
+    }
+
+    /// [`Mesh::new`] without the check of the cells' orientation.
+    fn new_unchecked(cell_type: CellType, xyz: &[f64], connectivity: &[i64]) -> Result<Mesh> {
         if xyz.is_empty() || xyz.len() % 3 != 0 {
             return Err(Error::invalid(format!(
                 "xyz has {} values, expected 3 per node and at least one node",
@@ -73,6 +86,7 @@ impl Mesh {
             positions,
             connectivity: conn,
             fixed: vec![0; node_count],
+            order: NodeOrder::Vtk,
         })
     }
 

@@ -1,3 +1,4 @@
 //! File formats.
 
+pub mod gismo;
 pub mod vtu;

@@ -2,15 +2,20 @@
 //! `<Basis type="THBSplineBasis2">` — the level-0 tensor basis and one `<box level="l">` per
 //! leaf of level ≥ 1, lower then upper corner in the level's knot-span indices — and the
 //! control points in `<coefs geoDim="d">`, in the basis order (by level, direction 0 fastest).
-//! The reader takes what the writer writes, and level-0 bases with `2^s` uniform spans.
+//! The reader takes what the writer writes, and level-0 bases with `2^s` uniform spans; it
+//! parses the XML with roxmltree (comments, CDATA, entities) and reads each patch's boxes from
+//! that patch alone.
 
 use std::fmt::Write as _;
 use std::path::Path;
+
+use roxmltree::Node;
 
 use super::map::SplineMap;
 use super::space::SplineSpace;
 use super::thb::ThbSpace;
 use crate::error::{Error, Result};
+use crate::io::gismo::{self as xml, line};
 use crate::tmesh::{Tree, MAX_LEVEL};
 
 /// Writes a THB map as G+Smo XML text.
@@ -54,67 +59,52 @@ pub fn write_gismo_thb<const D: usize>(map: &SplineMap<D, ThbSpace<D>>) -> Strin
     s
 }
 
-/// The attribute text and content of every `<tag ...>content</tag>` (elements that do not
-/// nest).
-fn elements<'a>(text: &'a str, tag: &str) -> Result<Vec<(&'a str, &'a str)>> {
-    let open = format!("<{tag}");
-    let close = format!("</{tag}>");
-    let mut out = Vec::new();
-    let mut pos = 0;
-    while let Some(rel) = text[pos..].find(&open) {
-        let start = pos + rel + open.len();
-        if !text[start..].starts_with(|c: char| c.is_whitespace() || c == '>') {
-            pos = start;
-            continue;
-        }
-        let gt = start
-            + text[start..]
-                .find('>')
-                .ok_or_else(|| Error::io(format!("<{tag} is not closed")))?;
-        let end = gt
-            + text[gt..]
-                .find(&close)
-                .ok_or_else(|| Error::io(format!("<{tag}> has no {close}")))?;
-        out.push((&text[start..gt], &text[gt + 1..end]));
-        pos = end + close.len();
-    }
-    Ok(out)
-}
-
-fn attribute<'a>(attrs: &'a str, name: &str) -> Option<&'a str> {
-    let key = format!("{name}=\"");
-    let start = attrs.find(&key)? + key.len();
-    let len = attrs[start..].find('"')?;
-    Some(&attrs[start..start + len])
-}
-
-fn numbers(text: &str) -> Result<Vec<f64>> {
-    text.split_whitespace()
-        .map(|t| {
-            t.parse::<f64>()
-                .map_err(|_| Error::io(format!("'{t}' is not a number")))
+/// The child `<Basis>` of `node` whose type is `ty`.
+fn basis<'a, 'input>(node: Node<'a, 'input>, ty: &str) -> Result<Node<'a, 'input>> {
+    xml::children(node, "Basis")
+        .find(|b| b.attribute("type") == Some(ty))
+        .ok_or_else(|| {
+            Error::io(format!(
+                "line {}: <{}> has no <Basis type=\"{ty}\">",
+                line(node),
+                node.tag_name().name()
+            ))
         })
-        .collect()
 }
 
-/// Reads a THB map written by [`write_gismo_thb`] (or any `THBSpline2/3` of degree 3 on
-/// [0,1]^d whose level-0 knots are clamped and uniform with `2^s` spans).
-pub fn read_gismo_thb<const D: usize>(text: &str) -> Result<SplineMap<D, ThbSpace<D>>> {
-    let kind = format!("THBSpline{D}");
-    let geometry = text
-        .find(&format!("type=\"{kind}\""))
-        .ok_or_else(|| Error::io(format!("no <Geometry type=\"{kind}\">")))?;
-    let text = &text[geometry..];
-    let knots = elements(text, "KnotVector")?;
-    if knots.len() < D {
-        return Err(Error::io(format!("{kind} needs {D} knot vectors")));
+/// The base-2 logarithm of the number of spans of the level-0 knot vectors of a tensor basis,
+/// which must be cubic, clamped and uniform on [0,1] with `2^s` spans, the same in every
+/// direction; the direction of each `<Basis>` is its `index` attribute, else its place.
+fn level0_shift<const D: usize>(tensor: Node<'_, '_>) -> Result<u8> {
+    let mut bases: Vec<(usize, Node)> = xml::children(tensor, "Basis")
+        .enumerate()
+        .map(|(i, b)| {
+            (
+                b.attribute("index")
+                    .and_then(|v| v.parse().ok())
+                    .unwrap_or(i),
+                b,
+            )
+        })
+        .collect();
+    bases.sort_by_key(|&(i, _)| i);
+    if bases.len() != D {
+        return Err(Error::io(format!(
+            "line {}: the tensor basis needs {D} univariate bases, it has {}",
+            line(tensor),
+            bases.len()
+        )));
     }
     let mut shift = None;
-    for (attrs, content) in &knots[..D] {
-        if attribute(attrs, "degree") != Some("3") {
-            return Err(Error::io("only degree 3 is read"));
+    for (_, b) in bases {
+        let kv = xml::children(b, "KnotVector")
+            .next()
+            .ok_or_else(|| Error::io(format!("line {}: <Basis> has no <KnotVector>", line(b))))?;
+        let at = line(kv);
+        if kv.attribute("degree").map(str::trim) != Some("3") {
+            return Err(Error::io(format!("line {at}: only degree 3 is read")));
         }
-        let k = numbers(content)?;
+        let k = xml::numbers(kv, "knot vector")?;
         let spans = k.len().saturating_sub(7);
         let uniform = spans >= 1
             && spans.is_power_of_two()
@@ -122,27 +112,37 @@ pub fn read_gismo_thb<const D: usize>(text: &str) -> Result<SplineMap<D, ThbSpac
             && k[k.len() - 4..].iter().all(|&v| v == 1.0)
             && (1..spans).all(|i| (k[3 + i] - i as f64 / spans as f64).abs() < 1e-12);
         if !uniform {
-            return Err(Error::io(
-                "the level-0 knots must be clamped and uniform on [0,1] with 2^s spans",
-            ));
+            return Err(Error::io(format!(
+                "line {at}: the level-0 knots must be clamped and uniform on [0,1] with 2^s spans"
+            )));
         }
         let s = spans.trailing_zeros() as u8;
         if shift.is_some_and(|t| t != s) {
-            return Err(Error::io("the level-0 knot vectors differ"));
+            return Err(Error::io(format!(
+                "line {at}: the level-0 knot vectors differ"
+            )));
         }
         shift = Some(s);
     }
-    let shift = shift.unwrap_or(0);
-    let mut tree = Tree::<D>::new();
-    tree.refine_uniformly(shift)?;
-    for (attrs, content) in elements(text, "box")? {
-        let level: u8 = attribute(attrs, "level")
-            .and_then(|v| v.parse().ok())
-            .ok_or_else(|| Error::io("a <box> has no level"))?;
-        let level = level + shift;
-        let corners = numbers(content)?;
+    Ok(shift.unwrap_or(0))
+}
+
+/// Refines `tree` to hold the leaves of level ≥ 1 given by the `<box level="l">` children of a
+/// THB basis (lower then upper corner in the level's knot-span indices).
+fn apply_boxes<const D: usize>(tree: &mut Tree<D>, thb: Node<'_, '_>, shift: u8) -> Result<()> {
+    for b in xml::children(thb, "box") {
+        let at = line(b);
+        let level: u8 = b
+            .attribute("level")
+            .and_then(|v| v.trim().parse().ok())
+            .ok_or_else(|| Error::io(format!("line {at}: a <box> has no level")))?;
+        let level = level.saturating_add(shift);
+        let corners = xml::numbers(b, "box")?;
         if corners.len() != 2 * D || level > MAX_LEVEL {
-            return Err(Error::io(format!("bad box: level {level}, {content}")));
+            return Err(Error::io(format!(
+                "line {at}: bad box: level {level}, {} corner values (2 x {D} expected)",
+                corners.len()
+            )));
         }
         let unit = crate::tmesh::UNIT as u64 >> level;
         tree.refine_while(false, |tree, c| {
@@ -155,18 +155,32 @@ pub fn read_gismo_thb<const D: usize>(text: &str) -> Result<SplineMap<D, ThbSpac
                 })
         })?;
     }
+    Ok(())
+}
+
+/// One `<Geometry type="THBSpline{D}">` element as a map.
+fn read_thb_geometry<const D: usize>(geometry: Node<'_, '_>) -> Result<SplineMap<D, ThbSpace<D>>> {
+    let thb = basis(geometry, &format!("THBSplineBasis{D}"))?;
+    let shift = level0_shift::<D>(basis(thb, &format!("TensorBSplineBasis{D}"))?)?;
+    let mut tree = Tree::<D>::new();
+    tree.refine_uniformly(shift)?;
+    apply_boxes(&mut tree, thb, shift)?;
     tree.balance()?;
     let space = ThbSpace::new(tree)?;
-    let (attrs, content) = *elements(text, "coefs")?
-        .first()
-        .ok_or_else(|| Error::io("no <coefs>"))?;
-    if attribute(attrs, "geoDim") != Some(&D.to_string()) {
-        return Err(Error::io(format!("<coefs> must have geoDim=\"{D}\"")));
+    let coefs = xml::children(geometry, "coefs")
+        .next()
+        .ok_or_else(|| Error::io(format!("line {}: no <coefs>", line(geometry))))?;
+    if coefs.attribute("geoDim").map(str::trim) != Some(&D.to_string()) {
+        return Err(Error::io(format!(
+            "line {}: <coefs> must have geoDim=\"{D}\"",
+            line(coefs)
+        )));
     }
-    let values = numbers(content)?;
+    let values = xml::numbers(coefs, "coefs")?;
     if values.len() != D * space.basis_count() {
         return Err(Error::io(format!(
-            "{} coefficients for {} basis functions of dimension {D}",
+            "line {}: {} coefficients for {} basis functions of dimension {D}",
+            line(coefs),
             values.len(),
             space.basis_count()
         )));
@@ -178,11 +192,37 @@ pub fn read_gismo_thb<const D: usize>(text: &str) -> Result<SplineMap<D, ThbSpac
     SplineMap::new(space, control)
 }
 
+/// Reads the first `THBSpline{D}` patch of a G+Smo document: a map written by
+/// [`write_gismo_thb`], or any `THBSpline2/3` of degree 3 on [0,1]^d whose level-0 knots are
+/// clamped and uniform with `2^s` spans. Other patches of the file are not read (see
+/// [`SplineMap::parse_gismo_patches`]).
+pub fn read_gismo_thb<const D: usize>(text: &str) -> Result<SplineMap<D, ThbSpace<D>>> {
+    let doc = xml::parse(text)?;
+    let kind = format!("THBSpline{D}");
+    let geometry = xml::patches(&doc)?
+        .into_iter()
+        .find(|g| g.attribute("type") == Some(kind.as_str()))
+        .ok_or_else(|| Error::io(format!("no <Geometry type=\"{kind}\">")))?;
+    read_thb_geometry::<D>(geometry)
+}
+
 impl<const D: usize> SplineMap<D, ThbSpace<D>> {
     /// Writes the map to a G+Smo XML file.
     pub fn write_gismo(&self, path: &Path) -> Result<()> {
         std::fs::write(path, write_gismo_thb(self))
             .map_err(|e| Error::io(format!("cannot write {}: {e}", path.display())))
+    }
+
+    /// Every `THBSpline{D}` patch of a G+Smo document (the patches its `<MultiPatch>` names, or
+    /// every geometry), in patch order, each with its own boxes.
+    pub fn parse_gismo_patches(text: &str) -> Result<Vec<Self>> {
+        let doc = xml::parse(text)?;
+        let kind = format!("THBSpline{D}");
+        xml::patches(&doc)?
+            .into_iter()
+            .filter(|g| g.attribute("type") == Some(kind.as_str()))
+            .map(read_thb_geometry::<D>)
+            .collect()
     }
 
     /// Reads a map from a G+Smo XML file (see [`read_gismo_thb`]).

@@ -25,6 +25,7 @@
 #include "check.h"
 
 #define CHECK(cond) check_at((cond) != 0, __FILE__, __LINE__, "%s", #cond)
+#define CHECKF(cond, ...) check_at((cond) != 0, __FILE__, __LINE__, __VA_ARGS__)
 #define EXPECT_OK(call) expect_ok_at((call), __FILE__, __LINE__, #call)
 
 /* The calling thread's last error message (truncated to 1023 bytes). */
@@ -296,15 +297,28 @@ static void test_mesh_new(void) {
     cell[v] = (int64_t)v;
   }
   for (size_t t = 0; t < sizeof types / sizeof types[0]; t++) {
+    /* Node v at its reference coordinates (VTK order): one valid cell. */
+    const int d = types[t].dimension;
+    double xi[3 * 27], at[3 * 27] = {0};
+    EXPECT_OK(igaparam_cell_type_copy_node_coordinates(types[t].type, IGAPARAM_ORDER_VTK, xi, 3 * 27));
+    for (size_t v = 0; v < types[t].nodes; v++) {
+      for (int k = 0; k < d; k++) at[3 * v + k] = xi[d * v + k];
+    }
     igaparam_mesh *mesh = NULL;
-    size_t nodes = 0, cells = 0;
+    size_t nodes = 0, cells = 0, invalid = 1;
     int dimension = 0;
-    EXPECT_OK(igaparam_mesh_new(types[t].type, types[t].nodes, xyz, 1, cell, &mesh));
+    EXPECT_OK(igaparam_mesh_new(types[t].type, types[t].nodes, at, 1, cell, &mesh));
     EXPECT_OK(igaparam_mesh_node_count(mesh, &nodes));
     EXPECT_OK(igaparam_mesh_cell_count(mesh, &cells));
     EXPECT_OK(igaparam_mesh_dimension(mesh, &dimension));
-    CHECK(nodes == types[t].nodes && cells == 1 && dimension == types[t].dimension);
+    EXPECT_OK(igaparam_mesh_invalid_cell_count(mesh, &invalid));
+    CHECK(nodes == types[t].nodes && cells == 1 && dimension == types[t].dimension && invalid == 0);
     igaparam_mesh_free(mesh);
+    /* Lattice order is no node order: every cell folded, refused with the likely cause. */
+    igaparam_mesh *out = NULL;
+    EXPECT_FAIL(ST(IGAPARAM_STATUS_INVALID_MESH), NULL,
+                igaparam_mesh_new(types[t].type, types[t].nodes, xyz, 1, cell, &out));
+    CHECKF(out == NULL && strstr(failure_message, "node order") != NULL, "message: %s", failure_message);
   }
 
   /* Failures; *out must stay as it was. */
@@ -732,6 +746,104 @@ static void test_threads_agree(igaparam_cell_type type, size_t n) {
   free(x[1]);
 }
 
+/* ---------------------------------------------------------------------------------------------
+ * Node orders and .vtu files
+ * ------------------------------------------------------------------------------------------- */
+
+/* A 2 × 2 × 2 grid of H27 cells made in Gmsh's order is the grid made in VTK's order; its
+ * connectivity comes back in either order; a .vtu written in every storage reads back alike. */
+static void test_orders_and_files(void) {
+  /* H27 cells on the lattice of a 4 × 4 × 4 H8 grid: cell (a, b, c) covers nodes 2a..2a+2, ... */
+  double xi[27 * 3];
+  EXPECT_OK(igaparam_cell_type_copy_node_coordinates(IGAPARAM_CELL_HEX27, IGAPARAM_ORDER_GMSH, xi, 27 * 3));
+  EXPECT_FAIL(ST(IGAPARAM_STATUS_BUFFER_TOO_SMALL), NULL,
+              igaparam_cell_type_copy_node_coordinates(IGAPARAM_CELL_HEX27, IGAPARAM_ORDER_GMSH, xi, 80));
+  EXPECT_FAIL(ST(IGAPARAM_STATUS_INVALID_ARGUMENT), NULL,
+              igaparam_cell_type_copy_node_coordinates(IGAPARAM_CELL_HEX27, 2, xi, 81));
+  structured_grid lattice;
+  if (structured_grid_init(&lattice, IGAPARAM_CELL_HEX8, 4, 4, 4) != 0) {
+    CHECKF(0, "out of memory");
+    return;
+  }
+  int64_t gmsh[8 * 27];
+  for (size_t c = 0; c < 8; c++) {
+    for (size_t n = 0; n < 27; n++) {
+      size_t i = 2 * (c % 2) + (size_t)(xi[3 * n] + 1), j = 2 * (c / 2 % 2) + (size_t)(xi[3 * n + 1] + 1),
+             k = 2 * (c / 4) + (size_t)(xi[3 * n + 2] + 1);
+      gmsh[27 * c + n] = (int64_t)structured_grid_node(&lattice, i, j, k);
+    }
+  }
+  igaparam_mesh *mesh = NULL, *wrong = NULL;
+  EXPECT_OK(igaparam_mesh_new_ordered(IGAPARAM_CELL_HEX27, IGAPARAM_ORDER_GMSH, lattice.num_nodes, lattice.xyz, 8,
+                                      gmsh, &mesh));
+  EXPECT_FAIL(ST(IGAPARAM_STATUS_INVALID_MESH), NULL,
+              igaparam_mesh_new(IGAPARAM_CELL_HEX27, lattice.num_nodes, lattice.xyz, 8, gmsh, &wrong));
+  EXPECT_FAIL(ST(IGAPARAM_STATUS_INVALID_ARGUMENT), NULL,
+              igaparam_mesh_new_ordered(IGAPARAM_CELL_HEX27, 5, lattice.num_nodes, lattice.xyz, 8, gmsh, &wrong));
+  CHECKF(wrong == NULL, "a failed call wrote its output");
+  igaparam_node_order order = -1;
+  EXPECT_OK(igaparam_mesh_order(mesh, &order));
+  CHECKF(order == IGAPARAM_ORDER_GMSH, "order %d", order);
+  int64_t back[8 * 27], vtk[8 * 27];
+  EXPECT_OK(igaparam_mesh_copy_connectivity(mesh, IGAPARAM_ORDER_GMSH, back, 8 * 27));
+  CHECKF(memcmp(back, gmsh, sizeof back) == 0, "the connectivity did not come back as given");
+  EXPECT_OK(igaparam_mesh_copy_connectivity(mesh, IGAPARAM_ORDER_VTK, vtk, 8 * 27));
+  EXPECT_FAIL(ST(IGAPARAM_STATUS_BUFFER_TOO_SMALL), mesh, igaparam_mesh_copy_connectivity(mesh, 0, vtk, 8 * 27 - 1));
+  EXPECT_FAIL(ST(IGAPARAM_STATUS_INVALID_ARGUMENT), mesh, igaparam_mesh_copy_connectivity(mesh, 9, vtk, 8 * 27));
+  igaparam_mesh *twin = NULL;
+  EXPECT_OK(igaparam_mesh_new(IGAPARAM_CELL_HEX27, lattice.num_nodes, lattice.xyz, 8, vtk, &twin));
+  size_t invalid = 1;
+  EXPECT_OK(igaparam_mesh_invalid_cell_count(twin, &invalid));
+  CHECKF(invalid == 0, "%zu invalid cells", invalid);
+
+  /* .vtu round trips; bad paths and formats. */
+  static const igaparam_vtu_format formats[] = {
+      IGAPARAM_VTU_DEFAULT, IGAPARAM_VTU_ASCII, IGAPARAM_VTU_BINARY, IGAPARAM_VTU_APPENDED,
+      IGAPARAM_VTU_APPENDED | IGAPARAM_VTU_ZLIB, IGAPARAM_VTU_APPENDED_BASE64 | IGAPARAM_VTU_ZLIB};
+  const char *path = "test_capi_mesh.vtu";
+  size_t len = 0;
+  double *expected = copy_positions(mesh, &len);
+  for (size_t f = 0; f < sizeof formats / sizeof formats[0]; f++) {
+    EXPECT_OK(igaparam_mesh_write_vtu_format(mesh, path, formats[f]));
+    igaparam_mesh *read = NULL;
+    EXPECT_OK(igaparam_mesh_read_vtu(path, &read));
+    size_t read_len = 0;
+    double *got = copy_positions(read, &read_len);
+    CHECKF(got && expected && read_len == len && memcmp(got, expected, len * sizeof *got) == 0,
+           "format %d: positions differ", formats[f]);
+    EXPECT_OK(igaparam_mesh_copy_connectivity(read, IGAPARAM_ORDER_VTK, back, 8 * 27));
+    CHECKF(memcmp(back, vtk, sizeof back) == 0, "format %d: connectivity differs", formats[f]);
+    free(got);
+    igaparam_mesh_free(read);
+  }
+  free(expected);
+  EXPECT_OK(igaparam_mesh_write_vtu(mesh, path));
+  igaparam_mesh *out = NULL;
+  EXPECT_FAIL(ST(IGAPARAM_STATUS_INVALID_ARGUMENT), mesh,
+              igaparam_mesh_write_vtu_format(mesh, path, IGAPARAM_VTU_ASCII | IGAPARAM_VTU_ZLIB));
+  EXPECT_FAIL(ST(IGAPARAM_STATUS_INVALID_ARGUMENT), mesh, igaparam_mesh_write_vtu_format(mesh, path, 4));
+  EXPECT_FAIL(ST(IGAPARAM_STATUS_IO), mesh, igaparam_mesh_write_vtu(mesh, "no_such_dir/x.vtu"));
+  EXPECT_FAIL(ST(IGAPARAM_STATUS_NULL_ARGUMENT), mesh, igaparam_mesh_write_vtu(mesh, NULL));
+  EXPECT_FAIL(ST(IGAPARAM_STATUS_NULL_ARGUMENT), NULL, igaparam_mesh_write_vtu(NULL, path));
+  EXPECT_FAIL(ST(IGAPARAM_STATUS_IO), NULL, igaparam_mesh_read_vtu("no_such_file.vtu", &out));
+  EXPECT_FAIL(ST(IGAPARAM_STATUS_NULL_ARGUMENT), NULL, igaparam_mesh_read_vtu(path, NULL));
+  EXPECT_FAIL(ST(IGAPARAM_STATUS_INVALID_ARGUMENT), NULL, igaparam_mesh_read_vtu("", &out));
+  FILE *f = fopen(path, "w");
+  if (f) {
+    fputs("<VTKFile type=\"UnstructuredGrid\"><UnstructuredGrid><Piece", f);
+    fclose(f);
+  }
+  EXPECT_FAIL(ST(IGAPARAM_STATUS_IO), NULL, igaparam_mesh_read_vtu(path, &out));
+  CHECKF(out == NULL, "a failed read wrote its output");
+  igaparam_cell_type type = 0;
+  EXPECT_OK(igaparam_mesh_cell_type(mesh, &type));
+  CHECKF(type == IGAPARAM_CELL_HEX27, "cell type %d", type);
+  remove(path);
+  igaparam_mesh_free(twin);
+  igaparam_mesh_free(mesh);
+  structured_grid_free(&lattice);
+}
+
 int main(void) {
   printf("igaparam %s\n", igaparam_version());
   init_primers();
@@ -749,6 +861,7 @@ int main(void) {
   test_cancellation(IGAPARAM_STAGE_OPTIMIZATION);
   test_threads_agree(IGAPARAM_CELL_QUAD9, 12);
   test_threads_agree(IGAPARAM_CELL_HEX8, 4);
+  test_orders_and_files();
 
   igaparam_mesh_free(primer_mesh);
   printf("%d passed, %d failed\n", passed, failed);

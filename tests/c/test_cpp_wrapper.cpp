@@ -146,9 +146,48 @@ void test_scaled_solid() {
   CHECK(plain.parametric() == doubled.parametric());
 }
 
+/// One 27-node hexahedron on the lattice {0, 1/2, 1}^3 (node i + 3j + 9k at (i, j, k)/2): its
+/// connectivity in `order`, read from the library's table of reference coordinates.
+std::vector<std::int64_t> cube_cell(igaparam_node_order order) {
+  std::vector<double> xi(27 * 3);
+  igaparam::detail::check(igaparam_cell_type_copy_node_coordinates(IGAPARAM_CELL_HEX27, order, xi.data(), xi.size()));
+  std::vector<std::int64_t> cell(27);
+  for (std::size_t n = 0; n < 27; n++) {
+    cell[n] = static_cast<std::int64_t>((xi[3 * n] + 1) + 3 * (xi[3 * n + 1] + 1) + 9 * (xi[3 * n + 2] + 1));
+  }
+  return cell;
+}
+
+/// Node orders and .vtu files through the wrapper.
+void orders_and_files() {
+  std::vector<double> xyz;
+  for (int k = 0; k < 3; k++)
+    for (int j = 0; j < 3; j++)
+      for (int i = 0; i < 3; i++) xyz.insert(xyz.end(), {i / 2.0, j / 2.0, k / 2.0});
+  const std::vector<std::int64_t> vtk = cube_cell(IGAPARAM_ORDER_VTK), gmsh = cube_cell(IGAPARAM_ORDER_GMSH);
+  CHECK(vtk != gmsh && vtk[9] == 5 && gmsh[9] == 3);  // node 9: edge 1-2 (VTK), edge 0-3 (Gmsh)
+  igaparam::Mesh from_gmsh(IGAPARAM_CELL_HEX27, xyz, gmsh, IGAPARAM_ORDER_GMSH);
+  CHECK(from_gmsh.order() == IGAPARAM_ORDER_GMSH && from_gmsh.cell_type() == IGAPARAM_CELL_HEX27);
+  CHECK(from_gmsh.connectivity() == gmsh && from_gmsh.connectivity(IGAPARAM_ORDER_VTK) == vtk);
+  CHECK(from_gmsh.invalid_cell_count() == 0);
+  EXPECT_ERROR(IGAPARAM_STATUS_INVALID_MESH, igaparam::Mesh(IGAPARAM_CELL_HEX27, xyz, gmsh));
+  EXPECT_ERROR(IGAPARAM_STATUS_INVALID_ARGUMENT, igaparam::Mesh(IGAPARAM_CELL_HEX27, xyz, gmsh, 7));
+
+  igaparam::Mesh airfoil = igaparam::Mesh::read_vtu(IGAPARAM_TEST_DATA "/../airfoil_0012_q9.vtu");
+  CHECK(airfoil.cell_type() == IGAPARAM_CELL_QUAD9 && airfoil.cell_count() == 490);
+  const std::string path = std::string(IGAPARAM_TEST_OUT) + "/cpp_wrapper_airfoil.vtu";
+  airfoil.write_vtu(path, IGAPARAM_VTU_APPENDED | IGAPARAM_VTU_ZLIB);
+  igaparam::Mesh back = igaparam::Mesh::read_vtu(path);
+  CHECK(back.positions() == airfoil.positions() && back.fixed() == airfoil.fixed());
+  CHECK(back.connectivity() == airfoil.connectivity());
+  EXPECT_ERROR(IGAPARAM_STATUS_INVALID_ARGUMENT, airfoil.write_vtu(path, IGAPARAM_VTU_ASCII | IGAPARAM_VTU_ZLIB));
+  EXPECT_ERROR(IGAPARAM_STATUS_IO, igaparam::Mesh::read_vtu(path + ".missing"));
+}
+
 }  // namespace
 
 int main() {
+  orders_and_files();
   CHECK(igaparam::version() == igaparam_version());
   CHECK(igaparam::nodes_per_cell(IGAPARAM_CELL_HEX27) == 27 && igaparam::nodes_per_cell(7) == 0);
 

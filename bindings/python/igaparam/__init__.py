@@ -24,7 +24,7 @@ else next to this package, else with ``ctypes.util.find_library("igaparam")``.
 
 from ._capi import CellType, Stage, Status
 from ._domain import Domain, DomainReport
-from ._mesh import IgaparamError, Mesh, RelocateReport, cell_type_code, nodes_per_cell, version
+from ._mesh import IgaparamError, Mesh, RelocateReport, cell_type_code, node_coordinates, nodes_per_cell, version
 from ._spline import AdaptReport, FitReport, Spline, ValidityReport
 
 __version__ = "0.1.0"
@@ -43,6 +43,7 @@ __all__ = [
     "Status",
     "ValidityReport",
     "cell_type_code",
+    "node_coordinates",
     "nodes_per_cell",
     "version",
 ]

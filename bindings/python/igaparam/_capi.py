@@ -65,6 +65,15 @@ TARGET_INITIAL = 0
 TARGET_MASTER = 1
 PLACEMENT_LAPLACIAN = 0
 PLACEMENT_CURRENT = 1
+# IGAPARAM_VTU_*: storages of written .vtu files; ZLIB is a flag for the binary ones.
+VTU_ASCII = 0
+VTU_BINARY = 1
+VTU_APPENDED = 2
+VTU_APPENDED_BASE64 = 3
+VTU_ZLIB = 16
+# IGAPARAM_ORDER_*: local node orders of connectivity arrays.
+ORDER_VTK = 0
+ORDER_GMSH = 1
 
 # int (*igaparam_progress_fn)(void *user, igaparam_stage stage, size_t done, size_t total)
 PROGRESS_FN = ctypes.CFUNCTYPE(ctypes.c_int, ctypes.c_void_p, ctypes.c_int, ctypes.c_size_t, ctypes.c_size_t)
@@ -249,6 +258,17 @@ _PROTOTYPES = {
     "igaparam_mesh_copy_fixed": (_status, [_mesh_p, _uint8_p, ctypes.c_size_t]),
     "igaparam_cell_type_node_count": (_status, [ctypes.c_int, _size_p]),
     "igaparam_mesh_invalid_cell_count": (_status, [_mesh_p, _size_p]),
+    "igaparam_mesh_read_vtu": (_status, [ctypes.c_char_p, ctypes.POINTER(_mesh_p)]),
+    "igaparam_mesh_write_vtu": (_status, [_mesh_p, ctypes.c_char_p]),
+    "igaparam_mesh_write_vtu_format": (_status, [_mesh_p, ctypes.c_char_p, ctypes.c_int]),
+    "igaparam_mesh_cell_type": (_status, [_mesh_p, ctypes.POINTER(ctypes.c_int)]),
+    "igaparam_mesh_new_ordered": (
+        _status,
+        [ctypes.c_int, ctypes.c_int, ctypes.c_size_t, _double_p, ctypes.c_size_t, _int64_p, ctypes.POINTER(_mesh_p)],
+    ),
+    "igaparam_mesh_order": (_status, [_mesh_p, ctypes.POINTER(ctypes.c_int)]),
+    "igaparam_mesh_copy_connectivity": (_status, [_mesh_p, ctypes.c_int, _int64_p, ctypes.c_size_t]),
+    "igaparam_cell_type_copy_node_coordinates": (_status, [ctypes.c_int, ctypes.c_int, _double_p, ctypes.c_size_t]),
     "igaparam_domain_options_default": (DomainOptions, []),
     "igaparam_domain_options_default_solid": (DomainOptions, []),
     "igaparam_domain_new_from_file": (_status, [ctypes.c_char_p, ctypes.POINTER(_domain_p)]),

@@ -1,14 +1,19 @@
 """The :class:`Domain` class: a planar domain bounded by four curves or a solid bounded by six
 surfaces, and its adapted, optimized T-mesh parameterization."""
 
+from __future__ import annotations
+
 import ctypes
 import dataclasses
 import os
+from typing import Callable, Optional, Sequence, Tuple, Union
 
 import numpy as np
+import numpy.typing as npt
 
 from . import _capi
 from ._handle import _Handle
+from ._capi import Stage
 from ._mesh import _attach_progress, _check, _ptr, _set_counts
 
 __all__ = ["Domain", "DomainReport"]
@@ -42,7 +47,7 @@ class DomainReport:
     def _from_c(cls, report):
         return cls(**{field.name: getattr(report, field.name) for field in dataclasses.fields(cls)})
 
-    def as_dict(self):
+    def as_dict(self) -> dict:
         """The report as a dict."""
         return dataclasses.asdict(self)
 
@@ -130,7 +135,7 @@ class Domain(_Handle):
         self._handle = handle
 
     @classmethod
-    def from_file(cls, path):
+    def from_file(cls, path: Union[str, "os.PathLike[str]"]) -> "Domain":
         """A planar domain from a boundary file, chosen by its extension: ``.xml``, a G+Smo XML B-rep of
         four B-spline curves; ``.txt``, a coastline (points with four marked corners).
 
@@ -144,7 +149,7 @@ class Domain(_Handle):
         return cls(handle)
 
     @classmethod
-    def from_polylines(cls, polylines):
+    def from_polylines(cls, polylines: Sequence[npt.ArrayLike]) -> "Domain":
         """A planar domain bounded by four polylines, each an array of shape (k, 2) with k >= 2, in any
         order and direction: they are chained end to end into a counter-clockwise loop, the
         first one becoming the side u = 0.
@@ -164,7 +169,7 @@ class Domain(_Handle):
         return cls(handle)
 
     @classmethod
-    def solid_from_file(cls, path, scale=None):
+    def solid_from_file(cls, path: Union[str, "os.PathLike[str]"], scale: Optional[Sequence[float]] = None) -> "Domain":
         """A solid from a G+Smo XML B-rep of six B-spline surfaces (a ``.xml`` file) or a folder
         of six triangulated faces ``xmin.obj``, ``xmax.obj``, ..., ``zmax.obj`` (each mapped
         onto its face of the unit cube by Floater's mean-value parameterization).
@@ -196,7 +201,7 @@ class Domain(_Handle):
         return cls(handle)
 
     @classmethod
-    def solid_from_triangulations(cls, faces):
+    def solid_from_triangulations(cls, faces: Sequence[Tuple[npt.ArrayLike, npt.ArrayLike]]) -> "Domain":
         """A solid bounded by six triangulated faces, each mapped onto its face of the unit cube
         by Floater's mean-value parameterization.
 
@@ -240,7 +245,7 @@ class Domain(_Handle):
         return f"<igaparam.Domain {kind}, {self.cell_count} cells, {self.vertex_count} vertices>"
 
     @property
-    def dimension(self):
+    def dimension(self) -> int:
         """2 for a planar domain, 3 for a solid."""
         out = ctypes.c_size_t()
         _check(self._lib.igaparam_domain_dimension(self._h(), ctypes.byref(out)))
@@ -250,15 +255,15 @@ class Domain(_Handle):
 
     def build(
         self,
-        tolerance=None,
-        min_level=None,
-        max_level=None,
-        max_sweeps=None,
-        threads=0,
-        progress=None,
-        repair_rounds=None,
-        boundary_offset=None,
-    ):
+        tolerance: Optional[float] = None,
+        min_level: Optional[int] = None,
+        max_level: Optional[int] = None,
+        max_sweeps: Optional[int] = None,
+        threads: int = 0,
+        progress: Optional[Callable[[Stage, int, int], Optional[bool]]] = None,
+        repair_rounds: Optional[int] = None,
+        boundary_offset: Optional[float] = None,
+    ) -> "DomainReport":
         """Adapts a T-mesh to the boundary, places its vertices and optimizes them. Building
         again replaces the previous T-mesh; on any error the domain keeps its previous state.
 
@@ -311,7 +316,7 @@ class Domain(_Handle):
         return DomainReport._from_c(report)
 
     @property
-    def is_built(self):
+    def is_built(self) -> bool:
         """True once :meth:`build` succeeded."""
         out = ctypes.c_int()
         _check(self._lib.igaparam_domain_is_built(self._h(), ctypes.byref(out)))
@@ -325,12 +330,12 @@ class Domain(_Handle):
         return out.value
 
     @property
-    def vertex_count(self):
+    def vertex_count(self) -> int:
         """Vertices of the T-mesh, hanging ones included."""
         return self._count(self._lib.igaparam_domain_vertex_count)
 
     @property
-    def cell_count(self):
+    def cell_count(self) -> int:
         """Cells of the T-mesh."""
         return self._count(self._lib.igaparam_domain_cell_count)
 
@@ -341,19 +346,19 @@ class Domain(_Handle):
         return out
 
     @property
-    def parametric_vertices(self):
+    def parametric_vertices(self) -> npt.NDArray[np.float64]:
         """(u, v) (planar) or (u, v, w) (solid) of every vertex in [0,1]^d, a new float64 array
         of shape (n, d)."""
         return self._vertices(physical=False)
 
     @property
-    def physical_vertices(self):
+    def physical_vertices(self) -> npt.NDArray[np.float64]:
         """(x, y) (planar) or (x, y, z) (solid) of every vertex in the domain, a new float64
         array of shape (n, d)."""
         return self._vertices(physical=True)
 
     @property
-    def cell_quality(self):
+    def cell_quality(self) -> npt.NDArray[np.float64]:
         """Quality of every cell, a new float64 array of shape (m,), in (0, 1]; 0 for a cell
         with det J <= 0 somewhere."""
         out = np.empty(self.cell_count, dtype=np.float64)
@@ -361,14 +366,14 @@ class Domain(_Handle):
         return out
 
     @property
-    def cell_levels(self):
+    def cell_levels(self) -> npt.NDArray[np.uint8]:
         """Refinement level of every cell, a new uint8 array of shape (m,)."""
         out = np.empty(self.cell_count, dtype=np.uint8)
         _check(self._lib.igaparam_domain_copy_cells(self._h(), _ptr(out, ctypes.c_uint8), None, out.size))
         return out
 
     @property
-    def cell_bounds(self):
+    def cell_bounds(self) -> npt.NDArray[np.float64]:
         """Parametric box of every cell, a new float64 array of shape (m, 2d): the lower then
         the upper corner (u0, v0, u1, v1 for a planar domain, u0, v0, w0, u1, v1, w1 for a
         solid)."""
@@ -378,7 +383,7 @@ class Domain(_Handle):
         return out
 
     @property
-    def cell_corners(self):
+    def cell_corners(self) -> npt.NDArray[np.uintp]:
         """Corner vertices of every cell, a new int64 array of shape (m, 2^d) of indices into
         the vertex arrays: counter-clockwise from the lower-left corner for a planar domain, in
         VTK's hexahedron order for a solid. Hanging vertices are not listed."""
@@ -387,7 +392,7 @@ class Domain(_Handle):
         _check(self._lib.igaparam_domain_copy_cell_corners(self._h(), _ptr(out, ctypes.c_size_t), out.size))
         return out.astype(np.int64)
 
-    def write_vtu(self, path):
+    def write_vtu(self, path: Union[str, "os.PathLike[str]"]) -> None:
         """Writes the T-mesh as a VTK .vtu file (polygons through corners and hanging vertices
         for a planar domain, hexahedra through their corners for a solid; point array
         ``parametric``, cell arrays ``quality`` and ``level``).

@@ -1,5 +1,7 @@
 """The base of the classes that own a C handle: release, context manager, closed state."""
 
+from typing import Any
+
 
 class _Handle:
     """Owns a C handle ``self._handle`` of library ``self._lib``, released by the C function named
@@ -7,8 +9,10 @@ class _Handle:
 
     _kind = "handle"
     _free = ""
+    _lib: Any
+    _handle: Any
 
-    def close(self):
+    def close(self) -> None:
         """Releases the handle; the object is unusable afterwards. Calling it again does nothing."""
         handle, self._handle = getattr(self, "_handle", None), None
         if handle is not None:
@@ -28,7 +32,7 @@ class _Handle:
             pass
 
     @property
-    def closed(self):
+    def closed(self) -> bool:
         """True once :meth:`close` was called."""
         return self._handle is None
 

@@ -1,15 +1,28 @@
 """The :class:`Mesh` class, its relocation report and errors."""
 
+from __future__ import annotations
+
 import ctypes
 import dataclasses
+import os
+from typing import Callable, Optional, Union
 
 import numpy as np
+import numpy.typing as npt
 
 from . import _capi
 from ._handle import _Handle
 from ._capi import CellType, Stage, Status
 
-__all__ = ["IgaparamError", "Mesh", "RelocateReport", "version", "nodes_per_cell", "cell_type_code"]
+__all__ = [
+    "IgaparamError",
+    "Mesh",
+    "RelocateReport",
+    "version",
+    "nodes_per_cell",
+    "cell_type_code",
+    "node_coordinates",
+]
 
 
 class IgaparamError(Exception):
@@ -31,7 +44,7 @@ class IgaparamError(Exception):
         super().__init__(f"{message} (status {int(status)}, {name})")
 
 
-def _last_error_message():
+def _last_error_message() -> str:
     lib = _capi.library()
     size = lib.igaparam_last_error_message(None, 0)
     buf = ctypes.create_string_buffer(size)
@@ -39,39 +52,63 @@ def _last_error_message():
     return buf.value.decode("utf-8", errors="replace")
 
 
-def _check(status):
+def _check(status: int) -> None:
     if status != Status.OK:
         raise IgaparamError(status, _last_error_message())
 
 
-def version():
+def version() -> str:
     """The library version, e.g. ``"0.1.0"``."""
     return _capi.library().igaparam_version().decode()
 
 
 _CELL_NAMES = {name: int(code) for name, code in CellType.__members__.items()}
+# meshio's names of the supported cell types (VTK's node order, as meshio keeps it).
+MESHIO_NAMES = {"QUAD": 9, "QUAD8": 23, "QUAD9": 28, "HEXAHEDRON": 12, "HEXAHEDRON20": 25, "HEXAHEDRON27": 29}
+_MESHIO_BY_CODE = {code: name.lower() for name, code in MESHIO_NAMES.items()}
+_ORDERS = {"vtk": _capi.ORDER_VTK, "gmsh": _capi.ORDER_GMSH}
+_ORDER_NAMES = {code: name for name, code in _ORDERS.items()}
 _TARGETS = {"initial": _capi.TARGET_INITIAL, "master": _capi.TARGET_MASTER}
 _PLACEMENTS = {"laplacian": _capi.PLACEMENT_LAPLACIAN, "current": _capi.PLACEMENT_CURRENT}
 
 
-def cell_type_code(cell_type):
-    """The VTK code of a cell type given as a code (e.g. 28) or a name ('Q4', 'Q8', 'Q9', 'H8',
-    'H20', 'H27')."""
+def cell_type_code(cell_type: Union[int, str]) -> int:
+    """The VTK code of a cell type given as a code (e.g. 28), a name ('Q4', 'Q8', 'Q9', 'H8',
+    'H20', 'H27') or a meshio name ('quad', 'quad8', 'quad9', 'hexahedron', 'hexahedron20',
+    'hexahedron27')."""
     if isinstance(cell_type, str):
-        try:
-            return _CELL_NAMES[cell_type.upper()]
-        except KeyError:
-            raise ValueError(f"unknown cell type {cell_type!r}: expected one of {sorted(_CELL_NAMES)}") from None
+        key = cell_type.upper()
+        if key in _CELL_NAMES:
+            return _CELL_NAMES[key]
+        if key in MESHIO_NAMES:
+            return MESHIO_NAMES[key]
+        names = sorted(_CELL_NAMES) + sorted(name.lower() for name in MESHIO_NAMES)
+        raise ValueError(f"unknown cell type {cell_type!r}: expected one of {names}")
     if isinstance(cell_type, (bool, np.bool_)) or not isinstance(cell_type, (int, np.integer)):
         raise TypeError(f"cell_type must be an int (VTK code) or a name, not {type(cell_type).__name__}")
     return int(cell_type)
 
 
-def nodes_per_cell(cell_type):
+def nodes_per_cell(cell_type: Union[int, str]) -> int:
     """Nodes of one cell of ``cell_type`` (a VTK code or a name), e.g. 9 for 'Q9'."""
     out = ctypes.c_size_t()
     _check(_capi.library().igaparam_cell_type_node_count(cell_type_code(cell_type), ctypes.byref(out)))
     return out.value
+
+
+def node_coordinates(cell_type: Union[int, str], order: str = "vtk") -> npt.NDArray[np.float64]:
+    """Reference coordinates in [-1, 1]^d of the local nodes of ``cell_type`` in ``order``
+    ('vtk' or 'gmsh'): a float64 array of shape (nodes per cell, d), row i for local node i."""
+    code = cell_type_code(cell_type)
+    k = nodes_per_cell(code)
+    d = 2 if code in (9, 23, 28) else 3
+    out = np.empty((k, d), dtype=np.float64)
+    _check(
+        _capi.library().igaparam_cell_type_copy_node_coordinates(
+            code, _option_code(order, _ORDERS, "order"), _ptr(out, ctypes.c_double), out.size
+        )
+    )
+    return out
 
 
 def _option_code(value, codes, what):
@@ -180,7 +217,7 @@ class RelocateReport:
         values["converged"] = bool(values["converged"])
         return cls(**values)
 
-    def as_dict(self):
+    def as_dict(self) -> dict:
         """The report as a dict."""
         return dataclasses.asdict(self)
 
@@ -194,8 +231,15 @@ class Mesh(_Handle):
             'H20', 'H27').
         points: node coordinates, shape (n, 3) (or (n, 2): z = 0), converted to float64. They
             are the reference shape of the targets. For quadrilaterals z is carried unchanged.
-        cells: connectivity, shape (m, k) with k the nodes per cell of ``cell_type``, in VTK's
-            node order, converted to int64.
+        cells: connectivity, shape (m, k) with k the nodes per cell of ``cell_type``, in
+            ``order``, converted to int64.
+        order: the local node order of ``cells``: 'vtk' (VTK's and meshio's, the default) or
+            'gmsh' (Gmsh's); see ``igaparam_node_order`` in igaparam.h for the tables and
+            :func:`node_coordinates`. :attr:`cells` gives them back in this order.
+
+    ``cell_type`` may also be a meshio name ('quad9', 'hexahedron27', ...). A mesh every cell
+    of which is inverted or folded is refused (``Status.INVALID_MESH``; likely a wrong node
+    order or cells oriented the wrong way).
 
     All nodes start free (see :meth:`set_fixed`). The arrays are copied. Release the handle
     with :meth:`close` or a ``with`` block (it is also released when the object is collected).
@@ -209,7 +253,7 @@ class Mesh(_Handle):
     _kind = "mesh"
     _free = "igaparam_mesh_free"
 
-    def __init__(self, cell_type, points, cells):
+    def __init__(self, cell_type: Union[int, str], points: npt.ArrayLike, cells: npt.ArrayLike, order: str = "vtk"):
         self._handle = None
         self._lib = _capi.library()
         code = cell_type_code(cell_type)
@@ -223,8 +267,9 @@ class Mesh(_Handle):
             )
         handle = _capi.ctypes.c_void_p()
         _check(
-            self._lib.igaparam_mesh_new(
+            self._lib.igaparam_mesh_new_ordered(
                 code,
+                _option_code(order, _ORDERS, "order"),
                 xyz.shape[0],
                 _ptr(xyz, ctypes.c_double),
                 connectivity.shape[0],
@@ -234,6 +279,105 @@ class Mesh(_Handle):
         )
         self._handle = handle
         self._cell_type = code
+
+    @classmethod
+    def from_meshio(cls, mesh) -> "Mesh":
+        """A Mesh from a ``meshio.Mesh`` (VTK node order, as meshio keeps it): its one block
+        type of supported cells ('quad', 'quad8', 'quad9', 'hexahedron', 'hexahedron20',
+        'hexahedron27'; blocks of lower dimension, such as boundary lines or faces, are left
+        out). The point data ``fixed_components`` and ``moved``, when present, constrain and
+        move the nodes as in :meth:`read_vtu`.
+
+        Raises:
+            ValueError: no supported cells, or several types of them.
+        """
+        blocks = [b for b in mesh.cells if b.type.upper() in MESHIO_NAMES]
+        dims = {MESHIO_NAMES[b.type.upper()] in (12, 25, 29) for b in blocks}
+        if True in dims:
+            blocks = [b for b in blocks if b.type.upper().startswith("HEX")]
+        types = sorted({b.type for b in blocks})
+        if len(types) != 1:
+            raise ValueError(
+                f"the meshio mesh must hold one supported cell type, it holds {types or 'none'} "
+                f"(of {[b.type for b in mesh.cells]})"
+            )
+        cells = np.concatenate([np.asarray(b.data) for b in blocks])
+        out = cls(types[0], mesh.points, cells)
+        data = mesh.point_data
+        if "fixed_components" in data:
+            mask = np.asarray(data["fixed_components"]).reshape(-1)
+            if not np.all((mask == np.round(mask)) & (mask >= 0) & (mask <= 7)):
+                out.close()
+                raise ValueError("point data fixed_components must hold masks in 0..7")
+            mask = mask.astype(np.uint8)
+            if "moved" in data:
+                moved = np.asarray(data["moved"], dtype=np.float64).reshape(-1, 3)
+                bits = ((mask[:, None] >> np.arange(3)) & 1) == 1
+                out.move_nodes(np.where(bits, moved, out.reference))
+            out.set_fixed(mask)
+        return out
+
+    def to_meshio(self):
+        """The mesh as a ``meshio.Mesh``: current positions, cells (VTK order), point data
+        ``fixed_components`` and ``displacement``, cell data ``quality``."""
+        import meshio
+
+        positions = self.positions
+        cells = self.cells_in("vtk")
+        return meshio.Mesh(
+            positions,
+            [(_MESHIO_BY_CODE[self._cell_type], cells)],
+            point_data={"fixed_components": self.fixed, "displacement": positions - self.reference},
+            cell_data={"quality": [self.cell_quality()]},
+        )
+
+    @classmethod
+    def _from_handle(cls, handle):
+        """A Mesh owning ``handle`` (an ``igaparam_mesh *`` of the library)."""
+        mesh = cls.__new__(cls)
+        mesh._lib = _capi.library()
+        mesh._handle = handle
+        code = ctypes.c_int()
+        _check(mesh._lib.igaparam_mesh_cell_type(handle, ctypes.byref(code)))
+        mesh._cell_type = code.value
+        return mesh
+
+    @classmethod
+    def read_vtu(cls, path: Union[str, "os.PathLike[str]"]) -> "Mesh":
+        """Reads a mesh from a ``.vtu`` file in any storage VTK and meshio write (ASCII, binary,
+        appended raw or base64, zlib-compressed): one supported cell type in VTK's node order;
+        its point arrays ``fixed_components`` (masks) and ``moved`` (new positions), when
+        present, constrain and move the nodes (see ``igaparam_mesh_read_vtu`` in igaparam.h).
+
+        Raises:
+            IgaparamError: ``Status.IO`` for a file that cannot be read or understood,
+                ``Status.INVALID_MESH`` for unsupported or mixed cells or bad masks.
+        """
+        handle = ctypes.c_void_p()
+        _check(_capi.library().igaparam_mesh_read_vtu(os.fsencode(path), ctypes.byref(handle)))
+        return cls._from_handle(handle)
+
+    def write_vtu(self, path: Union[str, "os.PathLike[str]"], encoding: str = "binary", compress: bool = True) -> None:
+        """Writes the mesh to a ``.vtu`` file: current positions, cells (VTK order), point data
+        ``displacement`` and ``fixed_components``, cell data ``quality``.
+
+        Args:
+            path: the file.
+            encoding: 'binary' (base64 in each array, valid XML), 'appended' (raw bytes in an
+                appended section, VTK's default, the smallest), 'appended-base64' or 'ascii'.
+            compress: zlib-compress the binary data (not with 'ascii').
+        """
+        codes = {
+            "ascii": _capi.VTU_ASCII,
+            "binary": _capi.VTU_BINARY,
+            "appended": _capi.VTU_APPENDED,
+            "appended-base64": _capi.VTU_APPENDED_BASE64,
+        }
+        code = _option_code(encoding, codes, "encoding")
+        if compress and code == _capi.VTU_ASCII:
+            raise ValueError("ASCII .vtu files cannot be compressed: pass compress=False")
+        code |= _capi.VTU_ZLIB if compress else 0
+        _check(self._lib.igaparam_mesh_write_vtu_format(self._h(), os.fsencode(path), code))
 
     def __repr__(self):
         if self.closed:
@@ -248,35 +392,55 @@ class Mesh(_Handle):
         return out.value
 
     @property
-    def node_count(self):
+    def node_count(self) -> int:
         """Number of nodes n."""
         return self._size(self._lib.igaparam_mesh_node_count)
 
     @property
-    def cell_count(self):
+    def cell_count(self) -> int:
         """Number of cells m."""
         return self._size(self._lib.igaparam_mesh_cell_count)
 
     @property
-    def dimension(self):
+    def dimension(self) -> int:
         """Spatial dimension of the cells: 2 (quadrilaterals) or 3 (hexahedra)."""
         out = ctypes.c_int()
         _check(self._lib.igaparam_mesh_dimension(self._h(), ctypes.byref(out)))
         return out.value
 
     @property
-    def cell_type(self):
+    def cell_type(self) -> int:
         """The VTK code of the cell type."""
         return self._cell_type
 
     @property
-    def invalid_cell_count(self):
+    def order(self) -> str:
+        """The node order :attr:`cells` is given in: 'vtk' or 'gmsh' (as at creation)."""
+        out = ctypes.c_int()
+        _check(self._lib.igaparam_mesh_order(self._h(), ctypes.byref(out)))
+        return _ORDER_NAMES[out.value]
+
+    @property
+    def cells(self) -> npt.NDArray[np.int64]:
+        """The connectivity, a new int64 array of shape (m, k), in the mesh's :attr:`order`."""
+        return self.cells_in(self.order)
+
+    def cells_in(self, order: str) -> npt.NDArray[np.int64]:
+        """The connectivity, shape (m, k), with each cell's nodes in ``order`` ('vtk' or 'gmsh')."""
+        k = nodes_per_cell(self._cell_type)
+        out = np.empty((self.cell_count, k), dtype=np.int64)
+        code = _option_code(order, _ORDERS, "order")
+        _check(self._lib.igaparam_mesh_copy_connectivity(self._h(), code, _ptr(out, ctypes.c_int64), out.size))
+        return out
+
+    @property
+    def invalid_cell_count(self) -> int:
         """Number of cells with det J <= 0 at some Gauss–Lobatto point."""
         return self._size(self._lib.igaparam_mesh_invalid_cell_count)
 
     # Constraints and motion.
 
-    def set_fixed(self, mask):
+    def set_fixed(self, mask: npt.ArrayLike) -> None:
         """Sets the constraint of every node.
 
         Args:
@@ -296,7 +460,7 @@ class Mesh(_Handle):
         array = np.ascontiguousarray(array, dtype=np.uint8)
         _check(self._lib.igaparam_mesh_set_fixed(self._h(), array.shape[0], _ptr(array, ctypes.c_uint8)))
 
-    def move_nodes(self, xyz, indices=None):
+    def move_nodes(self, xyz: npt.ArrayLike, indices: Optional[npt.ArrayLike] = None) -> None:
         """Sets the positions of some nodes (typically the boundary's, before :meth:`relocate`);
         the reference shape is not changed.
 
@@ -320,7 +484,7 @@ class Mesh(_Handle):
             )
         )
 
-    def reset_reference(self):
+    def reset_reference(self) -> None:
         """Makes the current positions the reference shape of the targets."""
         _check(self._lib.igaparam_mesh_reset_reference(self._h()))
 
@@ -328,17 +492,17 @@ class Mesh(_Handle):
 
     def relocate(
         self,
-        threads=0,
-        target="initial",
-        laplacian_only=False,
-        max_sweeps=None,
-        progress=None,
-        placement="laplacian",
-        move_tolerance=None,
-        gradient_tolerance=None,
-        max_newton_iterations=None,
-        relaxation=None,
-    ):
+        threads: int = 0,
+        target: str = "initial",
+        laplacian_only: bool = False,
+        max_sweeps: Optional[int] = None,
+        progress: Optional[Callable[[Stage, int, int], Optional[bool]]] = None,
+        placement: str = "laplacian",
+        move_tolerance: Optional[float] = None,
+        gradient_tolerance: Optional[float] = None,
+        max_newton_iterations: Optional[int] = None,
+        relaxation: Optional[float] = None,
+    ) -> "RelocateReport":
         """Relocates the free coordinates of the nodes so that every cell is valid and close to
         its target shape. On any error the mesh is unchanged.
 
@@ -387,23 +551,23 @@ class Mesh(_Handle):
         return out
 
     @property
-    def positions(self):
+    def positions(self) -> npt.NDArray[np.float64]:
         """Current node positions, a new float64 array of shape (n, 3)."""
         return self._copy_xyz(self._lib.igaparam_mesh_copy_positions)
 
     @property
-    def reference(self):
+    def reference(self) -> npt.NDArray[np.float64]:
         """Reference positions (the shape the targets are taken from), shape (n, 3)."""
         return self._copy_xyz(self._lib.igaparam_mesh_copy_reference)
 
     @property
-    def fixed(self):
+    def fixed(self) -> npt.NDArray[np.uint8]:
         """Constraint mask of every node (see :meth:`set_fixed`), a new uint8 array of shape (n,)."""
         out = np.empty(self.node_count, dtype=np.uint8)
         _check(self._lib.igaparam_mesh_copy_fixed(self._h(), _ptr(out, ctypes.c_uint8), out.size))
         return out
 
-    def cell_quality(self, target="initial"):
+    def cell_quality(self, target: str = "initial") -> npt.NDArray[np.float64]:
         """Quality of every cell against ``target`` ('initial' or 'master'): float64 array of
         shape (m,), in (0, 1], 0 for a cell with det J <= 0 somewhere."""
         code = _option_code(target, _TARGETS, "target")

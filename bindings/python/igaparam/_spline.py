@@ -1,17 +1,24 @@
 """The :class:`Spline` class: a cubic truncated hierarchical B-spline (THB) map of [0,1]^d onto a
 domain, with its fit and validity reports."""
 
+from __future__ import annotations
+
 import ctypes
 import dataclasses
 import operator
 import os
-from typing import Optional, Tuple
+from typing import TYPE_CHECKING, Callable, Optional, Tuple, Union
 
 import numpy as np
+import numpy.typing as npt
 
 from . import _capi
 from ._handle import _Handle
+from ._capi import Stage
 from ._mesh import _attach_progress, _check, _ptr, _set_counts
+
+if TYPE_CHECKING:
+    from ._domain import Domain
 
 __all__ = ["Spline", "FitReport", "ValidityReport", "AdaptReport"]
 
@@ -181,7 +188,7 @@ class Spline(_Handle):
         self.adapt_report: Optional[AdaptReport] = None
 
     @classmethod
-    def fit(cls, domain):
+    def fit(cls, domain: Domain) -> "Spline":
         """Fits the cubic THB spline space of a built domain's T-mesh to its optimized map
         (interpolation at the Greville points; least squares when that system is singular).
         The spline does not refer to the domain afterwards.
@@ -204,9 +211,15 @@ class Spline(_Handle):
 
     @classmethod
     def fit_adaptive(
-        cls, domain, target_quality=None, max_rounds=None, max_level=None, max_sweeps=None, threads=0,
-        progress=None,
-    ):
+        cls,
+        domain: Domain,
+        target_quality: Optional[float] = None,
+        max_rounds: Optional[int] = None,
+        max_level: Optional[int] = None,
+        max_sweeps: Optional[int] = None,
+        threads: int = 0,
+        progress: Optional[Callable[[Stage, int, int], Optional[bool]]] = None,
+    ) -> "Spline":
         """The method's adaptive loop: fits the spline map of a built domain, refines the T-mesh
         cells whose element is not certified valid or has a sampled mean ratio under
         ``target_quality``, optimizes the T-mesh again and refits, for at most ``max_rounds``
@@ -251,7 +264,7 @@ class Spline(_Handle):
         return spline
 
     @classmethod
-    def read_gismo(cls, path):
+    def read_gismo(cls, path: Union[str, "os.PathLike[str]"]) -> "Spline":
         """Reads a THB-spline map written by :meth:`write_gismo` (G+Smo XML, a ``THBSpline2`` or
         ``THBSpline3`` geometry).
 
@@ -262,7 +275,7 @@ class Spline(_Handle):
         _check(_capi.library().igaparam_spline_read_gismo(os.fsencode(path), ctypes.byref(handle)))
         return cls(handle)
 
-    def clone(self):
+    def clone(self) -> "Spline":
         """A new, independent copy (to refine one while keeping the other); it has the same
         ``fit_report``."""
         handle = ctypes.c_void_p()
@@ -285,17 +298,17 @@ class Spline(_Handle):
         return out.value
 
     @property
-    def dimension(self):
+    def dimension(self) -> int:
         """The dimension d (2 or 3) of the parametric and physical spaces."""
         return self._count(self._lib.igaparam_spline_dimension)
 
     @property
-    def basis_count(self):
+    def basis_count(self) -> int:
         """Basis functions (= control points)."""
         return self._count(self._lib.igaparam_spline_basis_count)
 
     @property
-    def element_count(self):
+    def element_count(self) -> int:
         """Elements (boxes on which every basis function is a polynomial)."""
         return self._count(self._lib.igaparam_spline_element_count)
 
@@ -305,12 +318,12 @@ class Spline(_Handle):
         return out
 
     @property
-    def control_points(self):
+    def control_points(self) -> npt.NDArray[np.float64]:
         """Control points, a new float64 array of shape (n, d), n = :attr:`basis_count`."""
         return self._points(self._lib.igaparam_spline_copy_control_points)
 
     @property
-    def greville_points(self):
+    def greville_points(self) -> npt.NDArray[np.float64]:
         """Greville points of the basis functions, a new float64 array of shape (n, d) in
         [0,1]^d. A function whose Greville point is inside (0,1)^d vanishes on the boundary of
         the parametric domain; those with a point on it (some coordinate 0 or 1) are the
@@ -318,7 +331,7 @@ class Spline(_Handle):
         return self._points(self._lib.igaparam_spline_copy_greville_points)
 
     @property
-    def element_levels(self):
+    def element_levels(self) -> npt.NDArray[np.uint8]:
         """Refinement level of every element (side 2^-level), a new uint8 array of shape (m,),
         m = :attr:`element_count`."""
         out = np.empty(self.element_count, dtype=np.uint8)
@@ -326,7 +339,7 @@ class Spline(_Handle):
         return out
 
     @property
-    def element_bounds(self):
+    def element_bounds(self) -> npt.NDArray[np.float64]:
         """Parametric box of every element, a new float64 array of shape (m, 2d): the lower
         corner then the upper corner (u0 v0 u1 v1 in 2D)."""
         m, d = self.element_count, self.dimension
@@ -334,7 +347,7 @@ class Spline(_Handle):
         _check(self._lib.igaparam_spline_copy_elements(self._h(), None, _ptr(out, ctypes.c_double), m))
         return out
 
-    def extraction(self, element):
+    def extraction(self, element: int) -> Tuple[npt.NDArray[np.uintp], npt.NDArray[np.float64]]:
         """The Bézier extraction of element ``element``.
 
         Returns:
@@ -374,7 +387,7 @@ class Spline(_Handle):
             raise ValueError(f"{name} must have shape (n, {d}), not {array.shape}")
         return np.ascontiguousarray(array, dtype=np.float64)
 
-    def evaluate(self, params, jacobians=False):
+    def evaluate(self, params: npt.ArrayLike, jacobians: bool = False):
         """The map at parametric points.
 
         Args:
@@ -405,7 +418,7 @@ class Spline(_Handle):
         )
         return (points, jac) if jacobians else points
 
-    def mean_ratio(self, params):
+    def mean_ratio(self, params: npt.ArrayLike) -> npt.NDArray[np.float64]:
         """The mean ratio of the Jacobian, ``q_S = d·det(J)^(2/d)/‖J‖²_F`` in [0, 1] (1 for a
         conformal map, 0 where det J <= 0), at (n, d) parametric points: float64 array (n,).
 
@@ -421,7 +434,7 @@ class Spline(_Handle):
         )
         return quality
 
-    def invert(self, points, samples=4):
+    def invert(self, points: npt.ArrayLike, samples: int = 4) -> Tuple[npt.NDArray[np.float64], npt.NDArray[np.bool_]]:
         """The parametric points whose images are the physical ``points`` (n, d), by Newton's
         method started from the nearest of ``samples^d`` samples per element (2 to 32).
 
@@ -452,7 +465,7 @@ class Spline(_Handle):
         )
         return params, found != 0
 
-    def basis_at(self, param):
+    def basis_at(self, param: npt.ArrayLike):
         """The basis functions non-zero on the element holding the parametric point ``param``
         (d floats in [0,1]^d; on an element boundary, the element on the upper side).
 
@@ -493,7 +506,7 @@ class Spline(_Handle):
 
     # Refinement and validity.
 
-    def refine(self, elements=None):
+    def refine(self, elements: Optional[npt.ArrayLike] = None) -> "FitReport":
         """h-refines the spline space, the map staying the same: the listed elements are split
         into 2^d (and more where the mesh's 2:1 balance requires it); ``None`` refines every
         element once. Element and function indices change. On failure the spline is unchanged.
@@ -528,7 +541,7 @@ class Spline(_Handle):
         self.fit_report = FitReport._from_c(report)
         return self.fit_report
 
-    def check_validity(self, max_depth=5, samples=5):
+    def check_validity(self, max_depth: int = 5, samples: int = 5) -> "ValidityReport":
         """Certifies the sign of the Jacobian determinant on every element (lower bounds from
         the Bernstein coefficients of det J_S, subdividing up to ``max_depth`` times, at most
         12, when inconclusive) and samples the mean ratio at ``samples^d`` points per element
@@ -571,7 +584,7 @@ class Spline(_Handle):
 
     # Output.
 
-    def write_vtu(self, path, samples=4):
+    def write_vtu(self, path: Union[str, "os.PathLike[str]"], samples: int = 4) -> None:
         """Writes the map sampled on ``samples^d`` sub-cells per element (1 to 32) as a VTK
         .vtu file: quads (2D) or hexahedra (3D), point data ``quality`` (q_S) and ``det``
         (det J_S), cell data ``level`` and ``element``.
@@ -583,7 +596,7 @@ class Spline(_Handle):
         samples = _uint32(samples, "samples")
         _check(self._lib.igaparam_spline_write_vtu(self._h(), os.fsencode(path), samples))
 
-    def write_gismo(self, path):
+    def write_gismo(self, path: Union[str, "os.PathLike[str]"]) -> None:
         """Writes the map as G+Smo XML (a ``THBSpline2``/``THBSpline3`` geometry), readable by
         G+Smo's ``gsReadFile`` and :meth:`read_gismo`.
 
