@@ -17,14 +17,6 @@
 #include <stdint.h>
 
 /**
- * Smallest sine of a triangle's angle that [`floater_parameterize`] accepts: thinner triangles
- * (those of faces whose coordinates mix units, a terrain in degrees and metres) are refused as
- * degenerate, as one with an angle of 180° is, so that a caller can retry in other
- * coordinates.
- */
-#define SLIVER 1e-7
-
-/**
  * Major version of the library this header belongs to.
  */
 #define IGAPARAM_VERSION_MAJOR 0

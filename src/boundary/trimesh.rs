@@ -190,7 +190,7 @@ impl TriMesh {
 /// (those of faces whose coordinates mix units, a terrain in degrees and metres) are refused as
 /// degenerate, as one with an angle of 180° is, so that a caller can retry in other
 /// coordinates.
-pub const SLIVER: f64 = 1e-7;
+pub(crate) const SLIVER: f64 = 1e-7;
 
 /// Floater's mean-value parameterization of a disk-like triangulation onto the unit square.
 ///
@@ -199,7 +199,7 @@ pub const SLIVER: f64 = 1e-7;
 /// keep a positive orientation). The boundary vertices between two corners are placed on the
 /// square's side by chord length; every interior vertex is the weighted mean of its neighbours
 /// with w_ij = (tan(α/2) + tan(β/2)) / |v_j − v_i|, α and β the angles at v_i of the two
-/// triangles sharing edge ij; a triangle with an angle whose sine is under [`SLIVER`] is an
+/// triangles sharing edge ij; a triangle with an angle whose sine is under 10⁻⁷ is an
 /// error. The sparse linear system (an irreducibly diagonally dominant
 /// M-matrix) is solved by a sparse LU. Returns the (u, v) of every vertex.
 pub fn floater_parameterize(mesh: &TriMesh, corners: [usize; 4]) -> Result<Vec<Point2>> {
