@@ -38,11 +38,8 @@ if(NOT checks)
 endif()
 
 # The last non-empty line must be the JSON object.
-string(STRIP "${stdout}" stdout)
-string(REGEX REPLACE "^.*\n" "" json "${stdout}")
-if(NOT json MATCHES "^{.*}$")
-  message(FATAL_ERROR "the last line of the output is not a JSON object: ${json}")
-endif()
+include("${CMAKE_CURRENT_LIST_DIR}/LastJsonLine.cmake")
+igaparam_last_json_line("${stdout}" json)
 
 # The comparison operators and the CMake keywords that compare numbers (as doubles); != is the
 # negation of EQUAL.

@@ -16,6 +16,7 @@
 #include <string>
 #include <vector>
 
+#include "render_convergence.h"
 #include "render_picture.h"
 #include "vtu_io.h"
 
@@ -24,10 +25,14 @@ namespace {
 constexpr const char* kUsage =
     "usage: igaparam_render IN.vtu OUT.png [options]\n"
     "       igaparam_render --sorted-quality IN.vtu... OUT.png [--labels A,B,...] [options]\n"
+    "       igaparam_render --convergence SERIES.txt... OUT.png [--labels A,B,...] [--title T] [--size W H]\n"
     "\n"
     "Draws the mesh of IN.vtu (2D: its cells; 3D: its outer surface) coloured by a cell or point\n"
     "array, with a colour bar and the cell edges. With --sorted-quality, draws instead the values\n"
-    "of the array over the cells of each file, sorted ascending (one curve per file).\n"
+    "of the array over the cells of each file, sorted ascending (one curve per file). With\n"
+    "--convergence, draws the H1 and L2 errors against the dofs (log-log) of the series in the\n"
+    "last JSON line of each file (igaparam_poisson's output: an adaptive series with the uniform one\n"
+    "beside it, or a uniform series), with the optimal H1 slope.\n"
     "\n"
     "options:\n"
     "  --array NAME        cell array (or else point array) to colour by (default `quality`;\n"
@@ -54,7 +59,7 @@ struct UsageError : std::runtime_error {
 };
 
 struct Arguments {
-  bool sorted_quality = false;
+  bool sorted_quality = false, convergence = false;
   std::vector<std::string> inputs;
   std::string output;
   std::optional<std::string> title;
@@ -110,6 +115,8 @@ std::optional<Arguments> parse_arguments(int argc, char** argv) {
       return std::nullopt;
     } else if (arg == "--sorted-quality") {
       args.sorted_quality = true;
+    } else if (arg == "--convergence") {
+      args.convergence = true;
     } else if (arg == "--array") {
       args.picture.array = value();
     } else if (arg == "--range") {
@@ -147,8 +154,10 @@ std::optional<Arguments> parse_arguments(int argc, char** argv) {
       positional.push_back(arg);
     }
   }
-  if (positional.size() < 2 || (!args.sorted_quality && positional.size() != 2)) {
-    throw UsageError(args.sorted_quality ? "expected IN.vtu... OUT.png" : "expected IN.vtu and OUT.png");
+  const bool charts = args.sorted_quality || args.convergence;
+  if (args.sorted_quality && args.convergence) throw UsageError("--sorted-quality or --convergence, not both");
+  if (positional.size() < 2 || (!charts && positional.size() != 2)) {
+    throw UsageError(charts ? "expected IN... OUT.png" : "expected IN.vtu and OUT.png");
   }
   args.output = positional.back();
   positional.pop_back();
@@ -179,7 +188,18 @@ std::vector<double> cell_values(vtkUnstructuredGrid* grid, const std::string& na
 }
 
 int run(const Arguments& args) {
-  if (args.sorted_quality) {
+  if (args.convergence) {
+    std::vector<render_convergence::Curve> curves;
+    for (std::size_t i = 0; i < args.inputs.size(); i++) {
+      const std::string prefix = args.labels.empty() ? (args.inputs.size() > 1 ? file_name(args.inputs[i]) + ": " : "")
+                                                     : args.labels[i] + ": ";
+      for (auto& c : render_convergence::convergence_curves(render_convergence::last_json_line(args.inputs[i]), prefix))
+        curves.push_back(c);
+    }
+    render_convergence::render_loglog_png(curves, args.title.value_or("errors against degrees of freedom"), "dofs",
+                                          "error", args.output, args.width > 0 ? args.width : 1000,
+                                          args.height > 0 ? args.height : 700);
+  } else if (args.sorted_quality) {
     std::vector<render_picture::QualityCurve> curves;
     for (std::size_t i = 0; i < args.inputs.size(); i++) {
       vtkSmartPointer<vtkUnstructuredGrid> grid = vtu_io::read_grid(args.inputs[i]);

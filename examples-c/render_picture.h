@@ -280,6 +280,85 @@ inline void style_text(vtkTextProperty* text, int size, bool bold = false) {
   text->SetFontFamilyToArial();
 }
 
+/// The title and subtitle lines (either may be empty) at the top of the renderer's viewport,
+/// for a window `height` pixels high.
+inline void add_title_lines(vtkRenderer* renderer, const std::string& title, const std::string& subtitle,
+                            int height) {
+  int line = 0;
+  for (const std::string* text : {&title, &subtitle}) {
+    if (text->empty()) continue;
+    vtkNew<vtkTextActor> actor;
+    actor->SetInput(text->c_str());
+    style_text(actor->GetTextProperty(), height / (line == 0 ? 28 : 38), line == 0);
+    actor->GetTextProperty()->SetJustificationToCentered();
+    actor->GetTextProperty()->SetVerticalJustificationToTop();
+    actor->GetPositionCoordinate()->SetCoordinateSystemToNormalizedViewport();
+    actor->SetPosition(0.5, line == 0 ? 0.975 : 0.915);
+    renderer->AddActor2D(actor);
+    line++;
+  }
+}
+
+/// A horizontal colour bar of `table` across the bottom of the renderer's viewport.
+inline void add_colour_bar(vtkRenderer* renderer, vtkScalarsToColors* table, const std::string& title, int height) {
+  vtkNew<vtkScalarBarActor> bar;
+  bar->SetLookupTable(table);
+  bar->SetTitle((" " + title).c_str());
+  bar->SetOrientationToHorizontal();
+  bar->SetNumberOfLabels(5);
+  bar->SetLabelFormat("%.3g");
+  bar->SetPosition(0.2, 0.03);
+  bar->SetWidth(0.6);
+  bar->SetHeight(0.1);
+  bar->SetBarRatio(0.35);
+  bar->SetTextPositionToPrecedeScalarBar();
+  bar->UnconstrainedFontSizeOn();
+  style_text(bar->GetTitleTextProperty(), height / 36, true);
+  style_text(bar->GetLabelTextProperty(), height / 42);
+  renderer->AddActor2D(bar);
+}
+
+/// An offscreen window of `width` × `height` pixels whose renderer holds an XY chart with a
+/// title and a legend in a corner (vtkChartLegend::LEFT or RIGHT, BOTTOM or TOP). A plain window with the chart
+/// in a context actor: a vtkContextView would bring an interactor, which an offscreen window
+/// does not want.
+struct ChartWindow {
+  vtkNew<vtkRenderWindow> window;
+  vtkNew<vtkRenderer> renderer;
+  vtkNew<vtkContextActor> actor;
+  vtkNew<vtkChartXY> chart;
+
+  ChartWindow(int width, int height, const std::string& title, int legend_side, int legend_end) {
+    window->SetOffScreenRendering(1);
+    window->SetSize(width, height);
+    renderer->SetBackground(1, 1, 1);
+    window->AddRenderer(renderer);
+    renderer->AddActor(actor);
+    actor->GetScene()->AddItem(chart);
+    chart->SetTitle(title);
+    style_text(chart->GetTitleProperties(), height / 30, true);
+    chart->SetShowLegend(true);
+    chart->GetLegend()->SetHorizontalAlignment(legend_side);
+    chart->GetLegend()->SetVerticalAlignment(legend_end);
+    chart->GetLegend()->SetLabelSize(height / 36);
+  }
+
+  /// Styles the axes' titles, labels and grid.
+  void style_axes(int height) {
+    for (vtkAxis* axis : {chart->GetAxis(vtkAxis::BOTTOM), chart->GetAxis(vtkAxis::LEFT)}) {
+      style_text(axis->GetTitleProperties(), height / 32, true);
+      style_text(axis->GetLabelProperties(), height / 38);
+      axis->GetGridPen()->SetColor(220, 220, 220, 255);
+    }
+  }
+};
+
+/// Colours of chart curves, in turn.
+inline const unsigned char* curve_colour(std::size_t i) {
+  static const unsigned char colours[][3] = {{204, 51, 17}, {0, 119, 187}, {0, 153, 136}, {238, 119, 51}, {51, 34, 136}};
+  return colours[i % (sizeof colours / sizeof colours[0])];
+}
+
 }  // namespace detail
 
 /// The array `name` of `grid`: a cell array, else a point array; nullptr if neither. Sets
@@ -377,21 +456,7 @@ inline void render_mesh_png(vtkUnstructuredGrid* input, const MeshPicture& pictu
     mapper->SetColorModeToMapScalars();
     mapper->ScalarVisibilityOn();
 
-    vtkNew<vtkScalarBarActor> bar;
-    bar->SetLookupTable(table);
-    bar->SetTitle((" " + picture.array + (component < 0 ? " (magnitude)" : "")).c_str());
-    bar->SetOrientationToHorizontal();
-    bar->SetNumberOfLabels(5);
-    bar->SetLabelFormat("%.3g");
-    bar->SetPosition(0.2, 0.03);
-    bar->SetWidth(0.6);
-    bar->SetHeight(0.1);
-    bar->SetBarRatio(0.35);
-    bar->SetTextPositionToPrecedeScalarBar();
-    bar->UnconstrainedFontSizeOn();
-    detail::style_text(bar->GetTitleTextProperty(), picture.height / 36, true);
-    detail::style_text(bar->GetLabelTextProperty(), picture.height / 42);
-    renderer->AddActor2D(bar);
+    detail::add_colour_bar(renderer, table, picture.array + (component < 0 ? " (magnitude)" : ""), picture.height);
   } else {
     mapper->ScalarVisibilityOff();
     surface_actor->GetProperty()->SetColor(0.75, 0.8, 0.9);
@@ -417,19 +482,7 @@ inline void render_mesh_png(vtkUnstructuredGrid* input, const MeshPicture& pictu
   // above the colour bar.
   const double top = picture.title.empty() ? 0.98 : picture.subtitle.empty() ? 0.9 : 0.85;
   const double bottom = array != nullptr ? 0.15 : 0.02;
-  int line = 0;
-  for (const std::string* text : {&picture.title, &picture.subtitle}) {
-    if (text->empty()) continue;
-    vtkNew<vtkTextActor> actor;
-    actor->SetInput(text->c_str());
-    detail::style_text(actor->GetTextProperty(), picture.height / (line == 0 ? 28 : 38), line == 0);
-    actor->GetTextProperty()->SetJustificationToCentered();
-    actor->GetTextProperty()->SetVerticalJustificationToTop();
-    actor->GetPositionCoordinate()->SetCoordinateSystemToNormalizedViewport();
-    actor->SetPosition(0.5, line == 0 ? 0.975 : 0.915);
-    renderer->AddActor2D(actor);
-    line++;
-  }
+  detail::add_title_lines(renderer, picture.title, picture.subtitle, picture.height);
 
   vtkNew<vtkRenderWindow> window;
   window->SetOffScreenRendering(1);
@@ -496,26 +549,8 @@ inline void render_sorted_quality_png(const std::vector<QualityCurve>& curves, c
                                       const std::string& path, int width = 1000, int height = 650) {
   if (curves.empty()) throw std::runtime_error("no quality curve to draw");
   require_display();
-  // A plain window with the chart in a context actor (a vtkContextView would bring an
-  // interactor, which an offscreen window does not want).
-  vtkNew<vtkRenderWindow> window;
-  window->SetOffScreenRendering(1);
-  window->SetSize(width, height);
-  vtkNew<vtkRenderer> renderer;
-  renderer->SetBackground(1, 1, 1);
-  window->AddRenderer(renderer);
-  vtkNew<vtkContextActor> actor;
-  renderer->AddActor(actor);
-  vtkNew<vtkChartXY> chart;
-  actor->GetScene()->AddItem(chart);
-  chart->SetTitle(title);
-  detail::style_text(chart->GetTitleProperties(), height / 30, true);
-  chart->SetShowLegend(true);
-  chart->GetLegend()->SetHorizontalAlignment(vtkChartLegend::RIGHT);
-  chart->GetLegend()->SetVerticalAlignment(vtkChartLegend::BOTTOM);
-  chart->GetLegend()->SetLabelSize(height / 36);
-
-  static const unsigned char colours[][3] = {{204, 51, 17}, {0, 119, 187}, {0, 153, 136}, {238, 119, 51}, {51, 34, 136}};
+  detail::ChartWindow view(width, height, title, vtkChartLegend::RIGHT, vtkChartLegend::BOTTOM);
+  vtkChartXY* chart = view.chart;
   std::vector<vtkSmartPointer<vtkTable>> tables;
   for (std::size_t i = 0; i < curves.size(); i++) {
     std::vector<double> sorted = curves[i].quality;
@@ -536,7 +571,7 @@ inline void render_sorted_quality_png(const std::vector<QualityCurve>& curves, c
     tables.push_back(table);
     vtkPlot* line = chart->AddPlot(vtkChart::LINE);
     line->SetInputData(table, 0, 1);
-    const auto* c = colours[i % (sizeof colours / sizeof colours[0])];
+    const auto* c = detail::curve_colour(i);
     line->SetColor(c[0], c[1], c[2], 255);
     line->SetWidth(3.0);
     line->SetLabel(curves[i].label);
@@ -549,12 +584,8 @@ inline void render_sorted_quality_png(const std::vector<QualityCurve>& curves, c
   y_axis->SetTitle("quality");
   y_axis->SetBehavior(vtkAxis::FIXED);
   y_axis->SetRange(0, 1.02);
-  for (vtkAxis* axis : {x_axis, y_axis}) {
-    detail::style_text(axis->GetTitleProperties(), height / 32, true);
-    detail::style_text(axis->GetLabelProperties(), height / 38);
-    axis->GetGridPen()->SetColor(220, 220, 220, 255);
-  }
-  detail::write_png(window, path);
+  view.style_axes(height);
+  detail::write_png(view.window, path);
 }
 
 }  // namespace render_picture

@@ -9,12 +9,19 @@
 #   out/puzzle_{tmesh,spline}.vtu, out/puzzle.xml               puzzle piece, adaptive loop
 #   out/duck3d_{tmesh,spline}.vtu, out/duck3d.xml               3D duck B-rep (about half a minute)
 #   out/jacksboro_{tmesh,spline}.vtu, out/jacksboro.xml         air above terrain, axes in km
+# solves on the spline maps with igaparam_poisson (adaptive refinement beside uniform) and
+# igaparam_wind (wind over the Jacksboro terrain):
+#   out/puzzle_adaptive.json, out/puzzle_adaptive_spline.vtu   Helmholtz problem, centre inside the puzzle
+#   out/duck_adaptive.json, out/duck_adaptive_spline.vtu       wave front through the duck's OBJ faces (minutes)
+#   out/jacksboro_wind.vtu, out/jacksboro_wind.png             adjusted wind, streamlines (needs a display)
 # and draws them (cells coloured by quality) with igaparam_render:
 #   out/airfoil_relocated.png, out/airfoil_laplacian.png, out/wing_relocated.png,
 #   out/airfoil_sorted_quality.png, out/wing_sorted_quality.png (cell qualities sorted ascending,
 #   harmonic placement against optimized), out/gran_canaria_spline.png, out/puzzle_spline.png,
 #   out/duck3d_spline.png, out/jacksboro_spline.png
-#   (spline maps coloured by the mean ratio of their Jacobian)
+#   (spline maps coloured by the mean ratio of their Jacobian), out/puzzle_adaptive_levels.png,
+#   out/duck_adaptive_levels.png (the final adaptive spaces coloured by level),
+#   out/puzzle_adaptive_convergence.png, out/duck_adaptive_convergence.png (errors against dofs)
 # Rendering needs an X display: the real one, else a virtual one through xvfb-run; without
 # either, the pictures are skipped with a message.
 set -euo pipefail
@@ -51,6 +58,36 @@ if [[ -x $param ]]; then
   done
 else
   echo "run.sh: $param was not built (is OpenMesh, libopenmesh-dev, installed?)" >&2
+fi
+
+poisson=build/examples-c/igaparam_poisson
+if [[ -x $poisson ]]; then
+  for args in "tests/data/boundary/puzzle3_bdry.xml --problem helmholtz --adaptive --levels 3 --max-dofs 20000
+      --json out/puzzle_adaptive.json --spline-vtu out/puzzle_adaptive_spline.vtu" \
+    "tests/data/boundary/duck_faces --problem wavefront --alpha 30 --adaptive --levels 2 --max-dofs 12000
+      --json out/duck_adaptive.json --spline-vtu out/duck_adaptive_spline.vtu"; do
+    echo
+    echo "+ $poisson $args"
+    # shellcheck disable=SC2086  # the arguments are split on purpose
+    "$poisson" $args --threads 2 2>/dev/null
+  done
+else
+  echo "run.sh: $poisson was not built (is Eigen, libeigen3-dev, installed?)" >&2
+fi
+
+wind=build/examples-c/igaparam_wind
+if [[ -x $wind ]]; then
+  # The Jacksboro block in km with its lid moved to 10 km, a logarithmic wind; the streamline
+  # picture needs a display (the real one or xvfb-run's).
+  wind_args=(tests/data/boundary/jacksboro_faces --scale 89273.3,111200,1 --lid 10 --tol 3e-5 --profile log
+    --levels 1 --threads 2 --vtu out/jacksboro_wind.vtu --png out/jacksboro_wind.png --stretch 4)
+  wrapper=()
+  [[ -z ${DISPLAY:-} ]] && command -v xvfb-run >/dev/null 2>&1 && wrapper=(xvfb-run -a)
+  echo
+  echo "+ ${wrapper[*]} $wind ${wind_args[*]}"
+  "${wrapper[@]}" "$wind" "${wind_args[@]}" || echo "run.sh: igaparam_wind failed (exit $?; 77: no display)" >&2
+else
+  echo "run.sh: $wind was not built (needs Eigen, OpenMesh and VTK's rendering modules)" >&2
 fi
 
 render=build/examples-c/igaparam_render
@@ -96,4 +133,24 @@ if [[ -x $param ]]; then
   draw out/jacksboro_spline.vtu out/jacksboro_spline.png --array quality --no-edges \
     --stretch 1 1 10 --view 200 -50 \
     --title "Jacksboro block in km (terrain from below, z x10): spline map, mean ratio"
+fi
+if [[ -x $poisson ]]; then
+  draw out/puzzle_adaptive_spline.vtu out/puzzle_adaptive_levels.png --array level --no-edges \
+    --title "puzzle piece, Helmholtz problem: the adaptive space by level"
+  draw --convergence out/puzzle_adaptive.json out/puzzle_adaptive_convergence.png \
+    --title "puzzle piece, Helmholtz problem with its centre inside"
+  draw out/duck_adaptive_spline.vtu out/duck_adaptive_levels.png --array level --no-edges --cut x 0.55 --view 30 20 \
+    --title "duck OBJ faces, wave front: the adaptive space by level (cut)"
+  draw --convergence out/duck_adaptive.json out/duck_adaptive_convergence.png \
+    --title "duck OBJ faces, wave front (alpha 30)"
+fi
+if [[ -x $poisson ]]; then
+  draw out/puzzle_adaptive_spline.vtu out/puzzle_adaptive_levels.png --array level --no-edges \
+    --title "puzzle piece, Helmholtz problem: the adaptive space by level"
+  draw --convergence out/puzzle_adaptive.json out/puzzle_adaptive_convergence.png \
+    --title "puzzle piece, Helmholtz problem with its centre inside"
+  draw out/duck_adaptive_spline.vtu out/duck_adaptive_levels.png --array level --no-edges --cut x 0.55 --view 30 20 \
+    --title "duck OBJ faces, wave front: the adaptive space by level (cut)"
+  draw --convergence out/duck_adaptive.json out/duck_adaptive_convergence.png \
+    --title "duck OBJ faces, wave front (alpha 30)"
 fi

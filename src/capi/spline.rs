@@ -796,8 +796,10 @@ pub extern "C" fn igaparam_spline_basis_at(
 /// h-refines the spline space, the map staying the same (the refined space contains the old
 /// one; the new control points reproduce the map to round-off, see `report->residual`): the
 /// elements listed in `elements` (`n` indices) are split into 2^d, and more where the mesh's
-/// 2:1 balance requires it; `n = 0` (with `elements` NULL) refines every element once. Element
-/// and function indices change. `report` may be NULL. On failure the spline is unchanged.
+/// 2:1 balance requires it; `n = 0` (with `elements` NULL) refines every element once. An
+/// element already at the deepest level, 20 (side 2^-20; see `igaparam_spline_copy_elements`),
+/// is left as it is. Element and function indices change. `report` may be NULL. On failure the
+/// spline is unchanged.
 #[no_mangle]
 pub extern "C" fn igaparam_spline_refine(
     spline: *mut igaparam_spline,

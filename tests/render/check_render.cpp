@@ -1,4 +1,5 @@
-// check_render RENDER_EXE OUT.png ARGS...: runs `RENDER_EXE ARGS... OUT.png --size 400 300` and
+// check_render RENDER_EXE OUT.png ARGS...: runs `RENDER_EXE ARGS... --size 400 300 OUT.png` (or,
+// when one of ARGS is `{png}`, `RENDER_EXE ARGS... --size 400 300` with OUT.png in its place) and
 // checks the picture: 400 × 300 pixels, many colours (a colour map, edges and text, not a blank
 // or one-colour window), and not only background. Exit code 77 (skipped) when no X display
 // can be opened; 0 when the picture passes, 1 otherwise.
@@ -50,9 +51,14 @@ int main(int argc, char** argv) {
   }
   const std::string png = argv[2];
   std::vector<std::string> command = {argv[1]};
-  for (int i = 3; i < argc; i++) command.push_back(argv[i]);
+  bool placed = false;
+  for (int i = 3; i < argc; i++) {
+    const bool here = std::string(argv[i]) == "{png}";
+    command.push_back(here ? png : argv[i]);
+    placed = placed || here;
+  }
   for (const char* a : {"--size", "400", "300"}) command.push_back(a);
-  command.push_back(png);
+  if (!placed) command.push_back(png);
   std::remove(png.c_str());
   const int code = run(command);
   if (code == kSkip) return kSkip;

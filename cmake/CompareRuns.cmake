@@ -1,0 +1,30 @@
+# Runs one program twice with different thread counts and checks that the JSON objects on the
+# last lines of their outputs are the same, apart from the `"threads": N` member.
+#
+#   cmake -DEXE=<program> -DARGS=<options separated by |> -DTHREADS=<n1|n2> -P CompareRuns.cmake
+
+foreach(var EXE ARGS THREADS)
+  if(NOT DEFINED ${var})
+    message(FATAL_ERROR "CompareRuns.cmake: ${var} is not set")
+  endif()
+endforeach()
+include("${CMAKE_CURRENT_LIST_DIR}/LastJsonLine.cmake")
+string(REPLACE "|" ";" args "${ARGS}")
+string(REPLACE "|" ";" threads "${THREADS}")
+set(lines "")
+foreach(n IN LISTS threads)
+  execute_process(COMMAND "${EXE}" ${args} --threads ${n} OUTPUT_VARIABLE stdout RESULT_VARIABLE code)
+  if(NOT code EQUAL 0)
+    message(FATAL_ERROR "${EXE} with --threads ${n} exited with ${code}:\n${stdout}")
+  endif()
+  igaparam_last_json_line("${stdout}" json)
+  string(REGEX REPLACE "\"threads\": *[0-9]+" "\"threads\": _" json "${json}")
+  message("--threads ${n}: ${json}")
+  list(APPEND lines "${json}")
+endforeach()
+list(GET lines 0 first)
+foreach(line IN LISTS lines)
+  if(NOT line STREQUAL first)
+    message(FATAL_ERROR "the runs differ")
+  endif()
+endforeach()
