@@ -118,8 +118,9 @@ impl<const D: usize> SplineMap<D, ThbSpace<D>> {
 
     /// The boundary functions non-zero on an uncertified element whose `det J_S` is not
     /// positive at a sample on two or more sides of [0,1]^d (a corner of the square, an edge of
-    /// the cube): there every column of `J_S` is a tangent of the boundary, so `det J_S`
-    /// depends on the boundary control points alone and no inner one can lift it.
+    /// the cube), in 3D also on an element in the support of one of those: at such a sample every
+    /// column of `J_S` is a tangent of the boundary, so `det J_S` depends on the boundary
+    /// control points alone and no inner one can lift it.
     fn pinned_boundary(
         &self,
         validity: &ValidityReport,
@@ -142,10 +143,27 @@ impl<const D: usize> SplineMap<D, ThbSpace<D>> {
                 })
             })
             .collect();
-        pinned
-            .iter()
-            .flat_map(|&e| self.space.extraction(e).0.iter().copied())
-            .filter(|&f| self.boundary_sides(f) > 0)
+        let boundary_of = |e: usize| {
+            self.space
+                .extraction(e)
+                .0
+                .iter()
+                .copied()
+                .filter(|&f| self.boundary_sides(f) > 0)
+        };
+        let own: BTreeSet<usize> = pinned.iter().flat_map(|&e| boundary_of(e)).collect();
+        if D < 3 {
+            // A corner of the square: its element's own boundary functions, so that no more
+            // of the boundary moves than there (the squeeze below was seen on the cube's
+            // edges only).
+            return own;
+        }
+        // An edge of the cube: with the boundary functions of the pinned elements alone the
+        // untangling squeezes their neighbours along the edge (the duck B-rep's min q_S fell
+        // from 0.077 to 0.006 so); those of every element in their supports move too.
+        let support = self.function_elements();
+        own.iter()
+            .flat_map(|&f| support[f].iter().flat_map(|&e| boundary_of(e)))
             .collect()
     }
 
@@ -179,9 +197,12 @@ impl<const D: usize> SplineMap<D, ThbSpace<D>> {
         let mut uncertified: Vec<usize> = marked(&validity);
         let mut moved = BTreeSet::new();
         let support = self.function_elements();
+        // Newton iterations per control point and sweep, as measured: in 3D 20 lift the duck
+        // B-rep's min q_S from 0.076 (8) to 0.082; in 2D 8 untangle Gran Canaria with its
+        // boundary kept, where 20 leave an element for the boundary stage (1% moves).
         let solver = NodeSolverOptions {
             gradient_tolerance: 1e-4,
-            max_iterations: 8,
+            max_iterations: if D == 3 { 20 } else { 8 },
             relaxation: 1.0,
         };
         let constrain = |f: usize, next: Vector<D>| {
