@@ -2,7 +2,7 @@
 #
 #   <libdir>/libigaparam.so.<version>, with the links libigaparam.so.<major> (the SONAME) and
 #     libigaparam.so (for -ligaparam) on ELF platforms;
-#   <includedir>/igaparam.h and <includedir>/igaparam.hpp (the C++17 wrapper);
+#   <includedir>/igaparam.h and <includedir>/igaparam.hpp, igaparam_spline.hpp (the C++17 wrapper);
 #   <libdir>/cmake/igaparam/igaparamConfig.cmake and igaparamConfigVersion.cmake, giving the
 #     IMPORTED targets igaparam::igaparam and igaparam::cpp to find_package(igaparam);
 #   <libdir>/pkgconfig/igaparam.pc.
@@ -48,7 +48,7 @@ if(IGAPARAM_INSTALLED_SONAME)
   ")
 endif()
 
-install(FILES include/igaparam.h bindings/cpp/igaparam.hpp DESTINATION "${CMAKE_INSTALL_INCLUDEDIR}")
+install(FILES include/igaparam.h bindings/cpp/igaparam.hpp bindings/cpp/igaparam_spline.hpp DESTINATION "${CMAKE_INSTALL_INCLUDEDIR}")
 
 # CMake package.
 configure_package_config_file(cmake/igaparamConfig.cmake.in

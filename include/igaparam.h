@@ -36,6 +36,11 @@
  */
 #define IGAPARAM_HISTOGRAM_BINS 10
 
+/**
+ * Where the Newton method stops when no stationarity tolerance is asked for.
+ */
+#define IGAPARAM_DEFAULT_NEWTON_TOLERANCE 1e-8
+
 
 
 /**
@@ -56,6 +61,11 @@ typedef enum {
    * rounds of `total` at most.
    */
   IGAPARAM_STAGE_ADAPTATION = 2,
+  /**
+   * Newton iterations on the global objective (`stationarity_tolerance`): `done` so far,
+   * `total` 0.
+   */
+  IGAPARAM_STAGE_STATIONARITY = 3,
 } igaparam_stage;
 
 /**
@@ -101,6 +111,24 @@ typedef enum {
    */
   IGAPARAM_STATUS_INTERNAL = 8,
 } igaparam_status;
+
+/**
+ * How the control points of a spline come from the T-mesh's map.
+ */
+typedef enum {
+  /**
+   * Interpolation at the Greville points.
+   */
+  IGAPARAM_FIT_INTERPOLATION = 0,
+  /**
+   * Least squares at the Greville points and 4^d points per element.
+   */
+  IGAPARAM_FIT_LEAST_SQUARES = 1,
+  /**
+   * The local quasi-interpolant.
+   */
+  IGAPARAM_FIT_QUASI_INTERPOLATION = 2,
+} igaparam_fit_rule;
 
 /**
  * How a `.vtu` file stores its arrays.
@@ -249,6 +277,155 @@ typedef struct {
 } igaparam_domain_report;
 
 /**
+ * A B-spline or NURBS curve of the plane given by arrays, read (and copied) by the functions
+ * that take it. The curve is `C(t) = Σ w_i N_i(t) P_i / Σ w_i N_i(t)` over its knot domain
+ * `[knots[degree], knots[control_point_count]]` (all `w_i` = 1 without weights).
+ */
+typedef struct {
+  /**
+   * Polynomial degree p, at least 1.
+   */
+  uint32_t degree;
+  /**
+   * Number of knots: `control_point_count + degree + 1`.
+   */
+  size_t knot_count;
+  /**
+   * `knot_count` knots: finite, non-decreasing, none repeated more than p + 1 times.
+   */
+  const double *knots;
+  /**
+   * Number of control points n.
+   */
+  size_t control_point_count;
+  /**
+   * `n × 2` doubles (x0 y0 x1 y1 ...), finite.
+   */
+  const double *control_points;
+  /**
+   * `n` positive finite weights (a NURBS curve), or NULL (a B-spline curve).
+   */
+  const double *weights;
+} igaparam_curve;
+
+/**
+ * A tensor-product B-spline or NURBS surface in 3D given by arrays, read (and copied) by the
+ * functions that take it. Control point `(i, j)` (i along u, j along v) is number
+ * `i + j × control_point_count_u`: the first parameter runs fastest, as in G+Smo.
+ */
+typedef struct {
+  /**
+   * Degree in u, at least 1.
+   */
+  uint32_t degree_u;
+  /**
+   * Degree in v, at least 1.
+   */
+  uint32_t degree_v;
+  /**
+   * Number of knots in u: `control_point_count_u + degree_u + 1`.
+   */
+  size_t knot_count_u;
+  /**
+   * `knot_count_u` knots in u (finite, non-decreasing).
+   */
+  const double *knots_u;
+  /**
+   * Number of knots in v: `control_point_count_v + degree_v + 1`.
+   */
+  size_t knot_count_v;
+  /**
+   * `knot_count_v` knots in v (finite, non-decreasing).
+   */
+  const double *knots_v;
+  /**
+   * Control points in u, n_u.
+   */
+  size_t control_point_count_u;
+  /**
+   * Control points in v, n_v.
+   */
+  size_t control_point_count_v;
+  /**
+   * `n_u × n_v × 3` doubles (x y z of point (0, 0), then (1, 0), ...), finite.
+   */
+  const double *control_points;
+  /**
+   * `n_u × n_v` positive finite weights in the order of the control points (a NURBS
+   * surface), or NULL (a B-spline surface).
+   */
+  const double *weights;
+} igaparam_surface;
+
+/**
+ * Options of `igaparam_domain_update`; get the defaults from
+ * `igaparam_domain_update_options_default`. The boundary tolerance, levels, repair rounds and
+ * boundary offset are those the domain was built with.
+ */
+typedef struct {
+  /**
+   * Largest number of optimization sweeps per step of the motion (default 200).
+   */
+  uint32_t max_sweeps;
+  /**
+   * Worker threads, at most 4096; 0 (default) uses one per core.
+   */
+  uint32_t threads;
+  /**
+   * 0 (default): keep the tree, and only report whether its tolerance still holds. 1: refine
+   * the boundary cells whose error exceeds the build's tolerance (below its `max_level`)
+   * until none does, and repair cells left folded as the build does; the T-mesh, and with
+   * it the spline space of a fit, then changes (a spline fitted before can no longer be
+   * refitted to it).
+   */
+  int32_t refine;
+  /**
+   * Progress callback, or NULL (default). Called with `IGAPARAM_STAGE_OPTIMIZATION`, `done`
+   * sweeps so far and `total` 0; returning non-zero cancels the update.
+   */
+  igaparam_progress_fn progress;
+  /**
+   * Passed to `progress` as its first argument.
+   */
+  void *progress_user;
+} igaparam_domain_update_options;
+
+/**
+ * What `igaparam_domain_update` did.
+ */
+typedef struct {
+  /**
+   * The T-mesh as `igaparam_domain_build` reports it: `invalid_after_placement` counts the
+   * cells the harmonic placement (old positions plus the harmonic extension of the boundary
+   * motion) left invalid, `boundary_error` is measured in the new boundary's own bounding
+   * box (as a build would), `sweeps` and `seconds` are those of the update.
+   */
+  igaparam_domain_report domain;
+  /**
+   * 1 when the tree still meets the build's tolerance (no boundary cell below the build's
+   * `max_level` has an error above it: a build's adaptation would refine none), else 0.
+   */
+  int32_t tolerance_met;
+  /**
+   * Boundary cells below the build's `max_level` whose error exceeds its tolerance.
+   */
+  size_t cells_over_tolerance;
+  /**
+   * Cells added by refinement (0 unless `refine` was set).
+   */
+  size_t refined_cells;
+  /**
+   * Largest move of a boundary vertex, in coordinates that map the build's bounding box onto
+   * the unit box.
+   */
+  double boundary_motion;
+  /**
+   * Steps the motion was applied in (a motion of more than about four cell sizes is split).
+   */
+  uint32_t steps;
+} igaparam_domain_update_report;
+
+/**
  * The ideal shape of a cell: one of the `IGAPARAM_TARGET_*` values.
  */
 typedef int igaparam_target;
@@ -259,6 +436,11 @@ typedef int igaparam_target;
 typedef int igaparam_placement;
 
 /**
+ * How the free nodes are carried to the optimum: one of the `IGAPARAM_METHOD_*` values.
+ */
+typedef int igaparam_method;
+
+/**
  * Options of `igaparam_mesh_relocate`; get the defaults from `igaparam_relocate_options_default`.
  */
 typedef struct {
@@ -267,7 +449,8 @@ typedef struct {
    */
   igaparam_target target;
   /**
-   * `IGAPARAM_PLACEMENT_LAPLACIAN` (default) or `IGAPARAM_PLACEMENT_CURRENT`.
+   * `IGAPARAM_PLACEMENT_LAPLACIAN` (default), `IGAPARAM_PLACEMENT_CURRENT` or
+   * `IGAPARAM_PLACEMENT_INCREMENTAL`.
    */
   igaparam_placement placement;
   /**
@@ -303,6 +486,19 @@ typedef struct {
    * on it.
    */
   uint32_t threads;
+  /**
+   * When positive, the result is a stationary point of the one global objective
+   * F = sum over cells of their mean distortion (regularisation 0, so F is infinite at a
+   * fold): the report's `gradient_norm` is at most this (e.g. 1e-10), reached by Newton's
+   * method with the sparse Hessian on a valid mesh; `igaparam_mesh_adjoint` and
+   * `igaparam_mesh_tangent` then differentiate the result. 0 (default): no such guarantee
+   * (the sweeps stop on their own rule, the Newton method at 1e-8).
+   */
+  double stationarity_tolerance;
+  /**
+   * `IGAPARAM_METHOD_AUTO` (default), `IGAPARAM_METHOD_SWEEPS` or `IGAPARAM_METHOD_NEWTON`.
+   */
+  igaparam_method method;
   /**
    * Progress callback, or NULL (default).
    */
@@ -366,9 +562,20 @@ typedef struct {
    */
   uint32_t steps;
   /**
-   * 1 when the sweeps met their stopping rule (valid mesh, small moves), else 0.
+   * 1 when the sweeps met their stopping rule (valid mesh, small moves) and, when asked for,
+   * the Newton stage its `stationarity_tolerance`; else 0.
    */
   int converged;
+  /**
+   * Scaled max-norm of the gradient of F at the end: over the free coordinates,
+   * |dF/dx| times the node's local cell size divided by its number of cells (the gradient of
+   * the node's own objective times its size; dimensionless). Infinite for an invalid mesh.
+   */
+  double gradient_norm;
+  /**
+   * Newton iterations of the stationarity stage.
+   */
+  uint32_t newton_iterations;
   /**
    * Wall-clock seconds of the call.
    */
@@ -575,6 +782,46 @@ typedef struct {
 } igaparam_validity_report;
 
 /**
+ * What `igaparam_spline_refit` did.
+ */
+typedef struct {
+  /**
+   * The fit: basis and element counts (unchanged), residual, the rule's flags
+   * (`least_squares`, `quasi_interpolation`), the control points this refit's untangling
+   * moved (`untangled`, 0 when the correction carried over from an earlier untangling kept
+   * the map certified) and seconds.
+   */
+  igaparam_fit_report fit;
+  /**
+   * The rule the control points came from: the rule of the spline's first fit.
+   */
+  igaparam_fit_rule rule;
+  /**
+   * Control points carrying the correction of an untangling (this refit's or an earlier
+   * one's): the map is `A X + c` with `A` the rule's linear map of the T-mesh vertices `X`
+   * and `c` that correction, non-zero at these control points; 0 when the map is the
+   * rule's own fit.
+   */
+  size_t corrected;
+  /**
+   * 1 when every element of the new map is certified valid (`det J > 0`), else 0.
+   */
+  int32_t certified_positive;
+  /**
+   * Elements where positivity is not proven.
+   */
+  size_t uncertified;
+  /**
+   * Smallest sampled mean ratio `q_S` of the new map.
+   */
+  double min_quality;
+  /**
+   * Mean sampled mean ratio of the new map.
+   */
+  double mean_quality;
+} igaparam_refit_report;
+
+/**
  * Bilinear quadrilateral, 4 nodes (VTK_QUAD).
  */
 #define IGAPARAM_CELL_QUAD4 9
@@ -624,6 +871,33 @@ typedef struct {
  * The current positions, as they are.
  */
 #define IGAPARAM_PLACEMENT_CURRENT 1
+
+/**
+ * Warm start for loops: the positions of the last successful relocation plus the harmonic
+ * extension of the prescribed motion since then (the first relocation of a mesh starts as
+ * `IGAPARAM_PLACEMENT_LAPLACIAN`); the targets stay the reference shapes. Use it when the
+ * boundary moves a little at every call, as in a shape-optimization loop.
+ */
+#define IGAPARAM_PLACEMENT_INCREMENTAL 2
+
+/**
+ * `IGAPARAM_METHOD_NEWTON` where the Hessian's Cholesky factor is small (2D meshes, 3D meshes
+ * up to about 20,000 nodes), else `IGAPARAM_METHOD_SWEEPS` (default).
+ */
+#define IGAPARAM_METHOD_AUTO 0
+
+/**
+ * The per-node optimizer's coloured Gauss–Seidel sweeps, large motions in steps placed
+ * harmonically; with `stationarity_tolerance > 0`, followed by the Newton stage.
+ */
+#define IGAPARAM_METHOD_SWEEPS 1
+
+/**
+ * Path following of the optimum of the global objective: each step predicted by the tangent of
+ * the optimum (the linearised response of the mesh to the motion) and corrected by Newton's
+ * method; the sweeps are the fallback where a step cannot be made (e.g. a tangled start).
+ */
+#define IGAPARAM_METHOD_NEWTON 2
 
 /**
  * Numbers as text: large, for reading by eye.
@@ -700,36 +974,6 @@ igaparam_domain_options igaparam_domain_options_default(void);
  * `igaparam_domain_build` with NULL options uses these for a solid.
  */
 igaparam_domain_options igaparam_domain_options_default_solid(void);
-
-/**
- * Creates a domain from a boundary file, chosen by its extension (case-insensitive):
- *
- * - `.xml`: a G+Smo XML B-rep of four B-spline curves;
- * - `.txt`: a coastline (points with four marked corners).
- *
- * `path` is a NUL-terminated UTF-8 path. `out` receives the new handle, to be released with
- * `igaparam_domain_free`. Errors: `IGAPARAM_STATUS_IO` when the file cannot be read or parsed
- * (the message says why), `IGAPARAM_STATUS_INVALID_ARGUMENT` for another extension or when the
- * curves do not make a closed loop with convex corners.
- */
-igaparam_status igaparam_domain_new_from_file(const char *path, igaparam_domain **out);
-
-/**
- * Creates a domain bounded by four polylines.
- *
- * - `counts`: 4 entries; `counts[i]` is the number of points of polyline i (at least 2).
- * - `points`: 4 pointers; `points[i]` holds `counts[i] × 2` doubles (x0 y0 x1 y1 ...).
- * - `out`: receives the new handle, to be released with `igaparam_domain_free`.
- *
- * The polylines may be given in any order and direction: they are chained end to end into a
- * counter-clockwise loop, the first one becoming the side u = 0. Errors:
- * `IGAPARAM_STATUS_NOT_FINITE` for a NaN or infinite coordinate, `IGAPARAM_STATUS_INVALID_ARGUMENT`
- * for a polyline of fewer than two distinct points, a loop that does not close, one of zero area
- * or a corner whose interior angle reaches 180 degrees. The arrays are copied.
- */
-igaparam_status igaparam_domain_new_from_polylines(const size_t *counts,
-                                                   const double *const *points,
-                                                   igaparam_domain **out);
 
 /**
  * Releases a domain. NULL is a no-op.
@@ -818,6 +1062,75 @@ igaparam_status igaparam_domain_copy_cell_corners(const igaparam_domain *domain,
 igaparam_status igaparam_domain_dimension(const igaparam_domain *domain, size_t *out);
 
 /**
+ * Writes the built T-mesh to a VTK XML unstructured grid (`.vtu`) at `path` (NUL-terminated
+ * UTF-8): for a planar domain one polygon per cell through its corners and hanging vertices,
+ * for a solid one hexahedron per cell through its corners, at the physical positions; point data
+ * `parametric` (u, v, 0 or u, v, w), cell data `quality` and `level`. Fails with
+ * `IGAPARAM_STATUS_IO` if the file cannot be written, `IGAPARAM_STATUS_INVALID_ARGUMENT` if the
+ * domain has not been built.
+ */
+igaparam_status igaparam_domain_write_vtu(const igaparam_domain *domain, const char *path);
+
+/**
+ * Writes to `*out` 1 if the domain has been built (by a successful `igaparam_domain_build`),
+ * else 0.
+ */
+igaparam_status igaparam_domain_is_built(const igaparam_domain *domain, int *out);
+
+/**
+ * Creates a domain from a boundary file, chosen by its extension (case-insensitive):
+ *
+ * - `.xml`: a G+Smo XML B-rep of four B-spline curves;
+ * - `.txt`: a coastline (points with four marked corners).
+ *
+ * `path` is a NUL-terminated UTF-8 path. `out` receives the new handle, to be released with
+ * `igaparam_domain_free`. Errors: `IGAPARAM_STATUS_IO` when the file cannot be read or parsed
+ * (the message says why), `IGAPARAM_STATUS_INVALID_ARGUMENT` for another extension or when the
+ * curves do not make a closed loop with convex corners.
+ */
+igaparam_status igaparam_domain_new_from_file(const char *path, igaparam_domain **out);
+
+/**
+ * Creates a domain bounded by four polylines.
+ *
+ * - `counts`: 4 entries; `counts[i]` is the number of points of polyline i (at least 2).
+ * - `points`: 4 pointers; `points[i]` holds `counts[i] × 2` doubles (x0 y0 x1 y1 ...).
+ * - `out`: receives the new handle, to be released with `igaparam_domain_free`.
+ *
+ * The polylines may be given in any order and direction: they are chained end to end into a
+ * counter-clockwise loop, the first one becoming the side u = 0. Errors:
+ * `IGAPARAM_STATUS_NOT_FINITE` for a NaN or infinite coordinate, `IGAPARAM_STATUS_INVALID_ARGUMENT`
+ * for a polyline of fewer than two distinct points, a loop that does not close, one of zero area
+ * or a corner whose interior angle reaches 180 degrees. The arrays are copied.
+ */
+igaparam_status igaparam_domain_new_from_polylines(const size_t *counts,
+                                                   const double *const *points,
+                                                   igaparam_domain **out);
+
+/**
+ * Creates a domain bounded by four B-spline or NURBS curves given as arrays (see
+ * `igaparam_curve`).
+ *
+ * - `count`: the number of curves, 4;
+ * - `curves`: `count` curve descriptions;
+ * - `out`: receives the new handle, to be released with `igaparam_domain_free`.
+ *
+ * The curves are read as `igaparam_domain_new_from_file` reads those of a G+Smo file (a domain
+ * made from the same curves is the same, bit for bit): in any order and direction, chained end
+ * to end into a counter-clockwise loop, the first one becoming the side u = 0. Errors:
+ * `IGAPARAM_STATUS_NULL_ARGUMENT` for a NULL array (weights may be NULL),
+ * `IGAPARAM_STATUS_NOT_FINITE` for a NaN or infinite knot, coordinate or weight,
+ * `IGAPARAM_STATUS_INVALID_ARGUMENT` for a count other than 4, a degree of 0, a knot count
+ * other than control points + degree + 1, decreasing knots or a knot repeated more than
+ * degree + 1 times, a weight that is not positive, and curves whose ends do not meet, whose
+ * loop encloses no area or has a corner whose interior angle reaches 180 degrees (each message
+ * names the curve or corner). The arrays are copied.
+ */
+igaparam_status igaparam_domain_new_from_curves(size_t count,
+                                                const igaparam_curve *curves,
+                                                igaparam_domain **out);
+
+/**
  * Creates a solid from a boundary file or folder:
  *
  * - a `.xml` file: a G+Smo XML B-rep of six B-spline surfaces (found and oriented from their
@@ -875,20 +1188,115 @@ igaparam_status igaparam_domain_new_solid_from_triangulations(const size_t *vert
                                                               igaparam_domain **out);
 
 /**
- * Writes the built T-mesh to a VTK XML unstructured grid (`.vtu`) at `path` (NUL-terminated
- * UTF-8): for a planar domain one polygon per cell through its corners and hanging vertices,
- * for a solid one hexahedron per cell through its corners, at the physical positions; point data
- * `parametric` (u, v, 0 or u, v, w), cell data `quality` and `level`. Fails with
- * `IGAPARAM_STATUS_IO` if the file cannot be written, `IGAPARAM_STATUS_INVALID_ARGUMENT` if the
- * domain has not been built.
+ * Creates a solid bounded by six tensor-product B-spline or NURBS surfaces in 3D given as
+ * arrays (see `igaparam_surface`).
+ *
+ * - `count`: the number of surfaces, 6;
+ * - `surfaces`: `count` surface descriptions;
+ * - `out`: receives the new handle, to be released with `igaparam_domain_free`.
+ *
+ * The surfaces are read as `igaparam_domain_new_solid_from_file` reads those of a G+Smo B-rep
+ * (a solid made from the same surfaces is the same, bit for bit): their corners are matched
+ * into the 8 corners of a cube, opposite surfaces found, each surface oriented onto its cube
+ * face, and the surfaces must agree on their shared edges. Errors:
+ * `IGAPARAM_STATUS_NULL_ARGUMENT` for a NULL array (weights may be NULL),
+ * `IGAPARAM_STATUS_NOT_FINITE` for a NaN or infinite knot, coordinate or weight,
+ * `IGAPARAM_STATUS_INVALID_ARGUMENT` for a count other than 6, a degree of 0, knot counts
+ * other than control points + degree + 1, decreasing knots, weights that are not positive,
+ * `IGAPARAM_STATUS_INVALID_MESH` for surfaces whose corners do not form a cube or that do not
+ * share their edges (the messages name the surfaces). The arrays are copied.
  */
-igaparam_status igaparam_domain_write_vtu(const igaparam_domain *domain, const char *path);
+igaparam_status igaparam_domain_new_solid_from_surfaces(size_t count,
+                                                        const igaparam_surface *surfaces,
+                                                        igaparam_domain **out);
 
 /**
- * Writes to `*out` 1 if the domain has been built (by a successful `igaparam_domain_build`),
- * else 0.
+ * The default update options.
  */
-igaparam_status igaparam_domain_is_built(const igaparam_domain *domain, int *out);
+igaparam_domain_update_options igaparam_domain_update_options_default(void);
+
+/**
+ * Replaces the boundary of a domain by four B-spline or NURBS curves given as arrays (`count`
+ * = 4 entries of `curves`, read as by `igaparam_domain_new_from_curves`: give them in the order
+ * and direction of the first ones, so that each lands on the same side). The T-mesh of a built
+ * domain stays where it is until `igaparam_domain_update` moves it onto the new boundary (or
+ * `igaparam_domain_build` builds anew); fits need that first. Errors: those of
+ * `igaparam_domain_new_from_curves`, `IGAPARAM_STATUS_INVALID_ARGUMENT` for a solid or, once
+ * built, a boundary oriented the other way round (its parameterization mirrored relative to
+ * the domain's). On error the domain is unchanged. The arrays are copied.
+ */
+igaparam_status igaparam_domain_set_boundary_curves(igaparam_domain *domain,
+                                                    size_t count,
+                                                    const igaparam_curve *curves);
+
+/**
+ * Replaces the boundary of a planar domain by four polylines (the arrays of
+ * `igaparam_domain_new_from_polylines`), as `igaparam_domain_set_boundary_curves` does.
+ */
+igaparam_status igaparam_domain_set_boundary_polylines(igaparam_domain *domain,
+                                                       const size_t *counts,
+                                                       const double *const *points);
+
+/**
+ * Replaces the boundary of a solid by six B-spline or NURBS surfaces given as arrays (`count`
+ * = 6 entries of `surfaces`, read as by `igaparam_domain_new_solid_from_surfaces`: give them in
+ * the order and with the parameterizations of the first ones), as
+ * `igaparam_domain_set_boundary_curves` does for planar domains. Errors: those of
+ * `igaparam_domain_new_solid_from_surfaces`, `IGAPARAM_STATUS_INVALID_ARGUMENT` for a planar
+ * domain or a boundary oriented the other way round. On error the domain is unchanged.
+ */
+igaparam_status igaparam_domain_set_boundary_surfaces(igaparam_domain *domain,
+                                                      size_t count,
+                                                      const igaparam_surface *surfaces);
+
+/**
+ * Replaces the boundary of a solid by six triangulated faces (the arrays of
+ * `igaparam_domain_new_solid_from_triangulations`, each face parameterized anew by Floater's
+ * map), as `igaparam_domain_set_boundary_surfaces` does.
+ */
+igaparam_status igaparam_domain_set_boundary_triangulations(igaparam_domain *domain,
+                                                            const size_t *vertex_counts,
+                                                            const double *const *xyz,
+                                                            const size_t *triangle_counts,
+                                                            const uint32_t *const *triangles);
+
+/**
+ * Replaces the boundary of a domain by the one of a file: for a planar domain a `.xml` G+Smo
+ * B-rep of four curves or a `.txt` coastline (as `igaparam_domain_new_from_file`), for a solid a
+ * `.xml` B-rep of six surfaces or a folder of six `.obj` faces (as
+ * `igaparam_domain_new_solid_from_file`); otherwise as `igaparam_domain_set_boundary_curves`.
+ */
+igaparam_status igaparam_domain_set_boundary_from_file(igaparam_domain *domain, const char *path);
+
+/**
+ * Replaces the boundary of a solid by the one of a file or folder, its coordinates scaled
+ * first (`scale`: NULL or 3 finite positive factors, as
+ * `igaparam_domain_new_solid_from_file_scaled`); otherwise as
+ * `igaparam_domain_set_boundary_from_file`.
+ */
+igaparam_status igaparam_domain_set_boundary_from_file_scaled(igaparam_domain *domain,
+                                                              const char *path,
+                                                              const double *scale);
+
+/**
+ * Moves the built T-mesh onto the domain's current boundary (the one given by the last
+ * `igaparam_domain_set_boundary_*`), keeping its tree: every boundary vertex goes to the point
+ * of its parameters on the new boundary (keeping the offset the seam relief gave it, if any),
+ * the inner vertices to their current positions plus the harmonic extension of that motion
+ * (a motion of more than about four cell sizes in steps), and all are optimized again (with
+ * the seam relief of the build where cells stay folded). The targets of the cells stay those
+ * of the build (its bounding box), as for relocated meshes. The report says whether the
+ * tree's tolerance still holds; the tree changes only when `options->refine` is set. A spline
+ * fitted to the domain is refitted in its own space with `igaparam_spline_refit`.
+ *
+ * `options` may be NULL for the defaults (`igaparam_domain_update_options_default`); `report`
+ * may be NULL. Errors: `IGAPARAM_STATUS_INVALID_ARGUMENT` when the domain has not been built
+ * (call `igaparam_domain_build` first) or for threads above 4096, `IGAPARAM_STATUS_CANCELLED`.
+ * On any error the domain is unchanged and `*report` is not written.
+ */
+igaparam_status igaparam_domain_update(igaparam_domain *domain,
+                                       const igaparam_domain_update_options *options,
+                                       igaparam_domain_update_report *report);
 
 /**
  * The default relocation options.
@@ -1006,6 +1414,40 @@ igaparam_status igaparam_cell_type_node_count(igaparam_cell_type cell_type_code,
  * Writes to `*out` the number of cells with det J <= 0 at some Gauss–Lobatto point.
  */
 igaparam_status igaparam_mesh_invalid_cell_count(const igaparam_mesh *mesh, size_t *out);
+
+/**
+ * The adjoint product of the last relocation: `dj_dx` holds the partial derivatives dJ/dx of a
+ * scalar J of the node positions (`size` = 3 × num_nodes doubles, x0 y0 z0 x1 ...);
+ * `dj_dprescribed` (`size` doubles) receives the total derivative of J with respect to every
+ * prescribed coordinate, dJ/dx_p = dJ/dx_p (partial) − H_pf H_ff⁻¹ dJ/dx_f, through the
+ * relocation's dependence of the free coordinates on the prescribed ones (implicit function
+ * theorem at the stationary point; H the Hessian of F), and 0 at the free coordinates.
+ *
+ * Free coordinates: those whose constraint bit is clear, of nodes that belong to a cell
+ * (sliding nodes have both kinds); all others are prescribed, and z of every node of a 2D mesh.
+ * Needs a last relocation with `stationarity_tolerance > 0` that reached it on a valid mesh;
+ * `igaparam_mesh_move_nodes`, `igaparam_mesh_set_fixed`, `igaparam_mesh_reset_reference` and
+ * a new relocation invalidate the state (the call then fails and says why). The factorisation
+ * of H_ff (2D meshes and small 3D ones) is kept on the handle, so further products at one
+ * state cost a solve each; larger 3D meshes solve by preconditioned conjugate gradients.
+ * Uses the thread count of the last relocation.
+ */
+igaparam_status igaparam_mesh_adjoint(const igaparam_mesh *mesh,
+                                      size_t size,
+                                      const double *dj_dx,
+                                      double *dj_dprescribed);
+
+/**
+ * The tangent product of the last relocation (the transpose of `igaparam_mesh_adjoint`):
+ * `dx_prescribed` (`size` = 3 × num_nodes doubles) is a motion of the prescribed coordinates
+ * (its entries at free coordinates are ignored); `dx` (`size` doubles) receives the first-order
+ * motion of every node: the given motion at prescribed coordinates, −H_ff⁻¹ H_fp dx_p at free
+ * ones. Same conditions as `igaparam_mesh_adjoint`.
+ */
+igaparam_status igaparam_mesh_tangent(const igaparam_mesh *mesh,
+                                      size_t size,
+                                      const double *dx_prescribed,
+                                      double *dx);
 
 /**
  * Reads a mesh from a VTK XML unstructured grid (`.vtu`) at `path` (NUL-terminated UTF-8), in
@@ -1321,6 +1763,35 @@ igaparam_status igaparam_spline_write_vtu(const igaparam_spline *spline,
  * `THBSplineBasis2`/`3`, readable by G+Smo's `gsReadFile` and by `igaparam_spline_read_gismo`).
  */
 igaparam_status igaparam_spline_write_gismo(const igaparam_spline *spline, const char *path);
+
+/**
+ * Recomputes the control points of `spline` from the domain's current T-mesh (after
+ * `igaparam_domain_update`), in the spline's own space: the same basis functions, elements,
+ * Bézier extraction and Greville points, so the basis count and element list never change.
+ * The control points come by the rule of the spline's first fit (`report->rule`; a spline
+ * read from a file gets the first fit's choice, kept for its next refits), plus the
+ * correction an earlier untangling made, if any; the map is then certified as
+ * `igaparam_spline_check_validity` does with the default options (the handle keeps the result
+ * for it) and, where it is not certified, untangled as `igaparam_spline_fit_domain` does. With
+ * the rule fixed the control points are a linear function of the T-mesh's vertices, plus the
+ * correction (see `igaparam_refit_report`). A spline refined (`igaparam_spline_refine`) after
+ * its fit is fitted in the T-mesh's space and carried exactly into its own.
+ *
+ * `report` may be NULL. Errors: `IGAPARAM_STATUS_INVALID_ARGUMENT` when the domain has not
+ * been built, its boundary was replaced without `igaparam_domain_update`, its dimension is not
+ * the spline's, or its T-mesh has cells the spline's elements do not refine (the domain was
+ * refined after the fit, or is another domain). On error the spline is unchanged.
+ */
+igaparam_status igaparam_spline_refit(igaparam_spline *spline,
+                                      const igaparam_domain *domain,
+                                      igaparam_refit_report *report);
+
+/**
+ * Writes to `*out` the rule the control points of `spline` come from (that of its first fit,
+ * which `igaparam_spline_refit` uses). Fails with `IGAPARAM_STATUS_INVALID_ARGUMENT` for a
+ * spline read from a file and never refitted (its fit is unknown).
+ */
+igaparam_status igaparam_spline_fit_rule(const igaparam_spline *spline, igaparam_fit_rule *out);
 
 #ifdef __cplusplus
 }  // extern "C"

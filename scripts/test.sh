@@ -25,8 +25,9 @@ python_tests() {
   "$venv/bin/python" -m pip install -q pytest numpy || return 1
   # meshio: the tests compare the Python and C++ results on the airfoil read by it, and run the
   # README's Python example. pygismo (G+Smo): the tests read the library's G+Smo XML with it.
-  # vtk and gmsh: the .vtu and node-order tests check the library against them.
-  "$venv/bin/python" -m pip install -q meshio pygismo vtk gmsh || return 1
+  # vtk and gmsh: the .vtu and node-order tests check the library against them. scipy: the
+  # shape-optimization example's optimizer.
+  "$venv/bin/python" -m pip install -q meshio pygismo vtk gmsh scipy || return 1
   # The package bundles the library the CMake build made (no second cargo build); the wheel test
   # installs it again into a new venv the way a user does, with cargo's cache.
   IGAPARAM_PREBUILT_LIBRARY="$PWD/build/cargo/release/libigaparam.so" \

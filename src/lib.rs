@@ -16,5 +16,7 @@ pub mod spline;
 pub mod tmesh;
 
 pub use error::{Error, ErrorKind, Result};
-pub use homesh::{CellType, Mesh, NodeOrder, Placement, RelocateOptions, RelocateReport, Stage};
+pub use homesh::{
+    CellType, Mesh, Method, NodeOrder, Placement, RelocateOptions, RelocateReport, Stage,
+};
 pub use optimize::TargetKind;

@@ -112,6 +112,11 @@ fn capi() {
 }
 
 #[test]
+fn sensitivity_capi() {
+    run("test_sensitivity.c", &[], &[]);
+}
+
+#[test]
 fn domain_capi() {
     let out = work_dir("domain-out");
     run("test_domain.c", &[&boundary_data(), &out], &[]);
@@ -122,6 +127,13 @@ fn domain_capi() {
 fn spline_capi() {
     let out = work_dir("spline-out");
     run("test_spline.c", &[&boundary_data(), &out], &[]);
+    std::fs::remove_dir_all(&out).ok();
+}
+
+#[test]
+fn morph_capi() {
+    let out = work_dir("morph-out");
+    run("test_morph.c", &[&boundary_data(), &out], &[]);
     std::fs::remove_dir_all(&out).ok();
 }
 

@@ -42,3 +42,20 @@ fn version_macros_match_the_crate() {
         );
     }
 }
+
+/// Every name the header declares carries the library's prefix, so that it cannot collide with
+/// a host's own macros and identifiers (an unprefixed `#define` breaks any header included after
+/// it that uses the same word).
+#[test]
+fn every_declared_name_is_prefixed() {
+    let header =
+        std::fs::read_to_string(Path::new(env!("CARGO_MANIFEST_DIR")).join("include/igaparam.h"))
+            .unwrap();
+    let unprefixed: Vec<&str> = header
+        .lines()
+        .filter_map(|line| line.strip_prefix("#define "))
+        .filter_map(|rest| rest.split_whitespace().next())
+        .filter(|name| !name.starts_with("IGAPARAM_"))
+        .collect();
+    assert!(unprefixed.is_empty(), "unprefixed macros: {unprefixed:?}");
+}

@@ -4,7 +4,7 @@
 mod common;
 
 use common::{boundary_mask, grid, load_case, Lcg};
-use igaparam::{CellType, Mesh, Placement, RelocateOptions, TargetKind};
+use igaparam::{CellType, Mesh, Method, Placement, RelocateOptions, TargetKind};
 
 fn no_progress() -> impl FnMut(igaparam::Stage, usize, usize) -> bool {
     |_, _, _| true
@@ -223,25 +223,42 @@ fn the_rotated_airfoil_is_untangled() {
     assert_eq!(report.invalid_after, 0, "{report:?}");
     assert!(report.min_quality > 0.2, "{report:?}");
     assert_eq!(mesh.invalid_cell_count().unwrap(), 0);
-    // The baseline: the Laplacian placement alone leaves cells inverted.
+    // The Newton method places the motion by the tangent of the optimum at the reference shape:
+    // no cell folds there.
+    assert_eq!(report.invalid_after_placement, 0, "{report:?}");
+    // The baseline: the Laplacian placement alone leaves cells inverted, the placement the
+    // sweeps start from.
+    let mut swept = laplacian.clone();
     let options = RelocateOptions {
         optimize: false,
         ..Default::default()
     };
     let baseline = relocate(&mut laplacian, &options);
     assert!(baseline.invalid_after > 0);
+    let sweeps = RelocateOptions {
+        method: Method::Sweeps,
+        ..Default::default()
+    };
+    let report = relocate(&mut swept, &sweeps);
     assert_eq!(baseline.invalid_after, report.invalid_after_placement);
+    assert_eq!(report.invalid_after, 0, "{report:?}");
 }
 
 #[test]
 fn cancellation_leaves_the_mesh_unchanged() {
     let mut mesh = load_case("airfoil_0012_q9.vtu");
     let before = mesh.positions().to_vec();
-    let mut calls = 0;
-    let result = mesh.relocate(&RelocateOptions::default(), &mut |stage, _, _| {
-        calls += 1;
-        stage != igaparam::Stage::Optimization || calls < 5
-    });
-    assert_eq!(result.unwrap_err().kind, igaparam::ErrorKind::Cancelled);
-    assert_eq!(mesh.positions(), &before[..]);
+    for method in [Method::Sweeps, Method::Newton] {
+        let mut calls = 0;
+        let options = RelocateOptions {
+            method,
+            ..Default::default()
+        };
+        let result = mesh.relocate(&options, &mut |stage, _, _| {
+            calls += 1;
+            stage == igaparam::Stage::Placement || calls < 5
+        });
+        assert_eq!(result.unwrap_err().kind, igaparam::ErrorKind::Cancelled);
+        assert_eq!(mesh.positions(), &before[..]);
+    }
 }

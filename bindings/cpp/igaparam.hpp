@@ -3,7 +3,8 @@
 // - igaparam::Error (a std::runtime_error) carries the status and message of a failed call.
 // - igaparam::Mesh is a move-only owner of an igaparam_mesh*, with methods that check sizes,
 //   throw on failure and return std::vector for the arrays the C API copies out.
-// - igaparam::Domain owns an igaparam_domain* (a planar domain or a solid and its T-mesh).
+// - igaparam::Domain owns an igaparam_domain* (a planar domain or a solid and its T-mesh);
+//   igaparam::Curve and igaparam::Surface hold the arrays of B-spline/NURBS boundaries.
 // - igaparam::Spline likewise owns an igaparam_spline* (a cubic THB-spline map).
 //
 // Every C call goes through `detail::check`, so a method either succeeds or throws; as in the C
@@ -203,6 +204,22 @@ class Mesh {
     return report;
   }
 
+  /// The total derivative of a scalar J with respect to the prescribed coordinates through the
+  /// last relocation, given dJ/dx at every node (3 per node); see igaparam_mesh_adjoint.
+  std::vector<double> adjoint(const std::vector<double>& dj_dx) const {
+    std::vector<double> out(dj_dx.size());
+    detail::check(igaparam_mesh_adjoint(mesh_, dj_dx.size(), dj_dx.data(), out.data()));
+    return out;
+  }
+
+  /// The first-order motion of every node for a motion of the prescribed coordinates (3 per
+  /// node) through the last relocation; see igaparam_mesh_tangent.
+  std::vector<double> tangent(const std::vector<double>& dx_prescribed) const {
+    std::vector<double> out(dx_prescribed.size());
+    detail::check(igaparam_mesh_tangent(mesh_, dx_prescribed.size(), dx_prescribed.data(), out.data()));
+    return out;
+  }
+
   /// Current node positions, 3 per node (x0 y0 z0 x1 ...).
   std::vector<double> positions() const {
     std::vector<double> xyz(3 * node_count());
@@ -251,6 +268,89 @@ class Mesh {
   igaparam_mesh* mesh_ = nullptr;
 };
 
+/// A B-spline or NURBS curve of the plane given by arrays (see igaparam_curve).
+struct Curve {
+  std::uint32_t degree = 3;
+  std::vector<double> knots;           ///< control points + degree + 1 knots, non-decreasing
+  std::vector<double> control_points;  ///< 2 per control point: x0 y0 x1 y1 ...
+  std::vector<double> weights;         ///< one per control point (NURBS), or empty (B-spline)
+};
+
+/// A tensor-product B-spline or NURBS surface in 3D given by arrays (see igaparam_surface).
+struct Surface {
+  std::uint32_t degree_u = 2, degree_v = 2;
+  std::vector<double> knots_u, knots_v;
+  std::size_t count_u = 0, count_v = 0;  ///< control points in u and in v
+  std::vector<double> control_points;    ///< 3 per control point, point (i, j) at i + j·count_u
+  std::vector<double> weights;           ///< count_u·count_v (NURBS), or empty (B-spline)
+};
+
+namespace detail {
+
+/// The C views of curves (pointing into them).
+inline std::vector<igaparam_curve> c_curves(const std::vector<Curve>& curves) {
+  std::vector<igaparam_curve> out;
+  for (const Curve& c : curves) {
+    require(c.control_points.size() % 2 == 0, "igaparam::Curve: 2 coordinates per control point");
+    const std::size_t n = c.control_points.size() / 2;
+    require(c.weights.empty() || c.weights.size() == n, "igaparam::Curve: one weight per control point");
+    out.push_back({c.degree, c.knots.size(), c.knots.data(), n, c.control_points.data(),
+                   c.weights.empty() ? nullptr : c.weights.data()});
+  }
+  return out;
+}
+
+/// The C views of surfaces (pointing into them).
+inline std::vector<igaparam_surface> c_surfaces(const std::vector<Surface>& surfaces) {
+  std::vector<igaparam_surface> out;
+  for (const Surface& s : surfaces) {
+    const std::size_t n = s.count_u * s.count_v;
+    require(s.control_points.size() == 3 * n, "igaparam::Surface: 3 coordinates per control point");
+    require(s.weights.empty() || s.weights.size() == n, "igaparam::Surface: one weight per control point");
+    out.push_back({s.degree_u, s.degree_v, s.knots_u.size(), s.knots_u.data(), s.knots_v.size(),
+                   s.knots_v.data(), s.count_u, s.count_v, s.control_points.data(),
+                   s.weights.empty() ? nullptr : s.weights.data()});
+  }
+  return out;
+}
+
+/// The C arrays of six triangulated faces (pointing into them).
+struct Triangulations {
+  std::size_t nv[6], nt[6];
+  const double* points[6];
+  const std::uint32_t* tris[6];
+
+  Triangulations(const std::vector<std::vector<double>>& xyz,
+                 const std::vector<std::vector<std::uint32_t>>& triangles) {
+    require(xyz.size() == 6 && triangles.size() == 6, "igaparam::Domain: six faces are needed");
+    for (int f = 0; f < 6; f++) {
+      require(xyz[f].size() % 3 == 0 && triangles[f].size() % 3 == 0,
+              "igaparam::Domain: 3 coordinates per vertex and 3 indices per triangle");
+      nv[f] = xyz[f].size() / 3;
+      nt[f] = triangles[f].size() / 3;
+      points[f] = xyz[f].data();
+      tris[f] = triangles[f].data();
+    }
+  }
+};
+
+/// The C arrays of four polylines (pointing into them).
+struct Polylines {
+  std::size_t counts[4];
+  const double* points[4];
+
+  explicit Polylines(const std::vector<std::vector<double>>& polylines) {
+    require(polylines.size() == 4, "igaparam::Domain: four polylines are needed");
+    for (int i = 0; i < 4; i++) {
+      require(polylines[i].size() % 2 == 0, "igaparam::Domain: 2 coordinates per polyline point");
+      counts[i] = polylines[i].size() / 2;
+      points[i] = polylines[i].data();
+    }
+  }
+};
+
+}  // namespace detail
+
 /// A planar domain or a solid and its T-mesh parameterization (owner of an igaparam_domain*).
 /// Move-only.
 class Domain {
@@ -283,21 +383,36 @@ class Domain {
   /// coordinates per vertex, `triangles[f]` 3 vertex indices per triangle. The arrays are copied.
   static Domain solid_from_triangulations(const std::vector<std::vector<double>>& xyz,
                                           const std::vector<std::vector<std::uint32_t>>& triangles) {
-    detail::require(xyz.size() == 6 && triangles.size() == 6,
-                    "igaparam::Domain: six faces are needed");
-    std::size_t nv[6], nt[6];
-    const double* points[6];
-    const std::uint32_t* tris[6];
-    for (int f = 0; f < 6; f++) {
-      detail::require(xyz[f].size() % 3 == 0 && triangles[f].size() % 3 == 0,
-                      "igaparam::Domain: 3 coordinates per vertex and 3 indices per triangle");
-      nv[f] = xyz[f].size() / 3;
-      nt[f] = triangles[f].size() / 3;
-      points[f] = xyz[f].data();
-      tris[f] = triangles[f].data();
-    }
+    detail::Triangulations t(xyz, triangles);
     igaparam_domain* d = nullptr;
-    detail::check(igaparam_domain_new_solid_from_triangulations(nv, points, nt, tris, &d));
+    detail::check(igaparam_domain_new_solid_from_triangulations(t.nv, t.points, t.nt, t.tris, &d));
+    return Domain(d);
+  }
+
+  /// A planar domain bounded by four polylines, 2 coordinates per point (see
+  /// igaparam_domain_new_from_polylines). The arrays are copied.
+  static Domain planar_from_polylines(const std::vector<std::vector<double>>& polylines) {
+    detail::Polylines p(polylines);
+    igaparam_domain* d = nullptr;
+    detail::check(igaparam_domain_new_from_polylines(p.counts, p.points, &d));
+    return Domain(d);
+  }
+
+  /// A planar domain bounded by four B-spline or NURBS curves (igaparam_domain_new_from_curves:
+  /// the same domain, bit for bit, as from a G+Smo file of the same curves).
+  static Domain planar_from_curves(const std::vector<Curve>& curves) {
+    const std::vector<igaparam_curve> c = detail::c_curves(curves);
+    igaparam_domain* d = nullptr;
+    detail::check(igaparam_domain_new_from_curves(c.size(), c.data(), &d));
+    return Domain(d);
+  }
+
+  /// A solid bounded by six tensor-product B-spline or NURBS surfaces
+  /// (igaparam_domain_new_solid_from_surfaces).
+  static Domain solid_from_surfaces(const std::vector<Surface>& surfaces) {
+    const std::vector<igaparam_surface> c = detail::c_surfaces(surfaces);
+    igaparam_domain* d = nullptr;
+    detail::check(igaparam_domain_new_solid_from_surfaces(c.size(), c.data(), &d));
     return Domain(d);
   }
 
@@ -338,6 +453,52 @@ class Domain {
   igaparam_domain_report build(const igaparam_domain_options& options) {
     igaparam_domain_report report{};
     detail::check(igaparam_domain_build(domain_, &options, &report));
+    return report;
+  }
+
+  /// Replaces the boundary by four curves given in the order and direction of the first ones
+  /// (igaparam_domain_set_boundary_curves); the T-mesh moves onto it with update().
+  void set_boundary(const std::vector<Curve>& curves) {
+    const std::vector<igaparam_curve> c = detail::c_curves(curves);
+    detail::check(igaparam_domain_set_boundary_curves(domain_, c.size(), c.data()));
+  }
+
+  /// Replaces the boundary of a solid by six surfaces (igaparam_domain_set_boundary_surfaces).
+  void set_boundary(const std::vector<Surface>& surfaces) {
+    const std::vector<igaparam_surface> c = detail::c_surfaces(surfaces);
+    detail::check(igaparam_domain_set_boundary_surfaces(domain_, c.size(), c.data()));
+  }
+
+  /// Replaces the boundary of a planar domain by four polylines.
+  void set_boundary_polylines(const std::vector<std::vector<double>>& polylines) {
+    detail::Polylines p(polylines);
+    detail::check(igaparam_domain_set_boundary_polylines(domain_, p.counts, p.points));
+  }
+
+  /// Replaces the boundary of a solid by six triangulated faces.
+  void set_boundary_triangulations(const std::vector<std::vector<double>>& xyz,
+                                   const std::vector<std::vector<std::uint32_t>>& triangles) {
+    detail::Triangulations t(xyz, triangles);
+    detail::check(igaparam_domain_set_boundary_triangulations(domain_, t.nv, t.points, t.nt, t.tris));
+  }
+
+  /// Replaces the boundary by the one of a file (a planar domain's or a solid's, as the
+  /// constructors read them).
+  void set_boundary_from_file(const std::string& path) {
+    detail::check(igaparam_domain_set_boundary_from_file(domain_, path.c_str()));
+  }
+
+  /// Replaces the boundary of a solid by the one of a file, scaled axis by axis first.
+  void set_boundary_from_file(const std::string& path, const std::array<double, 3>& scale) {
+    detail::check(igaparam_domain_set_boundary_from_file_scaled(domain_, path.c_str(), scale.data()));
+  }
+
+  /// Moves the built T-mesh onto the current boundary, keeping its tree
+  /// (igaparam_domain_update); then Spline::refit gives the spline map in the same space.
+  igaparam_domain_update_report update(
+      const igaparam_domain_update_options& options = igaparam_domain_update_options_default()) {
+    igaparam_domain_update_report report{};
+    detail::check(igaparam_domain_update(domain_, &options, &report));
     return report;
   }
 
@@ -403,209 +564,9 @@ class Domain {
   igaparam_domain* domain_ = nullptr;
 };
 
-/// The Bézier extraction of one element: N_functions[i] = Σ_k op[i·4^d + k] B_k on the element.
-struct Extraction {
-  std::vector<std::size_t> functions;  ///< global indices of the functions non-zero on it
-  std::vector<double> op;              ///< functions.size() × 4^d, row-major
-};
-
-/// The basis functions non-zero at a point.
-struct BasisValues {
-  std::vector<std::size_t> functions;  ///< global indices
-  std::vector<double> values;          ///< one per function
-  std::vector<double> gradients;       ///< d per function, with respect to the parameters
-};
-
-/// A cubic THB-spline map S: [0,1]^d → Ω (owner of an igaparam_spline*). Move-only; clone() copies.
-/// Points are flat arrays, d doubles each.
-class Spline {
- public:
-  /// Fits the spline map of a built domain; `report` may be NULL.
-  static Spline fit(const igaparam_domain* domain, igaparam_fit_report* report = nullptr) {
-    igaparam_spline* handle = nullptr;
-    detail::check(igaparam_spline_fit_domain(domain, &handle, report));
-    return Spline(handle);
-  }
-
-  /// Fits the spline map of a built domain; `report` may be NULL.
-  static Spline fit(const Domain& domain, igaparam_fit_report* report = nullptr) {
-    return fit(domain.get(), report);
-  }
-
-  /// The adaptive loop: fits the map of a built domain, refines its T-mesh where the map is of
-  /// poor quality, optimizes and refits (igaparam_domain_fit_adaptive); the domain keeps the
-  /// refined T-mesh. `report` may be NULL.
-  static Spline fit_adaptive(Domain& domain,
-                             const igaparam_adapt_options& options = igaparam_adapt_options_default(),
-                             igaparam_adapt_report* report = nullptr) {
-    igaparam_spline* handle = nullptr;
-    detail::check(igaparam_domain_fit_adaptive(domain.get(), &options, &handle, report));
-    return Spline(handle);
-  }
-
-  /// Reads a map written by write_gismo.
-  static Spline read_gismo(const std::string& path) {
-    igaparam_spline* handle = nullptr;
-    detail::check(igaparam_spline_read_gismo(path.c_str(), &handle));
-    return Spline(handle);
-  }
-
-  /// Takes ownership of a handle (may be NULL).
-  explicit Spline(igaparam_spline* handle) noexcept : spline_(handle) {}
-  ~Spline() { igaparam_spline_free(spline_); }
-  Spline(const Spline&) = delete;
-  Spline& operator=(const Spline&) = delete;
-  Spline(Spline&& other) noexcept : spline_(std::exchange(other.spline_, nullptr)) {}
-  Spline& operator=(Spline&& other) noexcept {
-    if (this != &other) {
-      igaparam_spline_free(spline_);
-      spline_ = std::exchange(other.spline_, nullptr);
-    }
-    return *this;
-  }
-
-  /// An independent copy.
-  Spline clone() const {
-    igaparam_spline* handle = nullptr;
-    detail::check(igaparam_spline_clone(spline_, &handle));
-    return Spline(handle);
-  }
-
-  /// The C handle (still owned by this object).
-  igaparam_spline* get() const noexcept { return spline_; }
-
-  std::size_t dimension() const { return query(igaparam_spline_dimension); }
-  std::size_t basis_count() const { return query(igaparam_spline_basis_count); }
-  std::size_t element_count() const { return query(igaparam_spline_element_count); }
-
-  /// Control points, basis_count() × d.
-  std::vector<double> control_points() const {
-    return copied(basis_count() * dimension(), igaparam_spline_copy_control_points);
-  }
-
-  /// Greville points of the basis functions, basis_count() × d.
-  std::vector<double> greville_points() const {
-    return copied(basis_count() * dimension(), igaparam_spline_copy_greville_points);
-  }
-
-  /// Level of every element.
-  std::vector<std::uint8_t> element_levels() const {
-    std::vector<std::uint8_t> levels(element_count());
-    detail::check(igaparam_spline_copy_elements(spline_, levels.data(), nullptr, levels.size()));
-    return levels;
-  }
-
-  /// Box of every element, element_count() × 2d (lower corner, then upper corner).
-  std::vector<double> element_bounds() const {
-    const std::size_t n = element_count();
-    std::vector<double> bounds(2 * dimension() * n);
-    detail::check(igaparam_spline_copy_elements(spline_, nullptr, bounds.data(), n));
-    return bounds;
-  }
-
-  /// The Bézier extraction of element `e`.
-  Extraction extraction(std::size_t e) const {
-    std::size_t m = 0;
-    detail::check(igaparam_spline_element_function_count(spline_, e, &m));
-    Extraction x{std::vector<std::size_t>(m), std::vector<double>(m * bernstein_count())};
-    detail::check(igaparam_spline_copy_element_extraction(spline_, e, x.functions.data(), m, x.op.data(),
-                                                          x.op.size()));
-    return x;
-  }
-
-  /// S at the parametric points `params` (n × d in [0,1]^d); `jacobians`, if given, receives
-  /// n × d × d row-major entries ∂S_i/∂u_j.
-  std::vector<double> evaluate(const std::vector<double>& params, std::vector<double>* jacobians = nullptr) const {
-    const std::size_t d = dimension(), n = count(params, d);
-    std::vector<double> points(n * d);
-    if (jacobians) jacobians->assign(n * d * d, 0.0);
-    detail::check(igaparam_spline_evaluate(spline_, n, params.data(), points.data(),
-                                           jacobians ? jacobians->data() : nullptr));
-    return points;
-  }
-
-  /// Mean ratio of the Jacobian at the parametric points `params` (n × d).
-  std::vector<double> mean_ratio(const std::vector<double>& params) const {
-    const std::size_t n = count(params, dimension());
-    std::vector<double> q(n);
-    detail::check(igaparam_spline_mean_ratio(spline_, n, params.data(), q.data()));
-    return q;
-  }
-
-  /// Parametric points of the physical points `points` (n × d): NaN where `found` is 0.
-  std::vector<double> invert(const std::vector<double>& points, std::vector<int>* found = nullptr,
-                             std::uint32_t samples = 4) const {
-    const std::size_t d = dimension(), n = count(points, d);
-    std::vector<double> params(n * d);
-    if (found) found->assign(n, 0);
-    detail::check(igaparam_spline_invert(spline_, n, points.data(), samples, params.data(),
-                                         found ? found->data() : nullptr));
-    return params;
-  }
-
-  /// The basis functions non-zero at the parametric point `param` (d values).
-  BasisValues basis_at(const std::vector<double>& param) const {
-    const std::size_t d = dimension();
-    detail::require(param.size() == d, "igaparam::Spline::basis_at: param must hold d values");
-    std::size_t m = 0;
-    detail::check(igaparam_spline_basis_count_at(spline_, param.data(), &m));
-    BasisValues b{std::vector<std::size_t>(m), std::vector<double>(m), std::vector<double>(m * d)};
-    detail::check(igaparam_spline_basis_at(spline_, param.data(), &m, b.functions.data(), b.values.data(),
-                                           b.gradients.data(), m));
-    return b;
-  }
-
-  /// Refines the marked elements (all when empty), the map staying the same.
-  igaparam_fit_report refine(const std::vector<std::size_t>& elements = {}) {
-    igaparam_fit_report report{};
-    detail::check(igaparam_spline_refine(spline_, elements.size(), elements.empty() ? nullptr : elements.data(),
-                                         &report));
-    return report;
-  }
-
-  /// Certified validity and quality; `element_quality`, if given, receives each element's
-  /// smallest sampled mean ratio.
-  igaparam_validity_report check_validity(const igaparam_validity_options& options = igaparam_validity_options_default(),
-                                          std::vector<double>* element_quality = nullptr) const {
-    igaparam_validity_report report{};
-    const std::size_t n = element_quality ? element_count() : 0;
-    if (element_quality) element_quality->assign(n, 0.0);
-    detail::check(igaparam_spline_check_validity(spline_, &options, &report, nullptr,
-                                                 element_quality ? element_quality->data() : nullptr, n));
-    return report;
-  }
-
-  /// Writes the map sampled on `samples`^d sub-cells per element as .vtu.
-  void write_vtu(const std::string& path, std::uint32_t samples = 4) const {
-    detail::check(igaparam_spline_write_vtu(spline_, path.c_str(), samples));
-  }
-
-  /// Writes the map as G+Smo XML.
-  void write_gismo(const std::string& path) const { detail::check(igaparam_spline_write_gismo(spline_, path.c_str())); }
-
- private:
-  std::size_t query(igaparam_status (*getter)(const igaparam_spline*, std::size_t*)) const {
-    std::size_t value = 0;
-    detail::check(getter(spline_, &value));
-    return value;
-  }
-
-  std::vector<double> copied(std::size_t n, igaparam_status (*copy)(const igaparam_spline*, double*, std::size_t)) const {
-    std::vector<double> values(n);
-    detail::check(copy(spline_, values.data(), values.size()));
-    return values;
-  }
-
-  std::size_t bernstein_count() const { return dimension() == 2 ? 16 : 64; }
-
-  static std::size_t count(const std::vector<double>& points, std::size_t d) {
-    detail::require(points.size() % d == 0, "igaparam::Spline: point arrays must hold d values per point");
-    return points.size() / d;
-  }
-
-  igaparam_spline* spline_ = nullptr;
-};
-
 }  // namespace igaparam
+
+// igaparam::Spline, the spline map of a domain.
+#include "igaparam_spline.hpp"  // IWYU pragma: export
 
 #endif  // IGAPARAM_HPP

@@ -471,6 +471,12 @@ impl BSplineSurface {
         p
     }
 
+    /// The weights (one per control point, in the order of the control points), if the
+    /// surface is rational.
+    pub fn weights(&self) -> Option<&[f64]> {
+        self.weights.as_deref()
+    }
+
     /// The parameter domain `((u0, u1), (v0, v1))`.
     pub fn domain(&self) -> ((f64, f64), (f64, f64)) {
         (self.knots_u.domain(), self.knots_v.domain())

@@ -66,7 +66,7 @@ impl Default for LoopOptions {
 /// the unit square: the boundary map sends (side, t) to a point, each side running in the
 /// direction of increasing u or v, so that the corners (0,0), (1,0), (1,1), (0,1) are met
 /// counter-clockwise.
-#[derive(Clone, Debug)]
+#[derive(Clone, Debug, PartialEq)]
 pub struct BoundaryLoop2 {
     sides: [Curve2; 4],
     corner_angles: [f64; 4],

@@ -45,7 +45,7 @@ impl Orientation {
 }
 
 /// A face given by a B-spline surface whose knot domain is rescaled to \[0,1\]^2.
-#[derive(Clone, Debug)]
+#[derive(Clone, Debug, PartialEq)]
 struct SplineFace {
     surface: BSplineSurface,
     orientation: Orientation,
@@ -63,7 +63,7 @@ impl SplineFace {
 
 /// A face given by a triangulation with a parameter point `(a, b)` for every vertex and a
 /// uniform bucket grid over \[0,1\]^2 to locate the triangle holding a parameter point.
-#[derive(Clone, Debug)]
+#[derive(Clone, Debug, PartialEq)]
 struct MeshFace {
     uv: Vec<[f64; 2]>,
     points: Vec<Vec3>,
@@ -164,7 +164,7 @@ impl MeshFace {
     }
 }
 
-#[derive(Clone, Debug)]
+#[derive(Clone, Debug, PartialEq)]
 enum Face {
     Spline(SplineFace),
     Mesh(MeshFace),
@@ -181,7 +181,7 @@ impl Face {
 
 /// The boundary of a solid as a map from the boundary of the unit cube \[0,1\]^3: six faces,
 /// each mapping its cube face onto one side of the solid, agreeing on the cube's edges.
-#[derive(Clone, Debug)]
+#[derive(Clone, Debug, PartialEq)]
 pub struct SolidBoundary {
     faces: [Face; 6],
     corners: [Vec3; 8],

@@ -4,17 +4,15 @@
 use std::ffi::{c_char, c_int, c_void, CStr};
 use std::path::Path;
 
-use super::boundary::{check_capacity, non_null, non_null_mut, run, slice, slice_mut, Failure};
+use super::boundary::{check_capacity, non_null, non_null_mut, run, slice_mut, Failure};
 use super::mesh::call_progress;
 use super::spline::AnyMap;
 use super::{igaparam_progress_fn, igaparam_stage, igaparam_status};
-use crate::boundary::{
-    BoundaryLoop2, Coastline, CubeFaces, Curve2, Point2, SolidBoundary, TriMesh,
-};
+use crate::boundary::{BoundaryLoop2, SolidBoundary};
 use crate::domain::{DomainReport, PlanarDomain, PlanarOptions, SolidDomain, SolidOptions};
-use crate::error::{check_finite, Error, Result};
+use crate::error::{Error, Result};
 use crate::io::vtu::UnstructuredGrid;
-use crate::spline::{SplineMap, UntangleOptions, ValidityOptions, ValidityReport};
+use crate::spline::{FitRecord, SplineMap, UntangleOptions, ValidityOptions, ValidityReport};
 
 /// A planar domain bounded by four curves or a solid bounded by six surfaces, and once built its
 /// T-mesh parameterization (opaque). Create a planar one with `igaparam_domain_new_from_file` or
@@ -42,7 +40,7 @@ struct BuiltView {
 }
 
 impl igaparam_domain {
-    fn dim(&self) -> usize {
+    pub(super) fn dim(&self) -> usize {
         match self {
             igaparam_domain::Planar(..) => 2,
             igaparam_domain::Solid(..) => 3,
@@ -53,6 +51,16 @@ impl igaparam_domain {
         match self {
             igaparam_domain::Planar(_, b) => b.is_some(),
             igaparam_domain::Solid(_, b) => b.is_some(),
+        }
+    }
+
+    /// Whether the boundary was replaced (`igaparam_domain_set_boundary_*`) since the T-mesh
+    /// was built or updated.
+    fn pending(&self) -> bool {
+        match self {
+            igaparam_domain::Planar(boundary, Some(b)) => b.boundary() != boundary,
+            igaparam_domain::Solid(boundary, Some(b)) => b.boundary() != boundary.as_ref(),
+            _ => false,
         }
     }
 
@@ -291,100 +299,6 @@ pub(super) fn c_path<'a>(
     Ok(Path::new(s))
 }
 
-fn new_handle(domain: igaparam_domain, out: &mut *mut igaparam_domain) {
-    *out = Box::into_raw(Box::new(domain));
-}
-
-/// Creates a domain from a boundary file, chosen by its extension (case-insensitive):
-///
-/// - `.xml`: a G+Smo XML B-rep of four B-spline curves;
-/// - `.txt`: a coastline (points with four marked corners).
-///
-/// `path` is a NUL-terminated UTF-8 path. `out` receives the new handle, to be released with
-/// `igaparam_domain_free`. Errors: `IGAPARAM_STATUS_IO` when the file cannot be read or parsed
-/// (the message says why), `IGAPARAM_STATUS_INVALID_ARGUMENT` for another extension or when the
-/// curves do not make a closed loop with convex corners.
-#[no_mangle]
-pub extern "C" fn igaparam_domain_new_from_file(
-    path: *const c_char,
-    out: *mut *mut igaparam_domain,
-) -> igaparam_status {
-    run("igaparam_domain_new_from_file", || {
-        let out = non_null_mut(out, "out")?;
-        let path = c_path(path, "path")?;
-        let ext = path
-            .extension()
-            .and_then(|e| e.to_str())
-            .map(|e| e.to_ascii_lowercase());
-        let boundary = match ext.as_deref() {
-            Some("xml") => BoundaryLoop2::from_gismo_file(path)?,
-            Some("txt") => {
-                let coast = Coastline::read(path)?;
-                BoundaryLoop2::from_coastline(&coast)
-                    .map_err(|e| Error::new(e.kind, format!("{}: {}", path.display(), e.message)))?
-            }
-            _ => {
-                return Err(Error::invalid(format!(
-                    "{}: unknown extension; use .xml (G+Smo B-rep) or .txt (coastline)",
-                    path.display()
-                ))
-                .into())
-            }
-        };
-        new_handle(igaparam_domain::Planar(boundary, None), out);
-        Ok(())
-    })
-}
-
-/// Creates a domain bounded by four polylines.
-///
-/// - `counts`: 4 entries; `counts[i]` is the number of points of polyline i (at least 2).
-/// - `points`: 4 pointers; `points[i]` holds `counts[i] × 2` doubles (x0 y0 x1 y1 ...).
-/// - `out`: receives the new handle, to be released with `igaparam_domain_free`.
-///
-/// The polylines may be given in any order and direction: they are chained end to end into a
-/// counter-clockwise loop, the first one becoming the side u = 0. Errors:
-/// `IGAPARAM_STATUS_NOT_FINITE` for a NaN or infinite coordinate, `IGAPARAM_STATUS_INVALID_ARGUMENT`
-/// for a polyline of fewer than two distinct points, a loop that does not close, one of zero area
-/// or a corner whose interior angle reaches 180 degrees. The arrays are copied.
-#[no_mangle]
-pub extern "C" fn igaparam_domain_new_from_polylines(
-    counts: *const usize,
-    points: *const *const f64,
-    out: *mut *mut igaparam_domain,
-) -> igaparam_status {
-    run("igaparam_domain_new_from_polylines", || {
-        let out = non_null_mut(out, "out")?;
-        let counts = slice(counts, 4, "counts")?;
-        let points = slice(points, 4, "points")?;
-        let mut curves = Vec::with_capacity(4);
-        for i in 0..4 {
-            let len = counts[i]
-                .checked_mul(2)
-                .ok_or_else(|| Error::invalid(format!("counts[{i}] is too large")))?;
-            if counts[i] < 2 {
-                return Err(Error::invalid(format!(
-                    "counts[{i}] = {}, a polyline needs at least 2 points",
-                    counts[i]
-                ))
-                .into());
-            }
-            let xy = slice(points[i], len, "points[i]")?;
-            check_finite(&format!("points[{i}]"), xy)?;
-            let pts: Vec<Point2> = xy.chunks_exact(2).map(|p| [p[0], p[1]]).collect();
-            curves.push(
-                Curve2::polyline(pts)
-                    .map_err(|e| Error::new(e.kind, format!("polyline {i}: {}", e.message)))?,
-            );
-        }
-        new_handle(
-            igaparam_domain::Planar(BoundaryLoop2::from_curves(curves)?, None),
-            out,
-        );
-        Ok(())
-    })
-}
-
 /// Releases a domain. NULL is a no-op.
 #[no_mangle]
 pub extern "C" fn igaparam_domain_free(domain: *mut igaparam_domain) {
@@ -407,8 +321,41 @@ fn built<'a>(domain: *const igaparam_domain) -> std::result::Result<&'a igaparam
     }
 }
 
+/// The built domain whose T-mesh is on its current boundary, or an error if it has not been
+/// built or its boundary was replaced since (fits need the T-mesh moved first).
+pub(super) fn current<'a>(
+    domain: *const igaparam_domain,
+) -> std::result::Result<&'a igaparam_domain, Failure> {
+    let d = built(domain)?;
+    if d.pending() {
+        return Err(Error::invalid(
+            "the boundary was replaced (igaparam_domain_set_boundary_*) since the T-mesh was \
+             built: call igaparam_domain_update (or igaparam_domain_build) first",
+        )
+        .into());
+    }
+    Ok(d)
+}
+
+/// The progress of the optimization of a T-mesh as the C callback `progress` sees it
+/// (`IGAPARAM_STAGE_OPTIMIZATION`, sweeps done, total 0): false when it asks to cancel.
+pub(super) fn optimization_progress(
+    progress: igaparam_progress_fn,
+    user: *mut c_void,
+) -> impl FnMut(usize, usize) -> bool {
+    move |done, total| {
+        call_progress(
+            progress,
+            user,
+            igaparam_stage::IGAPARAM_STAGE_OPTIMIZATION,
+            done,
+            total,
+        )
+    }
+}
+
 /// The C form of a build report.
-fn c_report(r: &DomainReport) -> igaparam_domain_report {
+pub(super) fn c_report(r: &DomainReport) -> igaparam_domain_report {
     igaparam_domain_report {
         cells: r.cells,
         vertices: r.vertices,
@@ -426,69 +373,89 @@ fn c_report(r: &DomainReport) -> igaparam_domain_report {
 
 /// Runs the adaptive loop on a copy of the built domain and, on success, keeps the refined
 /// T-mesh in the handle (see `igaparam_domain_fit_adaptive`): a failed or cancelled call leaves
-/// the handle as it was.
+/// the handle as it was. Returns the map, the loop's report and the record of the map's fit.
 pub(super) fn adapt_domain(
     domain: *mut igaparam_domain,
     options: &crate::spline::AdaptOptions,
     progress: &mut dyn FnMut(usize, usize) -> bool,
-) -> std::result::Result<(AnyMap, crate::spline::AdaptReport), Failure> {
+) -> std::result::Result<(AnyMap, crate::spline::AdaptReport, FitRecord), Failure> {
     use crate::spline::adapt;
-    built(domain)?;
+    current(domain)?;
     match non_null_mut(domain, "domain")? {
         igaparam_domain::Planar(_, Some(d)) => {
             let mut copy = d.clone();
             let (map, report) = adapt(&mut copy, options, progress)?;
+            let record = map.fit_record(copy.mesh(), copy.positions(), &report.fit)?;
             *d = copy;
-            Ok((AnyMap::Two(map), report))
+            Ok((AnyMap::Two(map), report, record))
         }
         igaparam_domain::Solid(_, Some(d)) => {
             let mut copy = d.clone();
             let (map, report) = adapt(&mut copy, options, progress)?;
+            let record = map.fit_record(copy.mesh(), copy.positions(), &report.fit)?;
             *d = copy;
-            Ok((AnyMap::Three(map), report))
+            Ok((AnyMap::Three(map), report, record))
         }
         _ => Err(Error::invalid("the domain has not been built").into()),
     }
 }
-/// The checked fit of a built domain's map, untangled with the default options except the
-/// boundary offset, which is the domain's own (a domain built to keep its boundary keeps it in
-/// the spline map too).
+
+/// The untangling options of a built domain's fits: the defaults except the boundary offset,
+/// which is the domain's own (a domain built to keep its boundary keeps it in the spline map
+/// too).
+pub(super) fn untangle_options<const D: usize, B: crate::domain::CubeMap<D>>(
+    domain: &crate::domain::Domain<D, B>,
+) -> UntangleOptions {
+    UntangleOptions {
+        boundary_offset: domain.options().boundary_offset,
+        ..Default::default()
+    }
+}
+
+/// A fitted map with its fit report, the validity the fit computed (with its options) and the
+/// record of the fit for refits.
+pub(super) type Fitted = (
+    AnyMap,
+    crate::spline::FitReport,
+    (ValidityOptions, ValidityReport),
+    FitRecord,
+);
+
+/// The checked fit of a built domain's map, untangled with [`untangle_options`], and its
+/// record.
 fn fit_tmesh<const D: usize, B: crate::domain::CubeMap<D>>(
     domain: &crate::domain::Domain<D, B>,
     options: &ValidityOptions,
-) -> crate::error::Result<(SplineMap<D>, crate::spline::FitReport, ValidityReport)> {
-    let untangle = UntangleOptions {
-        boundary_offset: domain.options().boundary_offset,
-        ..Default::default()
-    };
-    SplineMap::fit_tmesh_checked(domain.mesh(), domain.positions(), options, &untangle)
+) -> Result<(
+    SplineMap<D>,
+    crate::spline::FitReport,
+    ValidityReport,
+    FitRecord,
+)> {
+    let untangle = untangle_options(domain);
+    let (map, report, validity) =
+        SplineMap::fit_tmesh_checked(domain.mesh(), domain.positions(), options, &untangle)?;
+    let record = map.fit_record(domain.mesh(), domain.positions(), &report)?;
+    Ok((map, report, validity, record))
 }
 
 /// Fits the spline map of the built domain (see `igaparam_spline_fit_domain`); returns it with
-/// its fit report and the validity the fit computed, with the (default) options of that.
-pub(super) fn fit_domain(
-    domain: *const igaparam_domain,
-) -> std::result::Result<
-    (
-        AnyMap,
-        crate::spline::FitReport,
-        (ValidityOptions, ValidityReport),
-    ),
-    Failure,
-> {
+/// its fit report, the validity the fit computed, with the (default) options of that, and the
+/// record of the fit.
+pub(super) fn fit_domain(domain: *const igaparam_domain) -> std::result::Result<Fitted, Failure> {
     let options = ValidityOptions::default();
-    let (map, report, validity) = match built(domain)? {
+    let (map, report, validity, record) = match current(domain)? {
         igaparam_domain::Planar(_, Some(d)) => {
-            let (map, report, validity) = fit_tmesh(d, &options)?;
-            (AnyMap::Two(map), report, validity)
+            let (map, report, validity, record) = fit_tmesh(d, &options)?;
+            (AnyMap::Two(map), report, validity, record)
         }
         igaparam_domain::Solid(_, Some(d)) => {
-            let (map, report, validity) = fit_tmesh(d, &options)?;
-            (AnyMap::Three(map), report, validity)
+            let (map, report, validity, record) = fit_tmesh(d, &options)?;
+            (AnyMap::Three(map), report, validity, record)
         }
         _ => return Err(Error::invalid("the domain has not been built").into()),
     };
-    Ok((map, report, (options, validity)))
+    Ok((map, report, (options, validity), record))
 }
 
 /// Adapts a T-mesh to the boundary (refining boundary cells until `options.tolerance` or
@@ -514,15 +481,7 @@ pub extern "C" fn igaparam_domain_build(
             *non_null(options, "options")?
         };
         let opts = planar_options(&raw)?;
-        let mut progress = |done: usize, total: usize| {
-            call_progress(
-                raw.progress,
-                raw.progress_user,
-                igaparam_stage::IGAPARAM_STAGE_OPTIMIZATION,
-                done,
-                total,
-            )
-        };
+        let mut progress = optimization_progress(raw.progress, raw.progress_user);
         let r = match d {
             igaparam_domain::Planar(boundary, built) => {
                 let (planar, r) = PlanarDomain::build(boundary.clone(), &opts, &mut progress)?;
@@ -691,143 +650,6 @@ pub extern "C" fn igaparam_domain_dimension(
     run("igaparam_domain_dimension", || {
         let d = non_null(domain, "domain")?.dim();
         *non_null_mut(out, "out")? = d;
-        Ok(())
-    })
-}
-
-/// Creates a solid from a boundary file or folder:
-///
-/// - a `.xml` file: a G+Smo XML B-rep of six B-spline surfaces (found and oriented from their
-///   shared edges and corners);
-/// - a folder: six triangulated faces `xmin, xmax, ymin, ymax, zmin, zmax` (`.obj`), each mapped
-///   onto its face of the unit cube by Floater's mean-value parameterization.
-///
-/// `path` is a NUL-terminated UTF-8 path. `out` receives the new handle, to be released with
-/// `igaparam_domain_free`. Errors: `IGAPARAM_STATUS_IO` when a file cannot be read or parsed,
-/// `IGAPARAM_STATUS_INVALID_ARGUMENT` for another kind of path, `IGAPARAM_STATUS_INVALID_MESH` when
-/// the surfaces do not share their edges and corners (the message says which). Same as
-/// `igaparam_domain_new_solid_from_file_scaled` with `scale` NULL.
-#[no_mangle]
-pub extern "C" fn igaparam_domain_new_solid_from_file(
-    path: *const c_char,
-    out: *mut *mut igaparam_domain,
-) -> igaparam_status {
-    new_solid_from_file(
-        "igaparam_domain_new_solid_from_file",
-        path,
-        std::ptr::null(),
-        out,
-    )
-}
-
-/// Creates a solid from a boundary file or folder as `igaparam_domain_new_solid_from_file`,
-/// with every coordinate of the input multiplied by its axis' factor first: `scale` is NULL (no
-/// scaling) or points to 3 doubles `fx, fy, fz`, each finite and positive. The vertices of
-/// triangulated faces, or the control points of a B-rep's surfaces (exact for B-splines and
-/// NURBS), are scaled before the faces are parameterized; the solid, its T-mesh and its spline
-/// map are in the scaled coordinates. Use it for data whose axes are in different units (a
-/// terrain in degrees and kilometres, say): Floater's map measures angles in the coordinates it
-/// is given, so the T-mesh depends on them, not only on the solid's figure.
-///
-/// Errors: those of `igaparam_domain_new_solid_from_file`, and
-/// `IGAPARAM_STATUS_INVALID_ARGUMENT` for a factor that is NaN, infinite, zero or negative
-/// (checked before any file is read). `*out` is left unchanged on error.
-#[no_mangle]
-pub extern "C" fn igaparam_domain_new_solid_from_file_scaled(
-    path: *const c_char,
-    scale: *const f64,
-    out: *mut *mut igaparam_domain,
-) -> igaparam_status {
-    new_solid_from_file(
-        "igaparam_domain_new_solid_from_file_scaled",
-        path,
-        scale,
-        out,
-    )
-}
-
-/// The body of the two `igaparam_domain_new_solid_from_file*` functions (`function` names the
-/// caller in messages); `scale` is NULL or 3 factors.
-fn new_solid_from_file(
-    function: &str,
-    path: *const c_char,
-    scale: *const f64,
-    out: *mut *mut igaparam_domain,
-) -> igaparam_status {
-    run(function, || {
-        let out = non_null_mut(out, "out")?;
-        let path = c_path(path, "path")?;
-        let scale = if scale.is_null() {
-            None
-        } else {
-            let f = slice(scale, 3, "scale")?;
-            Some([f[0], f[1], f[2]])
-        };
-        let boundary = SolidBoundary::from_file_scaled(path, scale)?;
-        new_handle(igaparam_domain::Solid(Box::new(boundary), None), out);
-        Ok(())
-    })
-}
-
-/// Creates a solid bounded by six triangulated faces, in the order `xmin, xmax, ymin, ymax, zmin,
-/// zmax` of the unit cube's faces.
-///
-/// - `vertex_counts`, `triangle_counts`: 6 entries each;
-/// - `xyz`: 6 pointers; `xyz[f]` holds `vertex_counts[f] × 3` doubles (x0 y0 z0 x1 ...);
-/// - `triangles`: 6 pointers; `triangles[f]` holds `triangle_counts[f] × 3` vertex indices of
-///   face f, counting from 0;
-/// - `out`: receives the new handle, to be released with `igaparam_domain_free`.
-///
-/// Each face must be a disk; faces that touch share their edge vertices with identical
-/// coordinates, and the vertex shared by three faces is a cube corner. Errors:
-/// `IGAPARAM_STATUS_NULL_ARGUMENT` for a NULL array (a face's arrays may be NULL only when
-/// empty), `IGAPARAM_STATUS_NOT_FINITE` for a NaN or infinite coordinate,
-/// `IGAPARAM_STATUS_INVALID_MESH` for a triangle with an index out of range or a repeated vertex,
-/// and for faces that do not match on their edges or corners. The arrays are copied.
-#[no_mangle]
-pub extern "C" fn igaparam_domain_new_solid_from_triangulations(
-    vertex_counts: *const usize,
-    xyz: *const *const f64,
-    triangle_counts: *const usize,
-    triangles: *const *const u32,
-    out: *mut *mut igaparam_domain,
-) -> igaparam_status {
-    run("igaparam_domain_new_solid_from_triangulations", || {
-        let out = non_null_mut(out, "out")?;
-        let vertex_counts = slice(vertex_counts, 6, "vertex_counts")?;
-        let triangle_counts = slice(triangle_counts, 6, "triangle_counts")?;
-        let xyz = slice(xyz, 6, "xyz")?;
-        let triangles = slice(triangles, 6, "triangles")?;
-        let mut faces = Vec::with_capacity(6);
-        for f in 0..6 {
-            let name = crate::boundary::CUBE_FACE_NAMES[f];
-            let nv = vertex_counts[f]
-                .checked_mul(3)
-                .ok_or_else(|| Error::invalid(format!("vertex_counts[{f}] is too large")))?;
-            let nt = triangle_counts[f]
-                .checked_mul(3)
-                .ok_or_else(|| Error::invalid(format!("triangle_counts[{f}] is too large")))?;
-            let points = slice(xyz[f], nv, "xyz[f]")?;
-            check_finite(&format!("xyz[{f}] ({name})"), points)?;
-            let tri = slice(triangles[f], nt, "triangles[f]")?;
-            let mesh = TriMesh::new(
-                points.chunks_exact(3).map(|p| [p[0], p[1], p[2]]).collect(),
-                tri.chunks_exact(3)
-                    .map(|t| [t[0] as usize, t[1] as usize, t[2] as usize])
-                    .collect(),
-            )
-            .map_err(|e| Error::new(e.kind, format!("face {name}: {}", e.message)))?;
-            faces.push(mesh);
-        }
-        let cube = CubeFaces {
-            faces: faces
-                .try_into()
-                .map_err(|_| Error::invalid("six faces are needed"))?,
-        };
-        new_handle(
-            igaparam_domain::Solid(Box::new(SolidBoundary::from_cube_faces(&cube)?), None),
-            out,
-        );
         Ok(())
     })
 }

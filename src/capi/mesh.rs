@@ -7,7 +7,7 @@ use super::boundary::{
 };
 use super::igaparam_status;
 use crate::error::{Error, Result};
-use crate::homesh::{CellType, Mesh, Placement, RelocateOptions, Stage};
+use crate::homesh::{CellType, Mesh, Method, Placement, RelocateOptions, Stage};
 use crate::optimize::TargetKind;
 
 /// A quadrilateral or hexahedral finite-element mesh with node constraints (opaque).
@@ -46,6 +46,24 @@ pub type igaparam_placement = c_int;
 pub const IGAPARAM_PLACEMENT_LAPLACIAN: igaparam_placement = 0;
 /// The current positions, as they are.
 pub const IGAPARAM_PLACEMENT_CURRENT: igaparam_placement = 1;
+/// Warm start for loops: the positions of the last successful relocation plus the harmonic
+/// extension of the prescribed motion since then (the first relocation of a mesh starts as
+/// `IGAPARAM_PLACEMENT_LAPLACIAN`); the targets stay the reference shapes. Use it when the
+/// boundary moves a little at every call, as in a shape-optimization loop.
+pub const IGAPARAM_PLACEMENT_INCREMENTAL: igaparam_placement = 2;
+
+/// How the free nodes are carried to the optimum: one of the `IGAPARAM_METHOD_*` values.
+pub type igaparam_method = c_int;
+/// `IGAPARAM_METHOD_NEWTON` where the Hessian's Cholesky factor is small (2D meshes, 3D meshes
+/// up to about 20,000 nodes), else `IGAPARAM_METHOD_SWEEPS` (default).
+pub const IGAPARAM_METHOD_AUTO: igaparam_method = 0;
+/// The per-node optimizer's coloured Gauss–Seidel sweeps, large motions in steps placed
+/// harmonically; with `stationarity_tolerance > 0`, followed by the Newton stage.
+pub const IGAPARAM_METHOD_SWEEPS: igaparam_method = 1;
+/// Path following of the optimum of the global objective: each step predicted by the tangent of
+/// the optimum (the linearised response of the mesh to the motion) and corrected by Newton's
+/// method; the sweeps are the fallback where a step cannot be made (e.g. a tangled start).
+pub const IGAPARAM_METHOD_NEWTON: igaparam_method = 2;
 
 /// A stage of long work, passed to the progress callback.
 #[repr(C)]
@@ -59,6 +77,9 @@ pub enum igaparam_stage {
     /// Adaptive refinement of a domain's T-mesh from the quality of its spline map: `done`
     /// rounds of `total` at most.
     IGAPARAM_STAGE_ADAPTATION = 2,
+    /// Newton iterations on the global objective (`stationarity_tolerance`): `done` so far,
+    /// `total` 0.
+    IGAPARAM_STAGE_STATIONARITY = 3,
 }
 
 /// Progress callback: `user` is the options' `progress_user`; `done` of `total` steps of `stage`
@@ -94,7 +115,8 @@ pub(super) fn call_progress(
 pub struct igaparam_relocate_options {
     /// `IGAPARAM_TARGET_INITIAL` (default) or `IGAPARAM_TARGET_MASTER`.
     pub target: igaparam_target,
-    /// `IGAPARAM_PLACEMENT_LAPLACIAN` (default) or `IGAPARAM_PLACEMENT_CURRENT`.
+    /// `IGAPARAM_PLACEMENT_LAPLACIAN` (default), `IGAPARAM_PLACEMENT_CURRENT` or
+    /// `IGAPARAM_PLACEMENT_INCREMENTAL`.
     pub placement: igaparam_placement,
     /// Non-zero (default) runs the optimizer after the placement; 0 stops after the placement.
     pub optimize: c_int,
@@ -115,6 +137,15 @@ pub struct igaparam_relocate_options {
     /// Worker threads, at most 4096; 0 (default) uses one per core. The result does not depend
     /// on it.
     pub threads: u32,
+    /// When positive, the result is a stationary point of the one global objective
+    /// F = sum over cells of their mean distortion (regularisation 0, so F is infinite at a
+    /// fold): the report's `gradient_norm` is at most this (e.g. 1e-10), reached by Newton's
+    /// method with the sparse Hessian on a valid mesh; `igaparam_mesh_adjoint` and
+    /// `igaparam_mesh_tangent` then differentiate the result. 0 (default): no such guarantee
+    /// (the sweeps stop on their own rule, the Newton method at 1e-8).
+    pub stationarity_tolerance: f64,
+    /// `IGAPARAM_METHOD_AUTO` (default), `IGAPARAM_METHOD_SWEEPS` or `IGAPARAM_METHOD_NEWTON`.
+    pub method: igaparam_method,
     /// Progress callback, or NULL (default).
     pub progress: igaparam_progress_fn,
     /// Passed to `progress` as its first argument.
@@ -147,8 +178,15 @@ pub struct igaparam_relocate_report {
     /// Steps the prescribed motion was applied in (large motions are split so that no prescribed
     /// node moves more than about one cell size per step).
     pub steps: u32,
-    /// 1 when the sweeps met their stopping rule (valid mesh, small moves), else 0.
+    /// 1 when the sweeps met their stopping rule (valid mesh, small moves) and, when asked for,
+    /// the Newton stage its `stationarity_tolerance`; else 0.
     pub converged: c_int,
+    /// Scaled max-norm of the gradient of F at the end: over the free coordinates,
+    /// |dF/dx| times the node's local cell size divided by its number of cells (the gradient of
+    /// the node's own objective times its size; dimensionless). Infinite for an invalid mesh.
+    pub gradient_norm: f64,
+    /// Newton iterations of the stationarity stage.
+    pub newton_iterations: u32,
     /// Wall-clock seconds of the call.
     pub seconds: f64,
 }
@@ -167,6 +205,8 @@ pub extern "C" fn igaparam_relocate_options_default() -> igaparam_relocate_optio
         max_newton_iterations: d.max_newton_iterations,
         relaxation: d.relaxation,
         threads: d.threads as u32,
+        stationarity_tolerance: d.stationarity_tolerance,
+        method: IGAPARAM_METHOD_AUTO,
         progress: None,
         progress_user: std::ptr::null_mut(),
     }
@@ -194,9 +234,10 @@ fn relocate_options(o: &igaparam_relocate_options) -> Result<RelocateOptions> {
     let placement = match o.placement {
         IGAPARAM_PLACEMENT_LAPLACIAN => Placement::Laplacian,
         IGAPARAM_PLACEMENT_CURRENT => Placement::Current,
+        IGAPARAM_PLACEMENT_INCREMENTAL => Placement::Incremental,
         p => {
             return Err(Error::invalid(format!(
-                "placement {p} is neither IGAPARAM_PLACEMENT_LAPLACIAN (0) nor IGAPARAM_PLACEMENT_CURRENT (1)"
+                "placement {p} is not IGAPARAM_PLACEMENT_LAPLACIAN (0), IGAPARAM_PLACEMENT_CURRENT (1) or IGAPARAM_PLACEMENT_INCREMENTAL (2)"
             )))
         }
     };
@@ -210,6 +251,17 @@ fn relocate_options(o: &igaparam_relocate_options) -> Result<RelocateOptions> {
         max_newton_iterations: o.max_newton_iterations,
         relaxation: o.relaxation,
         threads: o.threads as usize,
+        stationarity_tolerance: o.stationarity_tolerance,
+        method: match o.method {
+            IGAPARAM_METHOD_AUTO => Method::Auto,
+            IGAPARAM_METHOD_SWEEPS => Method::Sweeps,
+            IGAPARAM_METHOD_NEWTON => Method::Newton,
+            m => {
+                return Err(Error::invalid(format!(
+                    "method {m} is not IGAPARAM_METHOD_AUTO (0), IGAPARAM_METHOD_SWEEPS (1) or IGAPARAM_METHOD_NEWTON (2)"
+                )))
+            }
+        },
     })
 }
 
@@ -375,7 +427,7 @@ pub extern "C" fn igaparam_mesh_relocate(
     report: *mut igaparam_relocate_report,
 ) -> igaparam_status {
     run("igaparam_mesh_relocate", || {
-        let m = with_mesh_mut(mesh)?;
+        let handle = non_null_mut(mesh, "mesh")?;
         let raw = if options.is_null() {
             igaparam_relocate_options_default()
         } else {
@@ -386,12 +438,12 @@ pub extern "C" fn igaparam_mesh_relocate(
             let stage = match stage {
                 Stage::Placement => igaparam_stage::IGAPARAM_STAGE_PLACEMENT,
                 Stage::Optimization => igaparam_stage::IGAPARAM_STAGE_OPTIMIZATION,
+                Stage::Stationarity => igaparam_stage::IGAPARAM_STAGE_STATIONARITY,
             };
             call_progress(raw.progress, raw.progress_user, stage, done, total)
         };
-        let mut candidate = m.clone();
-        let r = candidate.relocate(&opts, &mut progress)?;
-        *m = candidate;
+        // Mesh::relocate changes nothing on error or cancellation.
+        let r = handle.mesh.relocate(&opts, &mut progress)?;
         if !report.is_null() {
             *non_null_mut(report, "report")? = igaparam_relocate_report {
                 cells: r.cells,
@@ -405,6 +457,8 @@ pub extern "C" fn igaparam_mesh_relocate(
                 sweeps: r.sweeps,
                 steps: r.steps,
                 converged: r.converged as c_int,
+                gradient_norm: r.gradient_norm,
+                newton_iterations: r.newton_iterations,
                 seconds: r.seconds,
             };
         }
@@ -515,6 +569,62 @@ pub extern "C" fn igaparam_mesh_invalid_cell_count(
         let m = with_mesh(mesh)?;
         let n = m.invalid_cell_count()?;
         *non_null_mut(out, "out")? = n;
+        Ok(())
+    })
+}
+
+/// The adjoint product of the last relocation: `dj_dx` holds the partial derivatives dJ/dx of a
+/// scalar J of the node positions (`size` = 3 × num_nodes doubles, x0 y0 z0 x1 ...);
+/// `dj_dprescribed` (`size` doubles) receives the total derivative of J with respect to every
+/// prescribed coordinate, dJ/dx_p = dJ/dx_p (partial) − H_pf H_ff⁻¹ dJ/dx_f, through the
+/// relocation's dependence of the free coordinates on the prescribed ones (implicit function
+/// theorem at the stationary point; H the Hessian of F), and 0 at the free coordinates.
+///
+/// Free coordinates: those whose constraint bit is clear, of nodes that belong to a cell
+/// (sliding nodes have both kinds); all others are prescribed, and z of every node of a 2D mesh.
+/// Needs a last relocation with `stationarity_tolerance > 0` that reached it on a valid mesh;
+/// `igaparam_mesh_move_nodes`, `igaparam_mesh_set_fixed`, `igaparam_mesh_reset_reference` and
+/// a new relocation invalidate the state (the call then fails and says why). The factorisation
+/// of H_ff (2D meshes and small 3D ones) is kept on the handle, so further products at one
+/// state cost a solve each; larger 3D meshes solve by preconditioned conjugate gradients.
+/// Uses the thread count of the last relocation.
+#[no_mangle]
+pub extern "C" fn igaparam_mesh_adjoint(
+    mesh: *const igaparam_mesh,
+    size: usize,
+    dj_dx: *const f64,
+    dj_dprescribed: *mut f64,
+) -> igaparam_status {
+    run("igaparam_mesh_adjoint", || {
+        let handle = non_null(mesh, "mesh")?;
+        // The input is read before the output is written, so the two may be one array.
+        let threads = handle.mesh.last_threads();
+        let result = handle.mesh.adjoint(threads, slice(dj_dx, size, "dj_dx")?)?;
+        slice_mut(dj_dprescribed, size, "dj_dprescribed")?.copy_from_slice(&result);
+        Ok(())
+    })
+}
+
+/// The tangent product of the last relocation (the transpose of `igaparam_mesh_adjoint`):
+/// `dx_prescribed` (`size` = 3 × num_nodes doubles) is a motion of the prescribed coordinates
+/// (its entries at free coordinates are ignored); `dx` (`size` doubles) receives the first-order
+/// motion of every node: the given motion at prescribed coordinates, −H_ff⁻¹ H_fp dx_p at free
+/// ones. Same conditions as `igaparam_mesh_adjoint`.
+#[no_mangle]
+pub extern "C" fn igaparam_mesh_tangent(
+    mesh: *const igaparam_mesh,
+    size: usize,
+    dx_prescribed: *const f64,
+    dx: *mut f64,
+) -> igaparam_status {
+    run("igaparam_mesh_tangent", || {
+        let handle = non_null(mesh, "mesh")?;
+        // The input is read before the output is written, so the two may be one array.
+        let threads = handle.mesh.last_threads();
+        let result = handle
+            .mesh
+            .tangent(threads, slice(dx_prescribed, size, "dx_prescribed")?)?;
+        slice_mut(dx, size, "dx")?.copy_from_slice(&result);
         Ok(())
     })
 }

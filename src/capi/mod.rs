@@ -11,6 +11,8 @@
 
 mod boundary;
 mod domain;
+mod domain_input;
+mod domain_update;
 mod mesh;
 mod mesh_io;
 mod node_order;
@@ -18,6 +20,8 @@ mod spline;
 
 pub use boundary::{igaparam_last_error_message, igaparam_status, igaparam_version};
 pub use domain::*;
+pub use domain_input::*;
+pub use domain_update::*;
 pub use mesh::*;
 pub use mesh_io::*;
 pub use node_order::*;

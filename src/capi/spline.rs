@@ -12,9 +12,12 @@ use super::mesh::call_progress;
 use super::{igaparam_progress_fn, igaparam_stage};
 use crate::error::{check_finite, Error, Result};
 use crate::spline::{
-    AdaptOptions, FitReport, SplineMap, SplineSpace, ValidityOptions, ValidityReport,
+    AdaptOptions, FitRecord, FitReport, SplineMap, SplineSpace, ValidityOptions, ValidityReport,
     HISTOGRAM_BINS,
 };
+
+mod refit;
+pub use refit::*;
 
 /// The spline map of a 2D or 3D domain.
 #[derive(Clone, Debug)]
@@ -45,6 +48,9 @@ pub struct igaparam_spline {
     /// computed with; `igaparam_spline_check_validity` returns it for equal options. Every change
     /// of `map` goes through [`igaparam_spline::set_map`], which drops it.
     validity: Option<(ValidityOptions, ValidityReport)>,
+    /// The rule (and untangling correction) of the fit that produced `map`, for
+    /// `igaparam_spline_refit`; `None` for a map read from a file.
+    fit: Option<FitRecord>,
 }
 
 impl igaparam_spline {
@@ -149,8 +155,18 @@ fn new_handle(
     validity: Option<(ValidityOptions, ValidityReport)>,
     out: *mut *mut igaparam_spline,
 ) -> std::result::Result<(), Failure> {
+    new_recorded_handle(map, validity, None, out)
+}
+
+/// Writes a new handle to `*out`, with the record of the fit that made `map`, when known.
+fn new_recorded_handle(
+    map: AnyMap,
+    validity: Option<(ValidityOptions, ValidityReport)>,
+    fit: Option<FitRecord>,
+    out: *mut *mut igaparam_spline,
+) -> std::result::Result<(), Failure> {
     let out = non_null_mut(out, "out")?;
-    *out = Box::into_raw(Box::new(igaparam_spline { map, validity }));
+    *out = Box::into_raw(Box::new(igaparam_spline { map, validity, fit }));
     Ok(())
 }
 
@@ -231,11 +247,11 @@ pub extern "C" fn igaparam_spline_fit_domain(
 ) -> igaparam_status {
     run("igaparam_spline_fit_domain", || {
         non_null_mut(out, "out")?;
-        let (map, r, validity) = fit_domain(domain)?;
+        let (map, r, validity, record) = fit_domain(domain)?;
         if !report.is_null() {
             *non_null_mut(report, "report")? = fit_report(&r);
         }
-        new_handle(map, Some(validity), out)
+        new_recorded_handle(map, Some(validity), Some(record), out)
     })
 }
 
@@ -357,7 +373,7 @@ pub extern "C" fn igaparam_domain_fit_adaptive(
                 total,
             )
         };
-        let (map, mut r) = adapt_domain(domain, &opts, &mut progress)?;
+        let (map, mut r, record) = adapt_domain(domain, &opts, &mut progress)?;
         let last = r.rounds.last().copied().unwrap_or_default();
         if !report.is_null() {
             *non_null_mut(report, "report")? = igaparam_adapt_report {
@@ -373,7 +389,7 @@ pub extern "C" fn igaparam_domain_fit_adaptive(
             };
         }
         let validity = std::mem::take(&mut r.validity);
-        new_handle(map, Some((opts.validity, validity)), out)
+        new_recorded_handle(map, Some((opts.validity, validity)), Some(record), out)
     })
 }
 
@@ -417,7 +433,7 @@ pub extern "C" fn igaparam_spline_clone(
 ) -> igaparam_status {
     run("igaparam_spline_clone", || {
         let s = non_null(spline, "spline")?;
-        new_handle(s.map.clone(), s.validity.clone(), out)
+        new_recorded_handle(s.map.clone(), s.validity.clone(), s.fit.clone(), out)
     })
 }
 

@@ -340,52 +340,10 @@ impl<const D: usize, B: CubeMap<D>> Domain<D, B> {
             quality: QualitySummary::of(&pool, &problem, &x).quality,
             framed: x,
         };
-        let mut sweeps = stats.sweeps;
-        // Folds that the boundary vertices alone cause where two faces meet at a reflex angle
-        // (a jittered or jagged seam) are relieved before, and after, every refinement.
-        let done = sweeps as usize;
-        let (mut invalid, s) = domain.relieve(options, &pool, &mut |d| progress(done + d, 0))?;
-        sweeps += s;
-        let mut repair_rounds = 0;
-        // The repair keeps the state with the fewest invalid cells, and stops once two rounds in
-        // a row have increased their number: where the boundary itself folds at every scale (a seam of two
-        // triangulated faces meeting at a reflex angle), refining only multiplies the folds.
-        let mut best = (invalid.len(), domain.state());
-        let mut growing = 0;
-        while !invalid.is_empty() && repair_rounds < options.repair_rounds && growing < 2 {
-            let refinable: Vec<usize> = invalid
-                .iter()
-                .copied()
-                .filter(|&c| domain.mesh.cell_level(c) < MAX_REPAIR_LEVEL)
-                .collect();
-            if refinable.is_empty() {
-                break;
-            }
-            let done = sweeps as usize;
-            sweeps += domain
-                .refine_in_place(&refinable, options, &pool, &mut |d| progress(done + d, 0))?
-                .1;
-            let done = sweeps as usize;
-            let (still_invalid, s) =
-                domain.relieve(options, &pool, &mut |d| progress(done + d, 0))?;
-            sweeps += s;
-            // Folds on the cube's edges may open only once their chords are a few levels
-            // shorter, so a round or two with more invalid cells is no failure; a count that
-            // keeps growing is.
-            growing = if still_invalid.len() > invalid.len() {
-                growing + 1
-            } else {
-                0
-            };
-            invalid = still_invalid;
-            repair_rounds += 1;
-            if invalid.len() < best.0 {
-                best = (invalid.len(), domain.state());
-            }
-        }
-        if invalid.len() > best.0 {
-            domain.restore(best.1);
-        }
+        let done = stats.sweeps as usize;
+        let (sweeps, repair_rounds) =
+            domain.relieve_and_repair(options, &pool, &mut |d| progress(done + d, 0))?;
+        let sweeps = stats.sweeps + sweeps;
         stages.repair = clock.elapsed().as_secs_f64();
         let mut report = domain.report(&pool)?;
         report.invalid_after_placement = invalid_after_placement;
@@ -394,23 +352,6 @@ impl<const D: usize, B: CubeMap<D>> Domain<D, B> {
         report.stages = stages;
         report.seconds = start.elapsed().as_secs_f64();
         Ok((domain, report))
-    }
-
-    /// The T-mesh and its positions, to be restored by [`Domain::restore`].
-    fn state(&self) -> MeshState<D> {
-        MeshState {
-            mesh: self.mesh.clone(),
-            framed: self.framed.clone(),
-            positions: self.positions.clone(),
-            quality: self.quality.clone(),
-        }
-    }
-
-    fn restore(&mut self, state: MeshState<D>) {
-        self.mesh = state.mesh;
-        self.framed = state.framed;
-        self.positions = state.positions;
-        self.quality = state.quality;
     }
 
     /// The boundary map as the optimizer sees it: oriented, in the frame's coordinates.
@@ -534,20 +475,12 @@ impl<const D: usize, B: CubeMap<D>> Domain<D, B> {
     }
 }
 
-/// A saved T-mesh with its positions.
-struct MeshState<const D: usize> {
-    mesh: TMesh<D>,
-    framed: Vec<[f64; D]>,
-    positions: Vec<[f64; D]>,
-    quality: Vec<f64>,
-}
-
 /// Deepest level the repair refines to.
 pub(super) const MAX_REPAIR_LEVEL: u8 = 16;
 
 /// `√d^d`: the measure of a facet error equal to the tolerance, in frame coordinates (the
 /// diagonal of the unit box to the power d).
-fn facet_scale<const D: usize>() -> f64 {
+pub(super) fn facet_scale<const D: usize>() -> f64 {
     (D as f64).powf(D as f64 / 2.0)
 }
 

@@ -1,16 +1,19 @@
 //! From a boundary to an optimized T-mesh parameterization of the interior (stages 2–3 of the
 //! method): adapt a balanced quadtree/octree to the boundary, place the vertices (boundary ones on
 //! the boundary, inner ones by transfinite interpolation), then untangle and smooth with the
-//! optimizer.
+//! optimizer; move the boundary of a built domain keeping its tree.
 
 mod build;
 mod frame;
 mod planar;
 mod refine;
 mod relief;
+mod repair;
 mod solid;
+mod update;
 
 pub use build::{transfinite, CubeMap, Domain, DomainOptions, DomainReport, StageSeconds};
 pub use frame::Frame;
 pub use planar::{PlanarDomain, PlanarOptions, PlanarReport};
 pub use solid::{SolidDomain, SolidOptions, SolidReport};
+pub use update::{UpdateOptions, UpdateReport};

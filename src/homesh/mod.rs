@@ -4,15 +4,39 @@
 
 mod cell_type;
 mod from_vtu;
+mod newton;
 mod node_order;
 mod relocate;
+mod sensitivity;
 
 pub use cell_type::CellType;
 pub use node_order::NodeOrder;
-pub use relocate::{Placement, RelocateOptions, RelocateReport, Stage};
+pub use relocate::{
+    Method, Placement, RelocateOptions, RelocateReport, Stage, DEFAULT_NEWTON_TOLERANCE,
+};
+
+use std::sync::Arc;
 
 use crate::error::{check_finite, Error, Result};
+use crate::optimize::blocks::BlockLayout;
+use crate::optimize::solver::SolverSetup;
 use crate::optimize::{CellPattern, CellSpec, Problem, TargetKind};
+
+/// A Hessian solver of either dimension (`HessianSolver<2>` or `<3>`), shared between a mesh
+/// and its clones.
+type Solver = Arc<dyn std::any::Any + Send + Sync>;
+
+/// Node positions with, where known, the solver of the Hessian there (for the constraints and
+/// reference of the mesh when it was stored).
+#[derive(Clone, Debug)]
+struct State {
+    positions: Vec<[f64; 3]>,
+    solver: Option<Solver>,
+    /// Whether `positions` are a stationary point of the objective (to the tolerance asked for).
+    stationary: bool,
+    /// Worker threads of the relocation that made this state.
+    threads: usize,
+}
 
 /// A quad or hex mesh with one cell type, reference and current node positions, and per-node
 /// constraints.
@@ -26,6 +50,17 @@ pub struct Mesh {
     positions: Vec<[f64; 3]>,
     connectivity: Vec<u32>,
     fixed: Vec<u8>,
+    /// The state of the last successful relocation: where `Placement::Incremental` starts.
+    last: Option<State>,
+    /// Whether the sensitivities of `last` hold for the mesh as it is; else why not.
+    sensitivity: std::result::Result<(), String>,
+    /// The optimum at the reference shape's prescribed coordinates, for the target it was
+    /// computed with: where path following from the reference starts.
+    reference_state: Option<(TargetKind, State)>,
+    /// The layout of the Hessian (depends on the connectivity only), built when first needed.
+    layout: Option<Arc<BlockLayout>>,
+    /// The Hessian solvers' setup for the current constraints, built when first needed.
+    setup: Option<Arc<SolverSetup>>,
     /// The node order the connectivity was given in (kept in VTK's order here).
     order: NodeOrder,
 }
@@ -86,6 +121,11 @@ impl Mesh {
             positions,
             connectivity: conn,
             fixed: vec![0; node_count],
+            last: None,
+            sensitivity: Err("no relocation has run yet".into()),
+            reference_state: None,
+            layout: None,
+            setup: None,
             order: NodeOrder::Vtk,
         })
     }
@@ -141,7 +181,12 @@ impl Mesh {
                 mask[i]
             )));
         }
-        self.fixed = mask.to_vec();
+        if self.fixed != mask {
+            self.fixed = mask.to_vec();
+            self.setup = None;
+            self.forget_solvers();
+            self.invalidate_sensitivity("the constraints were changed since the last relocation");
+        }
         Ok(())
     }
 
@@ -174,6 +219,7 @@ impl Mesh {
                 for (&v, p) in idx.iter().zip(xyz.chunks(3)) {
                     self.positions[v] = [p[0], p[1], p[2]];
                 }
+                self.invalidate_sensitivity(MOVED);
             }
             None => {
                 if count > n {
@@ -182,6 +228,7 @@ impl Mesh {
                 for (v, p) in xyz.chunks(3).enumerate() {
                     self.positions[v] = [p[0], p[1], p[2]];
                 }
+                self.invalidate_sensitivity(MOVED);
             }
         }
         Ok(())
@@ -191,6 +238,29 @@ impl Mesh {
     /// shape-optimization loop).
     pub fn reset_reference(&mut self) {
         self.reference = self.positions.clone();
+        self.forget_solvers();
+        self.invalidate_sensitivity("the reference shape was reset since the last relocation");
+    }
+
+    /// Worker threads of the last relocation (0 before any): the sensitivity products of the C
+    /// API use them.
+    pub fn last_threads(&self) -> usize {
+        self.last.as_ref().map_or(0, |last| last.threads)
+    }
+
+    /// Drops the sensitivities of the last relocation, if there are, saying why.
+    fn invalidate_sensitivity(&mut self, why: &str) {
+        if self.sensitivity.is_ok() {
+            self.sensitivity = Err(why.to_string());
+        }
+    }
+
+    /// Drops the stored Hessians (after a change of the constraints or of the targets).
+    fn forget_solvers(&mut self) {
+        self.reference_state = None;
+        if let Some(last) = self.last.as_mut() {
+            last.solver = None;
+        }
     }
 
     /// The optimizer's view of the mesh in dimension `D`.
@@ -238,6 +308,9 @@ impl Mesh {
             .count())
     }
 }
+
+/// Why a mesh whose nodes were moved has no sensitivities.
+const MOVED: &str = "nodes were moved since the last relocation";
 
 /// The first `D` coordinates of each point.
 fn project<const D: usize>(points: &[[f64; 3]]) -> Vec<[f64; D]> {

@@ -5,8 +5,8 @@ use std::time::Instant;
 use super::{project, Mesh};
 use crate::error::{Error, ErrorKind, Result};
 use crate::optimize::{
-    invalid_cells, laplace::MeshGraph, motion, small::Vector, NodeSolverOptions, QualitySummary,
-    SweepOptions, TargetKind,
+    invalid_cells, laplace::MeshGraph, motion, small::Vector, NodeSolverOptions, Problem,
+    QualitySummary, SweepOptions, TargetKind,
 };
 
 /// Where the free nodes start before the optimizer runs.
@@ -16,6 +16,11 @@ pub enum Placement {
     Laplacian,
     /// The current positions, as they are.
     Current,
+    /// Warm start: the positions of the last successful relocation plus the harmonic extension
+    /// of the prescribed motion since then (a first relocation starts as `Laplacian`). The
+    /// targets stay the reference shapes. The placement of a loop that moves the boundary a
+    /// little at every step.
+    Incremental,
 }
 
 /// Stages reported to a progress callback.
@@ -25,6 +30,23 @@ pub enum Stage {
     Placement,
     /// Optimization sweeps.
     Optimization,
+    /// Newton iterations on the global objective (`RelocateOptions::stationarity_tolerance`).
+    Stationarity,
+}
+
+/// How the free nodes are carried to the optimum.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Method {
+    /// `Newton` where the Hessian's Cholesky factor is small (2D meshes, 3D ones up to about
+    /// 20,000 nodes), else `Sweeps`.
+    Auto,
+    /// The per-node optimizer's coloured Gauss–Seidel sweeps, large motions in steps placed
+    /// harmonically; with `stationarity_tolerance > 0`, followed by the Newton stage.
+    Sweeps,
+    /// Path following of the optimum of the global objective: each step predicted by the tangent
+    /// of the optimum (the linearised response of the mesh) and corrected by Newton's method;
+    /// the sweeps are the fallback where a step cannot be made (e.g. a tangled start).
+    Newton,
 }
 
 /// Options of [`Mesh::relocate`].
@@ -51,7 +73,19 @@ pub struct RelocateOptions {
     pub relaxation: f64,
     /// Worker threads; 0 uses one per core. The result does not depend on it.
     pub threads: usize,
+    /// When positive, the result is a stationary point of the global objective
+    /// `F = Σ_cells η̄*_c` (δ = 0): the scaled max-norm of its gradient
+    /// (`RelocateReport::gradient_norm`) is at most this, reached by Newton's method on a valid
+    /// mesh, and the sensitivities ([`Mesh::adjoint`], [`Mesh::tangent`]) exist. 0 (the
+    /// default): no such guarantee; `Sweeps` stop on their own rule, `Newton` at
+    /// [`DEFAULT_NEWTON_TOLERANCE`].
+    pub stationarity_tolerance: f64,
+    /// How the optimum is reached.
+    pub method: Method,
 }
+
+/// Where the Newton method stops when no stationarity tolerance is asked for.
+pub const DEFAULT_NEWTON_TOLERANCE: f64 = 1e-8;
 
 impl Default for RelocateOptions {
     fn default() -> Self {
@@ -65,6 +99,8 @@ impl Default for RelocateOptions {
             max_newton_iterations: 150,
             relaxation: 1.8,
             threads: 0,
+            stationarity_tolerance: 0.0,
+            method: Method::Auto,
         }
     }
 }
@@ -75,6 +111,7 @@ impl RelocateOptions {
             ("move_tolerance", self.move_tolerance),
             ("gradient_tolerance", self.gradient_tolerance),
             ("relaxation", self.relaxation),
+            ("stationarity_tolerance", self.stationarity_tolerance),
         ];
         if let Some((name, v)) = values.iter().find(|(_, v)| !v.is_finite()) {
             return Err(Error::new(
@@ -82,7 +119,7 @@ impl RelocateOptions {
                 format!("{name} = {v} must be finite"),
             ));
         }
-        if let Some((name, v)) = values[..2].iter().find(|(_, v)| *v < 0.0) {
+        if let Some((name, v)) = values.iter().find(|(_, v)| *v < 0.0) {
             return Err(Error::invalid(format!("{name} = {v} must be non-negative")));
         }
         if !(1.0..2.0).contains(&self.relaxation) {
@@ -124,8 +161,15 @@ pub struct RelocateReport {
     pub sweeps: u32,
     /// Steps the prescribed motion was applied in.
     pub steps: u32,
-    /// Whether the sweeps met their stopping rule (valid mesh, small moves).
+    /// Whether the sweeps met their stopping rule (valid mesh, small moves) and, when asked for,
+    /// the Newton stage its tolerance.
     pub converged: bool,
+    /// Scaled max-norm of the global objective's gradient at the end: per free coordinate,
+    /// `|∂F/∂x| · L / W` (L the node's local length, W the number of its cells), the gradient
+    /// of the node's own objective times its length; `+∞` for an invalid mesh.
+    pub gradient_norm: f64,
+    /// Newton iterations of the stationarity stage.
+    pub newton_iterations: u32,
     /// Wall-clock seconds.
     pub seconds: f64,
 }
@@ -160,7 +204,6 @@ impl Mesh {
     ) -> Result<RelocateReport> {
         let start = Instant::now();
         let problem = self.problem::<D>(options.target)?;
-        let reference = project::<D>(&self.reference);
         let goal = project::<D>(&self.positions);
         let mut report = RelocateReport {
             cells: self.cell_count(),
@@ -169,61 +212,105 @@ impl Mesh {
                 .filter(|&v| problem.free_mask(v) != 0)
                 .count(),
             invalid_before: invalid_cells(pool, &problem, &goal).len(),
+            gradient_norm: f64::INFINITY,
             ..Default::default()
         };
+        let newton = options.optimize
+            && options.placement != Placement::Current
+            && match options.method {
+                Method::Sweeps => false,
+                Method::Newton => true,
+                Method::Auto => self.setup_for(&problem)?.is_direct(),
+            };
+        let followed = match newton {
+            true => self.follow_path(pool, &problem, &goal, options, &mut report, progress)?,
+            false => None,
+        };
+        let (x, solver, sensitivity) = match followed {
+            Some(relocated) => relocated,
+            None => {
+                let mut x =
+                    self.place_and_sweep(pool, &problem, &goal, options, &mut report, progress)?;
+                let (solver, sensitivity) =
+                    self.stationary_stage(pool, &problem, &mut x, options, &mut report, progress)?;
+                (x, solver, sensitivity)
+            }
+        };
+        let quality = QualitySummary::of(pool, &problem, &x);
+        report.invalid_after = quality.invalid.len();
+        report.min_quality = quality.min;
+        report.mean_quality = quality.mean;
+        self.positions = super::newton::lift(&self.positions, &x);
+        self.last = Some(super::State {
+            positions: self.positions.clone(),
+            stationary: report.gradient_norm
+                <= options.stationarity_tolerance.max(DEFAULT_NEWTON_TOLERANCE),
+            solver,
+            threads: options.threads,
+        });
+        self.sensitivity = sensitivity;
+        report.seconds = start.elapsed().as_secs_f64();
+        Ok(report)
+    }
+
+    /// The first placement and the sweeps (following the motion in steps where it is large).
+    fn place_and_sweep<const D: usize>(
+        &self,
+        pool: &rayon::ThreadPool,
+        problem: &Problem<D>,
+        goal: &[Vector<D>],
+        options: &RelocateOptions,
+        report: &mut RelocateReport,
+        progress: &mut dyn FnMut(Stage, usize, usize) -> bool,
+    ) -> Result<Vec<Vector<D>>> {
         if !progress(Stage::Placement, 0, 1) {
             return Err(Error::cancelled());
         }
-        let mut x = goal.clone();
-        let graph = MeshGraph::new(&problem);
-        let place = |from: &[Vector<D>], x: &mut [Vector<D>]| {
-            pool.install(|| graph.harmonic_placement(&problem, from, x));
+        // Where the motion starts: the reference shape, or the last relocated state.
+        let from = match (options.placement, &self.last) {
+            (Placement::Incremental, Some(last)) => project::<D>(&last.positions),
+            _ => project::<D>(&self.reference),
         };
-        if options.placement == Placement::Laplacian {
-            place(&reference, &mut x);
+        let mut x = goal.to_vec();
+        let graph = MeshGraph::new(problem);
+        if options.placement != Placement::Current {
+            pool.install(|| graph.harmonic_placement(problem, &from, &mut x));
         }
-        report.invalid_after_placement = invalid_cells(pool, &problem, &x).len();
+        report.invalid_after_placement = invalid_cells(pool, problem, &x).len();
         if !progress(Stage::Placement, 1, 1) {
             return Err(Error::cancelled());
         }
-        if options.optimize {
-            let sweep_options = SweepOptions {
-                max_sweeps: options.max_sweeps,
-                move_tolerance: options.move_tolerance,
-                node: NodeSolverOptions {
-                    gradient_tolerance: options.gradient_tolerance,
-                    max_iterations: options.max_newton_iterations,
-                    relaxation: options.relaxation,
-                },
-            };
-            let mut on_sweep = |done: usize| progress(Stage::Optimization, done, 0);
-            let stats = if options.placement == Placement::Current {
-                motion::optimize_in_place(pool, &problem, &mut x, &sweep_options, &mut on_sweep)?
-            } else {
-                let (moved, stats) = motion::follow_motion(
-                    pool,
-                    &problem,
-                    &graph,
-                    &reference,
-                    &goal,
-                    &sweep_options,
-                    &mut on_sweep,
-                )?;
-                x = moved;
-                stats
-            };
-            report.sweeps = stats.sweeps;
-            report.steps = stats.steps;
-            report.converged = stats.converged;
+        if !options.optimize {
+            return Ok(x);
         }
-        let quality = QualitySummary::of(pool, &problem, &x);
-        report.invalid_after = invalid_cells(pool, &problem, &x).len();
-        report.min_quality = quality.min;
-        report.mean_quality = quality.mean;
-        for (p, q) in self.positions.iter_mut().zip(&x) {
-            p[..D].copy_from_slice(q);
-        }
-        report.seconds = start.elapsed().as_secs_f64();
-        Ok(report)
+        let sweep_options = SweepOptions {
+            max_sweeps: options.max_sweeps,
+            move_tolerance: options.move_tolerance,
+            node: NodeSolverOptions {
+                gradient_tolerance: options.gradient_tolerance,
+                max_iterations: options.max_newton_iterations,
+                relaxation: options.relaxation,
+            },
+        };
+        let mut on_sweep = |done: usize| progress(Stage::Optimization, done, 0);
+        let stats = if options.placement == Placement::Current {
+            motion::optimize_in_place(pool, problem, &mut x, &sweep_options, &mut on_sweep)?
+        } else {
+            let (moved, stats) = motion::follow_motion(
+                pool,
+                problem,
+                &graph,
+                &from,
+                goal,
+                &sweep_options,
+                &mut on_sweep,
+            )?;
+            x = moved;
+            stats
+        };
+        report.sweeps = stats.sweeps;
+        report.steps = stats.steps;
+        report.converged = stats.converged;
+        Ok(x)
     }
 }

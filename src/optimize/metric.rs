@@ -29,7 +29,7 @@ pub fn mean_ratio<const D: usize>(s: &Matrix<D>) -> f64 {
 }
 
 /// `h(σ) = ½(σ + √(σ²+4δ²))` and its first two derivatives, evaluated without cancellation.
-fn regularised_det(sigma: f64, delta: f64) -> (f64, f64, f64) {
+pub(super) fn regularised_det(sigma: f64, delta: f64) -> (f64, f64, f64) {
     let r = (sigma * sigma + 4.0 * delta * delta).sqrt();
     let h = if sigma >= 0.0 {
         0.5 * (sigma + r)
@@ -43,7 +43,7 @@ fn regularised_det(sigma: f64, delta: f64) -> (f64, f64, f64) {
 }
 
 /// `h^{-2/d}` without the general power function (the hot path of the optimizer).
-fn inverse_power<const D: usize>(h: f64) -> f64 {
+pub(super) fn inverse_power<const D: usize>(h: f64) -> f64 {
     match D {
         2 => 1.0 / h,
         3 => {

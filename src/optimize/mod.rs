@@ -4,15 +4,25 @@
 //!
 //! Written once for d = 2 and 3 through const generics.
 
+pub mod amg;
+pub mod blocks;
 pub mod colour;
+pub mod csr;
+pub mod distortion;
+pub mod global;
+pub mod implicit;
 pub mod laplace;
 pub mod lattice;
 pub mod metric;
 pub mod motion;
 pub mod node;
+pub mod path;
 pub mod pattern;
 pub mod problem;
 pub mod small;
+pub mod solver;
+pub mod sparse;
+pub mod stationary;
 pub mod sweep;
 
 pub use node::NodeSolverOptions;

@@ -223,6 +223,19 @@ impl<const D: usize> Problem<D> {
         )
     }
 
+    /// The normalised Jacobian stencil of cell `c` at point `q`: for each real node `r` whose
+    /// position enters, `g` with `S = J W⁻¹ = Σ_r x_r gᵀ`.
+    pub fn normalized_stencil(
+        &self,
+        c: usize,
+        q: usize,
+    ) -> impl Iterator<Item = (usize, Vector<D>)> + '_ {
+        let w_inv = &self.target_inverse[c * Self::POINTS + q];
+        self.pattern(c).jacobian[q]
+            .iter()
+            .map(move |&(r, g)| (r as usize, mul_transpose_vec(w_inv, &g)))
+    }
+
     /// Whether `det J > 0` at every Gauss–Lobatto point of cell `c`.
     pub fn cell_is_valid(&self, c: usize, positions: &[Vector<D>]) -> bool {
         (0..Self::POINTS).all(|q| det(&self.jacobian(c, q, positions)) > 0.0)

@@ -18,8 +18,8 @@ mod map;
 mod piece;
 mod quadratic;
 mod quasi;
+mod refit;
 mod smooth;
-
 mod space;
 mod thb;
 mod untangle;
@@ -31,7 +31,7 @@ pub use fit::{FitReport, FitStages};
 pub use gismo::{read_gismo_thb, write_gismo_thb};
 pub use map::{InverseMap, SplineMap};
 pub use quadratic::QuadraticMap;
-
+pub use refit::{FitRecord, FitRule};
 pub use smooth::SmoothReport;
 pub use space::{BasisValues, SplineSpace};
 pub use thb::ThbSpace;

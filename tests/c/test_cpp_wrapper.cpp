@@ -1,6 +1,7 @@
 // Tests of the C++ wrapper bindings/cpp/igaparam.hpp: errors become igaparam::Error with the
 // status and the library's message, Mesh owns and moves its handle, vectors have the right sizes,
-// and a progress function can cancel or throw through the C callback.
+// and a progress function can cancel or throw through the C callback; a domain of curves morphed
+// in steps (update and refit).
 
 #include <cmath>
 #include <cstdio>
@@ -184,6 +185,53 @@ void orders_and_files() {
   EXPECT_ERROR(IGAPARAM_STATUS_IO, igaparam::Mesh::read_vtu(path + ".missing"));
 }
 
+/// The boundary of a quarter annulus of outer radius `outer` as four curves: the inner and outer
+/// arcs exact NURBS quarter circles, the two straight sides lines.
+std::vector<igaparam::Curve> quarter_annulus(double outer) {
+  const double w = std::sqrt(0.5);
+  const std::vector<double> line = {0, 0, 1, 1}, arc = {0, 0, 0, 1, 1, 1};
+  return {
+      {1, line, {0.0, outer, 0.0, 1.0}, {}},                      // x = 0, from (0, R) to (0, 1)
+      {1, line, {1.0, 0.0, outer, 0.0}, {}},                      // y = 0
+      {2, arc, {outer, 0.0, outer, outer, 0.0, outer}, {1, w, 1}},  // outer arc
+      {2, arc, {0.0, 1.0, 1.0, 1.0, 1.0, 0.0}, {1, w, 1}},        // inner arc, from (0, 1)
+  };
+}
+
+/// The loop of shape optimization through the wrapper: the outer radius of a quarter annulus
+/// grows in steps, each an update of the domain and a refit of its spline in the same space.
+void test_morph_loop() {
+  igaparam::Domain domain = igaparam::Domain::planar_from_curves(quarter_annulus(2.0));
+  EXPECT_ERROR(IGAPARAM_STATUS_INVALID_ARGUMENT, domain.update());  // not built yet
+  const igaparam_domain_report built = domain.build();
+  igaparam::Spline spline = igaparam::Spline::fit(domain);
+  const std::size_t basis = spline.basis_count();
+  const std::vector<double> elements = spline.element_bounds();
+  const igaparam_fit_rule rule = spline.fit_rule();
+  for (int step = 1; step <= 4; step++) {
+    domain.set_boundary(quarter_annulus(2.0 + 0.05 * step));
+    const igaparam_domain_update_report u = domain.update();
+    CHECK(u.domain.invalid_cells == 0 && u.domain.cells == built.cells && u.boundary_motion > 0);
+    const igaparam_refit_report r = spline.refit(domain);
+    CHECK(r.rule == rule && r.certified_positive == 1 && r.fit.basis_count == basis);
+    CHECK(spline.basis_count() == basis && spline.element_bounds() == elements);
+  }
+  // The outer corners are at the new radius.
+  const std::vector<double> corners = spline.evaluate({0, 0, 1, 0, 1, 1, 0, 1});
+  double outer = 0;
+  for (int c = 0; c < 4; c++) outer = std::fmax(outer, std::hypot(corners[2 * c], corners[2 * c + 1]));
+  CHECK(std::fabs(outer - 2.2) < 1e-9);
+  // Wrong arrays and boundaries of the other kind throw, the domain unchanged.
+  std::vector<igaparam::Curve> odd = quarter_annulus(2.0);
+  odd[0].control_points.pop_back();
+  EXPECT_ERROR(IGAPARAM_STATUS_INVALID_ARGUMENT, domain.set_boundary(odd));
+  odd = quarter_annulus(2.0);
+  odd[2].knots = {0, 0, 0, 0.7, 0.2, 1, 1};
+  EXPECT_ERROR(IGAPARAM_STATUS_INVALID_ARGUMENT, domain.set_boundary(odd));
+  EXPECT_ERROR(IGAPARAM_STATUS_INVALID_ARGUMENT, domain.set_boundary(std::vector<igaparam::Surface>(6)));
+  CHECK(domain.update().boundary_motion == 0);
+}
+
 }  // namespace
 
 int main() {
@@ -245,6 +293,7 @@ int main() {
 
   test_spline();
   test_scaled_solid();
+  test_morph_loop();
 
   structured_grid_free(&g);
   std::printf("%d passed, %d failed\n", passed, failed);

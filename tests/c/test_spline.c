@@ -19,17 +19,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "dirs.h"
 #include "expect.h"
-
-static char data_dir[512], out_dir[512];
-
-static const char *joined(const char *dir, const char *name) {
-  static char buf[2][1024];
-  static int which;
-  which ^= 1;
-  snprintf(buf[which], sizeof buf[which], "%s/%s", dir, name);
-  return buf[which];
-}
 
 /* Deterministic pseudo-random numbers in [0, 1). */
 static double uniform(void) {
@@ -518,12 +509,7 @@ static void test_untangled_fit(void) {
 }
 
 int main(int argc, char **argv) {
-  if (argc != 3) {
-    fprintf(stderr, "usage: %s DATA_DIR OUT_DIR\n", argv[0]);
-    return 2;
-  }
-  snprintf(data_dir, sizeof data_dir, "%s", argv[1]);
-  snprintf(out_dir, sizeof out_dir, "%s", argv[2]);
+  if (!read_dirs(argc, argv)) return 2;
   igaparam_spline *s = fit_male();
   if (s) {
     test_basis_agrees_with_evaluation(s);

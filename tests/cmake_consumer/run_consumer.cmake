@@ -30,7 +30,7 @@ run("${CMAKE_COMMAND}" --install "${BUILD_DIR}" --prefix "${prefix}")
 set(lib "${prefix}/lib")
 foreach(file
     "${lib}/libigaparam.so.${VERSION}"
-    "include/igaparam.h" "include/igaparam.hpp"
+    "include/igaparam.h" "include/igaparam.hpp" "include/igaparam_spline.hpp"
     "lib/cmake/igaparam/igaparamConfig.cmake" "lib/cmake/igaparam/igaparamConfigVersion.cmake"
     "lib/pkgconfig/igaparam.pc")
   if(NOT IS_ABSOLUTE "${file}")

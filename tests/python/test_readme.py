@@ -27,8 +27,17 @@ def test_readme_python_example(tmp_path):
     assert (work / "airfoil_relocated.vtu").exists()
 
 
+def test_readme_loop_example(tmp_path):
+    code = readme_examples.examples()["pyloop"]
+    work = readme_examples.work_directory(tmp_path / "pyloop")
+    (work / "example.py").write_text(code)
+    run = subprocess.run([sys.executable, "example.py"], cwd=work, capture_output=True, text=True, env=os.environ)
+    assert run.returncode == 0, run.stderr
+    assert re.search(r"^60 degrees in 20 warm steps: quality min 0\.6\d\d", run.stdout, re.MULTILINE), run.stdout
+
+
 def test_readme_markers():
     found = readme_examples.examples()
-    assert set(found) == {"c", "cpp", "cmake", "python"}
+    assert set(found) == {"c", "cloop", "cpp", "cmake", "python", "pyloop"}
     with pytest.raises(ValueError):
         readme_examples.examples("<!-- example: c -->\nno block\n")

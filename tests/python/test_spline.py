@@ -355,8 +355,15 @@ def test_prototypes_match_header():
         (_capi.ValidityOptions, "igaparam_validity_options"),
         (_capi.AdaptOptions, "igaparam_adapt_options"),
         (_capi.AdaptReport, "igaparam_adapt_report"),
+        (_capi.RefitReport, "igaparam_refit_report"),
+        (_capi.Curve, "igaparam_curve"),
+        (_capi.Surface, "igaparam_surface"),
+        (_capi.DomainUpdateOptions, "igaparam_domain_update_options"),
+        (_capi.DomainUpdateReport, "igaparam_domain_update_report"),
     ]:
         assert [field[0] for field in struct._fields_] == header_struct_fields(c_name), c_name
+    for rule in _capi.FitRule:
+        assert re.search(rf"IGAPARAM_FIT_{rule.name} = {int(rule)},", HEADER.read_text()), rule
     bins = re.search(r"#define IGAPARAM_HISTOGRAM_BINS (\d+)", HEADER.read_text()).group(1)
     assert int(bins) == _capi.HISTOGRAM_BINS
 

@@ -1,8 +1,8 @@
 """The code examples of README.md, extracted and run, so that the README cannot go stale.
 
 An example is a fenced code block right after a marker line ``<!-- example: NAME -->``; NAME is
-one of ``c``, ``cpp``, ``cmake`` (a CMakeLists.txt building the ``c`` example as ``main.c``) and
-``python``. Examples run in a work directory holding a link ``tests`` to the repository's
+one of ``c`` and ``cloop`` (C programs), ``cpp``, ``cmake`` (a CMakeLists.txt building the ``c``
+example as ``main.c``), ``python`` and ``pyloop``. Examples run in a work directory holding a link ``tests`` to the repository's
 ``tests`` directory, so they read the bundled data by the paths the README shows.
 
     python3 readme_examples.py --build-dir BUILD --work-dir DIR NAME...   # c, cpp, cmake
@@ -68,12 +68,13 @@ def run(command, cwd, env=None):
 
 
 def run_compiled(name, code, args, work):
-    """Compiles the c or cpp example against the build's library and runs it."""
+    """Compiles a C (c, cloop) or the cpp example against the build's library and runs it."""
     library = Path(args.build_dir) / "cargo" / "release"
-    source = work / ("main.c" if name == "c" else "main.cpp")
+    c = name != "cpp"
+    source = work / ("main.c" if c else "main.cpp")
     source.write_text(code)
-    compiler = args.c_compiler if name == "c" else args.cxx_compiler
-    flags = ["-std=c11"] if name == "c" else ["-std=c++17", f"-I{ROOT / 'bindings' / 'cpp'}"]
+    compiler = args.c_compiler if c else args.cxx_compiler
+    flags = ["-std=c11"] if c else ["-std=c++17", f"-I{ROOT / 'bindings' / 'cpp'}"]
     exe = work / name
     run([compiler, *flags, "-Wall", "-Wextra", "-Werror", f"-I{ROOT / 'include'}", source, "-o", exe,
          f"-L{library}", "-ligaparam", f"-Wl,-rpath,{library}", "-lm"], work)
@@ -106,7 +107,7 @@ def main():
     parser.add_argument("--c-compiler", default="cc")
     parser.add_argument("--cxx-compiler", default="c++")
     parser.add_argument("--cmake", default="cmake")
-    parser.add_argument("names", nargs="+", choices=["c", "cpp", "cmake"])
+    parser.add_argument("names", nargs="+", choices=["c", "cloop", "cpp", "cmake"])
     args = parser.parse_args()
     args.build_dir = str(Path(args.build_dir).resolve())
     found = examples()

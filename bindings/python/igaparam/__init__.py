@@ -22,9 +22,11 @@ The shared library is found through the environment variable ``IGAPARAM_LIBRARY`
 else next to this package, else with ``ctypes.util.find_library("igaparam")``.
 """
 
-from ._capi import CellType, Stage, Status
-from ._domain import Domain, DomainReport
+from ._boundary import Curve, Surface
+from ._capi import CellType, FitRule, Stage, Status
+from ._domain import Domain, DomainReport, UpdateReport
 from ._mesh import IgaparamError, Mesh, RelocateReport, cell_type_code, node_coordinates, nodes_per_cell, version
+from ._refit import RefitReport
 from ._spline import AdaptReport, FitReport, Spline, ValidityReport
 
 __version__ = "0.1.0"
@@ -32,15 +34,20 @@ __version__ = "0.1.0"
 __all__ = [
     "AdaptReport",
     "CellType",
+    "Curve",
     "Domain",
     "DomainReport",
     "FitReport",
+    "FitRule",
     "IgaparamError",
     "Mesh",
+    "RefitReport",
     "RelocateReport",
     "Spline",
     "Stage",
     "Status",
+    "Surface",
+    "UpdateReport",
     "ValidityReport",
     "cell_type_code",
     "node_coordinates",

@@ -19,6 +19,12 @@ __all__ = [
     "RelocateReport",
     "DomainOptions",
     "DomainReport",
+    "Curve",
+    "Surface",
+    "DomainUpdateOptions",
+    "DomainUpdateReport",
+    "FitRule",
+    "RefitReport",
     "ValidityOptions",
     "FitReport",
     "ValidityReport",
@@ -48,6 +54,8 @@ class Stage(enum.IntEnum):
 
     PLACEMENT = 0
     OPTIMIZATION = 1
+    ADAPTATION = 2
+    STATIONARITY = 3
 
 
 class CellType(enum.IntEnum):
@@ -65,6 +73,11 @@ TARGET_INITIAL = 0
 TARGET_MASTER = 1
 PLACEMENT_LAPLACIAN = 0
 PLACEMENT_CURRENT = 1
+PLACEMENT_INCREMENTAL = 2
+# IGAPARAM_METHOD_*: how relocation reaches the optimum.
+METHOD_AUTO = 0
+METHOD_SWEEPS = 1
+METHOD_NEWTON = 2
 # IGAPARAM_VTU_*: storages of written .vtu files; ZLIB is a flag for the binary ones.
 VTU_ASCII = 0
 VTU_BINARY = 1
@@ -92,6 +105,8 @@ class RelocateOptions(ctypes.Structure):
         ("max_newton_iterations", ctypes.c_uint32),
         ("relaxation", ctypes.c_double),
         ("threads", ctypes.c_uint32),
+        ("stationarity_tolerance", ctypes.c_double),
+        ("method", ctypes.c_int),  # igaparam_method
         ("progress", PROGRESS_FN),
         ("progress_user", ctypes.c_void_p),
     ]
@@ -112,6 +127,8 @@ class RelocateReport(ctypes.Structure):
         ("sweeps", ctypes.c_uint32),
         ("steps", ctypes.c_uint32),
         ("converged", ctypes.c_int),
+        ("gradient_norm", ctypes.c_double),
+        ("newton_iterations", ctypes.c_uint32),
         ("seconds", ctypes.c_double),
     ]
 
@@ -150,6 +167,61 @@ class DomainReport(ctypes.Structure):
     ]
 
 
+class Curve(ctypes.Structure):
+    """``igaparam_curve``: a B-spline or NURBS curve of the plane by its arrays."""
+
+    _fields_ = [
+        ("degree", ctypes.c_uint32),
+        ("knot_count", ctypes.c_size_t),
+        ("knots", ctypes.POINTER(ctypes.c_double)),
+        ("control_point_count", ctypes.c_size_t),
+        ("control_points", ctypes.POINTER(ctypes.c_double)),
+        ("weights", ctypes.POINTER(ctypes.c_double)),
+    ]
+
+
+class Surface(ctypes.Structure):
+    """``igaparam_surface``: a tensor-product B-spline or NURBS surface in 3D by its arrays."""
+
+    _fields_ = [
+        ("degree_u", ctypes.c_uint32),
+        ("degree_v", ctypes.c_uint32),
+        ("knot_count_u", ctypes.c_size_t),
+        ("knots_u", ctypes.POINTER(ctypes.c_double)),
+        ("knot_count_v", ctypes.c_size_t),
+        ("knots_v", ctypes.POINTER(ctypes.c_double)),
+        ("control_point_count_u", ctypes.c_size_t),
+        ("control_point_count_v", ctypes.c_size_t),
+        ("control_points", ctypes.POINTER(ctypes.c_double)),
+        ("weights", ctypes.POINTER(ctypes.c_double)),
+    ]
+
+
+class DomainUpdateOptions(ctypes.Structure):
+    """``igaparam_domain_update_options``."""
+
+    _fields_ = [
+        ("max_sweeps", ctypes.c_uint32),
+        ("threads", ctypes.c_uint32),
+        ("refine", ctypes.c_int32),
+        ("progress", PROGRESS_FN),
+        ("progress_user", ctypes.c_void_p),
+    ]
+
+
+class DomainUpdateReport(ctypes.Structure):
+    """``igaparam_domain_update_report``."""
+
+    _fields_ = [
+        ("domain", DomainReport),
+        ("tolerance_met", ctypes.c_int32),
+        ("cells_over_tolerance", ctypes.c_size_t),
+        ("refined_cells", ctypes.c_size_t),
+        ("boundary_motion", ctypes.c_double),
+        ("steps", ctypes.c_uint32),
+    ]
+
+
 # IGAPARAM_HISTOGRAM_BINS: bins of the quality histogram of igaparam_validity_report.
 HISTOGRAM_BINS = 10
 
@@ -175,6 +247,28 @@ class FitReport(ctypes.Structure):
         ("untangled", ctypes.c_size_t),
         ("boundary_offset", ctypes.c_double),
         ("seconds", ctypes.c_double),
+    ]
+
+
+class FitRule(enum.IntEnum):
+    """``igaparam_fit_rule``: how the control points of a spline come from the T-mesh's map."""
+
+    INTERPOLATION = 0
+    LEAST_SQUARES = 1
+    QUASI_INTERPOLATION = 2
+
+
+class RefitReport(ctypes.Structure):
+    """``igaparam_refit_report``."""
+
+    _fields_ = [
+        ("fit", FitReport),
+        ("rule", ctypes.c_int),  # igaparam_fit_rule
+        ("corrected", ctypes.c_size_t),
+        ("certified_positive", ctypes.c_int32),
+        ("uncertified", ctypes.c_size_t),
+        ("min_quality", ctypes.c_double),
+        ("mean_quality", ctypes.c_double),
     ]
 
 
@@ -258,6 +352,8 @@ _PROTOTYPES = {
     "igaparam_mesh_copy_fixed": (_status, [_mesh_p, _uint8_p, ctypes.c_size_t]),
     "igaparam_cell_type_node_count": (_status, [ctypes.c_int, _size_p]),
     "igaparam_mesh_invalid_cell_count": (_status, [_mesh_p, _size_p]),
+    "igaparam_mesh_adjoint": (_status, [_mesh_p, ctypes.c_size_t, _double_p, _double_p]),
+    "igaparam_mesh_tangent": (_status, [_mesh_p, ctypes.c_size_t, _double_p, _double_p]),
     "igaparam_mesh_read_vtu": (_status, [ctypes.c_char_p, ctypes.POINTER(_mesh_p)]),
     "igaparam_mesh_write_vtu": (_status, [_mesh_p, ctypes.c_char_p]),
     "igaparam_mesh_write_vtu_format": (_status, [_mesh_p, ctypes.c_char_p, ctypes.c_int]),
@@ -284,6 +380,28 @@ _PROTOTYPES = {
     "igaparam_domain_new_solid_from_triangulations": (
         _status,
         [_size_p, ctypes.POINTER(_double_p), _size_p, ctypes.POINTER(_uint32_p), ctypes.POINTER(_domain_p)],
+    ),
+    "igaparam_domain_new_from_curves": (
+        _status,
+        [ctypes.c_size_t, ctypes.POINTER(Curve), ctypes.POINTER(_domain_p)],
+    ),
+    "igaparam_domain_new_solid_from_surfaces": (
+        _status,
+        [ctypes.c_size_t, ctypes.POINTER(Surface), ctypes.POINTER(_domain_p)],
+    ),
+    "igaparam_domain_set_boundary_curves": (_status, [_domain_p, ctypes.c_size_t, ctypes.POINTER(Curve)]),
+    "igaparam_domain_set_boundary_polylines": (_status, [_domain_p, _size_p, ctypes.POINTER(_double_p)]),
+    "igaparam_domain_set_boundary_surfaces": (_status, [_domain_p, ctypes.c_size_t, ctypes.POINTER(Surface)]),
+    "igaparam_domain_set_boundary_triangulations": (
+        _status,
+        [_domain_p, _size_p, ctypes.POINTER(_double_p), _size_p, ctypes.POINTER(_uint32_p)],
+    ),
+    "igaparam_domain_set_boundary_from_file": (_status, [_domain_p, ctypes.c_char_p]),
+    "igaparam_domain_set_boundary_from_file_scaled": (_status, [_domain_p, ctypes.c_char_p, _double_p]),
+    "igaparam_domain_update_options_default": (DomainUpdateOptions, []),
+    "igaparam_domain_update": (
+        _status,
+        [_domain_p, ctypes.POINTER(DomainUpdateOptions), ctypes.POINTER(DomainUpdateReport)],
     ),
     "igaparam_domain_dimension": (_status, [_domain_p, _size_p]),
     "igaparam_domain_free": (None, [_domain_p]),
@@ -348,6 +466,8 @@ _PROTOTYPES = {
     ),
     "igaparam_spline_write_vtu": (_status, [_spline_p, ctypes.c_char_p, ctypes.c_uint32]),
     "igaparam_spline_write_gismo": (_status, [_spline_p, ctypes.c_char_p]),
+    "igaparam_spline_refit": (_status, [_spline_p, _domain_p, ctypes.POINTER(RefitReport)]),
+    "igaparam_spline_fit_rule": (_status, [_spline_p, ctypes.POINTER(ctypes.c_int)]),
 }
 
 

@@ -14,9 +14,10 @@ import numpy.typing as npt
 from . import _capi
 from ._handle import _Handle
 from ._capi import Stage
+from ._boundary import Curve, Surface, curve_arrays, face_arrays, polyline_arrays, surface_arrays
 from ._mesh import _attach_progress, _check, _ptr, _set_counts
 
-__all__ = ["Domain", "DomainReport"]
+__all__ = ["Domain", "DomainReport", "UpdateReport"]
 
 # size_t as a numpy dtype, for the buffer of cell corners.
 _SIZE_T = np.dtype(f"u{ctypes.sizeof(ctypes.c_size_t)}")
@@ -52,42 +53,57 @@ class DomainReport:
         return dataclasses.asdict(self)
 
 
-def _as_polyline(values, index):
-    array = np.asarray(values)
-    if array.dtype.kind not in "fiu":
-        raise ValueError(f"polyline {index} must be numeric, not {array.dtype}")
-    if array.ndim != 2 or array.shape[1] != 2:
-        raise ValueError(f"polyline {index} must have shape (k, 2), not {array.shape}")
-    return np.ascontiguousarray(array, dtype=np.float64)
+@dataclasses.dataclass(frozen=True)
+class UpdateReport:
+    """What :meth:`Domain.update` did (``igaparam_domain_update_report``).
+
+    Attributes:
+        domain: the T-mesh as :meth:`Domain.build` reports it (``invalid_after_placement``:
+            cells the harmonic placement left invalid; ``boundary_error`` measured in the new
+            boundary's own bounding box; ``sweeps`` and ``seconds`` those of the update).
+        tolerance_met: True when the tree still meets the build's tolerance (a build's
+            adaptation would refine no cell).
+        cells_over_tolerance: boundary cells below the build's ``max_level`` whose error
+            exceeds its tolerance.
+        refined_cells: cells added by refinement (0 unless ``refine=True``).
+        boundary_motion: largest move of a boundary vertex, in coordinates that map the
+            build's bounding box onto the unit box.
+        steps: steps the motion was applied in.
+    """
+
+    domain: DomainReport
+    tolerance_met: bool
+    cells_over_tolerance: int
+    refined_cells: int
+    boundary_motion: float
+    steps: int
+
+    @classmethod
+    def _from_c(cls, report):
+        return cls(
+            domain=DomainReport._from_c(report.domain),
+            tolerance_met=bool(report.tolerance_met),
+            cells_over_tolerance=report.cells_over_tolerance,
+            refined_cells=report.refined_cells,
+            boundary_motion=report.boundary_motion,
+            steps=report.steps,
+        )
+
+    def as_dict(self) -> dict:
+        """The report as a dict (the T-mesh's report nested)."""
+        return dataclasses.asdict(self)
 
 
-# The faces of a solid, in the order of the C API (the unit cube's faces x = 0, x = 1, ...).
-_CUBE_FACES = ("xmin", "xmax", "ymin", "ymax", "zmin", "zmax")
-
-
-def _as_face(face, index):
-    """``(vertices, triangles)`` of face ``index`` as C-contiguous float64 (n, 3) and uint32
-    (m, 3) arrays."""
-    name = _CUBE_FACES[index]
-    try:
-        vertices, triangles = face
-    except (TypeError, ValueError):
-        raise ValueError(f"face {index} ({name}) must be a pair (vertices, triangles)") from None
-    vertices, triangles = np.asarray(vertices), np.asarray(triangles)
-    if vertices.dtype.kind not in "fiu":
-        raise ValueError(f"vertices of face {index} ({name}) must be numeric, not {vertices.dtype}")
-    if vertices.ndim != 2 or vertices.shape[1] != 3:
-        raise ValueError(f"vertices of face {index} ({name}) must have shape (n, 3), not {vertices.shape}")
-    if triangles.dtype.kind not in "iu":
-        raise ValueError(f"triangles of face {index} ({name}) must be an integer array, not {triangles.dtype}")
-    if triangles.ndim != 2 or triangles.shape[1] != 3:
-        raise ValueError(f"triangles of face {index} ({name}) must have shape (m, 3), not {triangles.shape}")
-    if triangles.size and (triangles.min() < 0 or triangles.max() > np.iinfo(np.uint32).max):
-        raise ValueError(f"triangles of face {index} ({name}) hold indices out of the uint32 range")
-    return (
-        np.ascontiguousarray(vertices, dtype=np.float64),
-        np.ascontiguousarray(triangles, dtype=np.uint32),
-    )
+def _call(function, handle, options, progress, report):
+    """``function(handle, &options, &report)`` with the Python ``progress`` attached to the
+    options; re-raises what ``progress`` raised, then raises on a failed status. Returns the
+    report."""
+    raised, _callback = _attach_progress(options, progress)
+    status = function(handle, ctypes.byref(options), ctypes.byref(report))
+    if raised:
+        raise raised[0]
+    _check(status)
+    return report
 
 
 def _as_scale(scale):
@@ -158,12 +174,7 @@ class Domain(_Handle):
             ValueError: not four arrays of shape (k, 2).
             IgaparamError: rejected by the library (ends that do not meet, NaN, ...).
         """
-        polylines = list(polylines)
-        if len(polylines) != 4:
-            raise ValueError(f"a domain needs 4 polylines, not {len(polylines)}")
-        arrays = [_as_polyline(p, i) for i, p in enumerate(polylines)]
-        counts = (ctypes.c_size_t * 4)(*[a.shape[0] for a in arrays])
-        points = (ctypes.POINTER(ctypes.c_double) * 4)(*[_ptr(a, ctypes.c_double) for a in arrays])
+        counts, points, _arrays = polyline_arrays(polylines)
         handle = ctypes.c_void_p()
         _check(_capi.library().igaparam_domain_new_from_polylines(counts, points, ctypes.byref(handle)))
         return cls(handle)
@@ -220,20 +231,47 @@ class Domain(_Handle):
                 coordinate, ``Status.INVALID_MESH`` for a triangle with an index out of range or
                 a repeated vertex, and for faces that do not match on their edges or corners.
         """
-        faces = list(faces)
-        if len(faces) != 6:
-            raise ValueError(f"a solid needs 6 faces (xmin, xmax, ymin, ymax, zmin, zmax), not {len(faces)}")
-        arrays = [_as_face(face, i) for i, face in enumerate(faces)]
-        vertex_counts = (ctypes.c_size_t * 6)(*[v.shape[0] for v, _ in arrays])
-        triangle_counts = (ctypes.c_size_t * 6)(*[t.shape[0] for _, t in arrays])
-        points = (ctypes.POINTER(ctypes.c_double) * 6)(*[_ptr(v, ctypes.c_double) for v, _ in arrays])
-        triangles = (ctypes.POINTER(ctypes.c_uint32) * 6)(*[_ptr(t, ctypes.c_uint32) for _, t in arrays])
+        c_arrays, _arrays = face_arrays(faces)
         handle = ctypes.c_void_p()
-        _check(
-            _capi.library().igaparam_domain_new_solid_from_triangulations(
-                vertex_counts, points, triangle_counts, triangles, ctypes.byref(handle)
-            )
-        )
+        _check(_capi.library().igaparam_domain_new_solid_from_triangulations(*c_arrays, ctypes.byref(handle)))
+        return cls(handle)
+
+    @classmethod
+    def from_curves(cls, curves: Sequence[Union[Curve, tuple]]) -> "Domain":
+        """A planar domain bounded by four B-spline or NURBS curves given by their arrays, each a
+        :class:`Curve` or a tuple ``(degree, knots, control_points[, weights])``. They are read
+        as :meth:`from_file` reads the curves of a G+Smo file (the same curves give the same
+        domain, bit for bit): in any order and direction, chained end to end into a
+        counter-clockwise loop, the first one becoming the side u = 0.
+
+        Raises:
+            ValueError: arrays of the wrong shape or type.
+            IgaparamError: ``Status.INVALID_ARGUMENT`` for not four curves, a degree of 0, a
+                knot count other than control points + degree + 1, decreasing knots, weights
+                that are not positive, ends that do not meet or a corner whose interior angle
+                reaches 180 degrees; ``Status.NOT_FINITE`` for NaN or infinite values.
+        """
+        array, _arrays = curve_arrays(curves)
+        handle = ctypes.c_void_p()
+        _check(_capi.library().igaparam_domain_new_from_curves(len(_arrays), array, ctypes.byref(handle)))
+        return cls(handle)
+
+    @classmethod
+    def solid_from_surfaces(cls, surfaces: Sequence[Union[Surface, tuple]]) -> "Domain":
+        """A solid bounded by six tensor-product B-spline or NURBS surfaces given by their
+        arrays, each a :class:`Surface` or a tuple ``(degree, knots, control_points[,
+        weights])``, read as :meth:`solid_from_file` reads a G+Smo B-rep (corners matched into
+        a cube, each surface oriented onto its face).
+
+        Raises:
+            ValueError: arrays of the wrong shape or type.
+            IgaparamError: ``Status.INVALID_ARGUMENT`` for not six surfaces or invalid knots
+                or weights, ``Status.NOT_FINITE`` for NaN or infinite values,
+                ``Status.INVALID_MESH`` for surfaces that do not share their edges and corners.
+        """
+        array, _arrays = surface_arrays(surfaces)
+        handle = ctypes.c_void_p()
+        _check(_capi.library().igaparam_domain_new_solid_from_surfaces(len(_arrays), array, ctypes.byref(handle)))
         return cls(handle)
 
     def __repr__(self):
@@ -307,13 +345,95 @@ class Domain(_Handle):
             options.boundary_offset = float(boundary_offset)
         _set_counts(options, min_level=min_level, max_level=max_level, max_sweeps=max_sweeps, threads=threads,
                     repair_rounds=repair_rounds)
-        raised, _callback = _attach_progress(options, progress)
-        report = _capi.DomainReport()
-        status = self._lib.igaparam_domain_build(self._h(), ctypes.byref(options), ctypes.byref(report))
-        if raised:
-            raise raised[0]
-        _check(status)
+        report = _call(self._lib.igaparam_domain_build, self._h(), options, progress, _capi.DomainReport())
         return DomainReport._from_c(report)
+
+    # Moving the boundary.
+
+    def set_boundary(
+        self,
+        *,
+        curves: Optional[Sequence] = None,
+        polylines: Optional[Sequence[npt.ArrayLike]] = None,
+        surfaces: Optional[Sequence] = None,
+        faces: Optional[Sequence] = None,
+    ) -> None:
+        """Replaces the boundary by one of the same kind, given as to the constructors: four
+        ``curves`` or ``polylines`` for a planar domain (:meth:`from_curves`,
+        :meth:`from_polylines`), six ``surfaces`` or triangulated ``faces`` for a solid
+        (:meth:`solid_from_surfaces`, :meth:`solid_from_triangulations`); exactly one of them.
+        Give the curves or surfaces in the order and direction of the first ones, so that each
+        lands on the same side. The T-mesh stays where it is until :meth:`update` moves it onto
+        the new boundary (or :meth:`build` builds anew); fits need that first. On any error
+        the domain is unchanged.
+
+        Raises:
+            ValueError: not exactly one boundary, or arrays of the wrong shape or type.
+            IgaparamError: the errors of the constructors; ``Status.INVALID_ARGUMENT`` for a
+                boundary of the other kind or one oriented the other way round.
+        """
+        given = {name: value for name, value in
+                 [("curves", curves), ("polylines", polylines), ("surfaces", surfaces), ("faces", faces)]
+                 if value is not None}
+        if len(given) != 1:
+            raise ValueError(f"give exactly one of curves, polylines, surfaces and faces, not {sorted(given)}")
+        (kind, value), = given.items()
+        lib, h = self._lib, self._h()
+        if kind == "curves":
+            array, arrays = curve_arrays(value)
+            status = lib.igaparam_domain_set_boundary_curves(h, len(arrays), array)
+        elif kind == "surfaces":
+            array, arrays = surface_arrays(value)
+            status = lib.igaparam_domain_set_boundary_surfaces(h, len(arrays), array)
+        elif kind == "polylines":
+            counts, points, _arrays = polyline_arrays(value)
+            status = lib.igaparam_domain_set_boundary_polylines(h, counts, points)
+        else:
+            c_arrays, _arrays = face_arrays(value)
+            status = lib.igaparam_domain_set_boundary_triangulations(h, *c_arrays)
+        _check(status)
+
+    def set_boundary_from_file(self, path: Union[str, "os.PathLike[str]"], scale: Optional[Sequence[float]] = None) -> None:
+        """Replaces the boundary by the one of a file, read as :meth:`from_file` (planar) or
+        :meth:`solid_from_file` (a solid, with optional per-axis ``scale``) read theirs;
+        otherwise as :meth:`set_boundary`."""
+        factors = _as_scale(scale)
+        if factors is None:
+            status = self._lib.igaparam_domain_set_boundary_from_file(self._h(), os.fsencode(path))
+        else:
+            status = self._lib.igaparam_domain_set_boundary_from_file_scaled(self._h(), os.fsencode(path), factors)
+        _check(status)
+
+    def update(
+        self,
+        threads: int = 0,
+        max_sweeps: Optional[int] = None,
+        refine: bool = False,
+        progress: Optional[Callable[[Stage, int, int], Optional[bool]]] = None,
+    ) -> "UpdateReport":
+        """Moves the built T-mesh onto the boundary given by :meth:`set_boundary`, keeping its
+        tree: boundary vertices to the points of their parameters on the new boundary, inner
+        ones by their current positions plus the harmonic extension of that motion (in steps
+        for large motions), all optimized again with the build's targets. Then
+        :meth:`Spline.refit` gives the spline map in the same space. On any error the domain
+        is unchanged.
+
+        Args:
+            threads: worker threads; 0 uses one per core (the result does not depend on it).
+            max_sweeps: largest number of optimization sweeps per step (default 200).
+            refine: refine the boundary cells whose error exceeds the build's tolerance and
+                repair folded cells as the build does (the tree, and the spline space, change);
+                by default the tree is kept and the report says whether its tolerance holds.
+            progress: as for :meth:`build`.
+
+        Raises:
+            IgaparamError: ``Status.INVALID_ARGUMENT`` before a build, ``Status.CANCELLED``.
+        """
+        options = self._lib.igaparam_domain_update_options_default()
+        _set_counts(options, max_sweeps=max_sweeps, threads=threads)
+        options.refine = 1 if refine else 0
+        report = _call(self._lib.igaparam_domain_update, self._h(), options, progress, _capi.DomainUpdateReport())
+        return UpdateReport._from_c(report)
 
     @property
     def is_built(self) -> bool:

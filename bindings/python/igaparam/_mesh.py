@@ -69,7 +69,12 @@ _MESHIO_BY_CODE = {code: name.lower() for name, code in MESHIO_NAMES.items()}
 _ORDERS = {"vtk": _capi.ORDER_VTK, "gmsh": _capi.ORDER_GMSH}
 _ORDER_NAMES = {code: name for name, code in _ORDERS.items()}
 _TARGETS = {"initial": _capi.TARGET_INITIAL, "master": _capi.TARGET_MASTER}
-_PLACEMENTS = {"laplacian": _capi.PLACEMENT_LAPLACIAN, "current": _capi.PLACEMENT_CURRENT}
+_PLACEMENTS = {
+    "laplacian": _capi.PLACEMENT_LAPLACIAN,
+    "current": _capi.PLACEMENT_CURRENT,
+    "incremental": _capi.PLACEMENT_INCREMENTAL,
+}
+_METHODS = {"auto": _capi.METHOD_AUTO, "sweeps": _capi.METHOD_SWEEPS, "newton": _capi.METHOD_NEWTON}
 
 
 def cell_type_code(cell_type: Union[int, str]) -> int:
@@ -209,6 +214,8 @@ class RelocateReport:
     sweeps: int
     steps: int
     converged: bool
+    gradient_norm: float
+    newton_iterations: int
     seconds: float
 
     @classmethod
@@ -502,6 +509,8 @@ class Mesh(_Handle):
         gradient_tolerance: Optional[float] = None,
         max_newton_iterations: Optional[int] = None,
         relaxation: Optional[float] = None,
+        stationarity_tolerance: Optional[float] = None,
+        method: str = "auto",
     ) -> "RelocateReport":
         """Relocates the free coordinates of the nodes so that every cell is valid and close to
         its target shape. On any error the mesh is unchanged.
@@ -515,7 +524,13 @@ class Mesh(_Handle):
                 :class:`Stage`) called on this thread; return False to cancel (the call then
                 raises IgaparamError with ``Status.CANCELLED``). An exception raised by it
                 cancels the call and is re-raised.
-            placement: 'laplacian' (harmonic extension of the prescribed motion) or 'current'.
+            placement: 'laplacian' (from the reference shape), 'current' (the positions as they
+                are) or 'incremental' (from the last relocation: the placement of a loop that
+                moves the boundary a little at every step).
+            stationarity_tolerance: when positive, the result is a stationary point of the global
+                objective to this scaled gradient norm (e.g. 1e-10), which :meth:`adjoint` and
+                :meth:`tangent` differentiate; None or 0: no such guarantee.
+            method: 'auto', 'sweeps' or 'newton' (``IGAPARAM_METHOD_*`` in igaparam.h).
             move_tolerance, gradient_tolerance, max_newton_iterations, relaxation: see
                 ``igaparam_relocate_options`` in igaparam.h; None keeps the library's default.
 
@@ -525,12 +540,14 @@ class Mesh(_Handle):
         options = self._lib.igaparam_relocate_options_default()
         options.target = _option_code(target, _TARGETS, "target")
         options.placement = _option_code(placement, _PLACEMENTS, "placement")
+        options.method = _option_code(method, _METHODS, "method")
         options.optimize = 0 if laplacian_only else 1
         _set_counts(options, threads=threads, max_sweeps=max_sweeps, max_newton_iterations=max_newton_iterations)
         for name, value in (
             ("move_tolerance", move_tolerance),
             ("gradient_tolerance", gradient_tolerance),
             ("relaxation", relaxation),
+            ("stationarity_tolerance", stationarity_tolerance),
         ):
             if value is not None:
                 setattr(options, name, float(value))
@@ -542,6 +559,41 @@ class Mesh(_Handle):
             raise raised[0]
         _check(status)
         return RelocateReport._from_c(report)
+
+    def _product(self, function, values, name):
+        xyz = _as_xyz(values, name)
+        if xyz.shape[0] != self.node_count:
+            raise ValueError(f"{name} has {xyz.shape[0]} rows, expected one per node ({self.node_count})")
+        out = np.empty((self.node_count, 3), dtype=np.float64)
+        _check(function(self._h(), xyz.size, _ptr(xyz, ctypes.c_double), _ptr(out, ctypes.c_double)))
+        return out
+
+    def adjoint(self, dj_dx: npt.ArrayLike) -> npt.NDArray[np.float64]:
+        """The total derivative of a scalar J of the node positions with respect to the prescribed
+        coordinates, through the last relocation (``igaparam_mesh_adjoint``).
+
+        Args:
+            dj_dx: (n, 3) partial derivatives of J with respect to every node coordinate.
+
+        Returns:
+            (n, 3) float64: dJ/dx_p at the prescribed coordinates, 0 at the free ones.
+
+        Needs a last relocation with ``stationarity_tolerance > 0`` that reached it, and no move,
+        constraint or reference change since; else IgaparamError says why.
+        """
+        return self._product(self._lib.igaparam_mesh_adjoint, dj_dx, "dj_dx")
+
+    def tangent(self, dx_prescribed: npt.ArrayLike) -> npt.NDArray[np.float64]:
+        """The first-order motion of every node for a motion of the prescribed coordinates, through
+        the last relocation (``igaparam_mesh_tangent``, the transpose of :meth:`adjoint`).
+
+        Args:
+            dx_prescribed: (n, 3) motion; entries at free coordinates are ignored.
+
+        Returns:
+            (n, 3) float64 motion of every node.
+        """
+        return self._product(self._lib.igaparam_mesh_tangent, dx_prescribed, "dx_prescribed")
 
     # Arrays copied out.
 

@@ -16,6 +16,7 @@ from . import _capi
 from ._handle import _Handle
 from ._capi import Stage
 from ._mesh import _attach_progress, _check, _ptr, _set_counts
+from ._refit import _Refit
 
 if TYPE_CHECKING:
     from ._domain import Domain
@@ -154,7 +155,7 @@ def _index(value, name):
     return value
 
 
-class Spline(_Handle):
+class Spline(_Refit, _Handle):
     """A cubic THB-spline map ``S: [0,1]^d → Ω``, d = 2 or 3 (an ``igaparam_spline`` handle).
 
     Parametric points are rows of d floats in [0,1]^d, physical points rows of d floats. Create
@@ -178,6 +179,8 @@ class Spline(_Handle):
 
     _kind = "spline"
     _free = "igaparam_spline_free"
+
+    _fit_report_type = FitReport
 
     def __init__(self, handle, fit_report=None):
         """Takes ownership of an ``igaparam_spline *`` (use :meth:`fit` or :meth:`read_gismo`)."""

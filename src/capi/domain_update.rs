@@ -1,0 +1,324 @@
+//! Moving the boundary of a built domain: `igaparam_domain_set_boundary_*` replace the boundary
+//! (by one of the same kind and orientation, from the same inputs as the constructors) and
+//! `igaparam_domain_update` moves the T-mesh onto it, keeping its tree.
+
+use std::ffi::{c_char, c_void};
+
+use super::boundary::{non_null, non_null_mut, run, Failure};
+use super::domain::{
+    c_path, c_report, igaparam_domain, igaparam_domain_report, optimization_progress,
+};
+use super::domain_input::{
+    curves_boundary, igaparam_curve, igaparam_surface, planar_file_boundary, polylines_boundary,
+    solid_file_boundary, surfaces_boundary, triangulations_boundary,
+};
+use super::{igaparam_progress_fn, igaparam_status};
+use crate::boundary::{BoundaryLoop2, SolidBoundary};
+use crate::domain::{UpdateOptions, UpdateReport};
+use crate::error::Error;
+
+/// Options of `igaparam_domain_update`; get the defaults from
+/// `igaparam_domain_update_options_default`. The boundary tolerance, levels, repair rounds and
+/// boundary offset are those the domain was built with.
+#[repr(C)]
+#[derive(Clone, Copy, Debug)]
+pub struct igaparam_domain_update_options {
+    /// Largest number of optimization sweeps per step of the motion (default 200).
+    pub max_sweeps: u32,
+    /// Worker threads, at most 4096; 0 (default) uses one per core.
+    pub threads: u32,
+    /// 0 (default): keep the tree, and only report whether its tolerance still holds. 1: refine
+    /// the boundary cells whose error exceeds the build's tolerance (below its `max_level`)
+    /// until none does, and repair cells left folded as the build does; the T-mesh, and with
+    /// it the spline space of a fit, then changes (a spline fitted before can no longer be
+    /// refitted to it).
+    pub refine: i32,
+    /// Progress callback, or NULL (default). Called with `IGAPARAM_STAGE_OPTIMIZATION`, `done`
+    /// sweeps so far and `total` 0; returning non-zero cancels the update.
+    pub progress: igaparam_progress_fn,
+    /// Passed to `progress` as its first argument.
+    pub progress_user: *mut c_void,
+}
+
+/// What `igaparam_domain_update` did.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default)]
+pub struct igaparam_domain_update_report {
+    /// The T-mesh as `igaparam_domain_build` reports it: `invalid_after_placement` counts the
+    /// cells the harmonic placement (old positions plus the harmonic extension of the boundary
+    /// motion) left invalid, `boundary_error` is measured in the new boundary's own bounding
+    /// box (as a build would), `sweeps` and `seconds` are those of the update.
+    pub domain: igaparam_domain_report,
+    /// 1 when the tree still meets the build's tolerance (no boundary cell below the build's
+    /// `max_level` has an error above it: a build's adaptation would refine none), else 0.
+    pub tolerance_met: i32,
+    /// Boundary cells below the build's `max_level` whose error exceeds its tolerance.
+    pub cells_over_tolerance: usize,
+    /// Cells added by refinement (0 unless `refine` was set).
+    pub refined_cells: usize,
+    /// Largest move of a boundary vertex, in coordinates that map the build's bounding box onto
+    /// the unit box.
+    pub boundary_motion: f64,
+    /// Steps the motion was applied in (a motion of more than about four cell sizes is split).
+    pub steps: u32,
+}
+
+/// The default update options.
+#[no_mangle]
+pub extern "C" fn igaparam_domain_update_options_default() -> igaparam_domain_update_options {
+    let d = UpdateOptions::default();
+    igaparam_domain_update_options {
+        max_sweeps: d.max_sweeps,
+        threads: d.threads as u32,
+        refine: d.refine as i32,
+        progress: None,
+        progress_user: std::ptr::null_mut(),
+    }
+}
+
+/// A new boundary of either kind.
+// Made once per call and moved into the handle at once; the variants' sizes do not matter.
+#[allow(clippy::large_enum_variant)]
+enum NewBoundary {
+    Planar(BoundaryLoop2),
+    Solid(SolidBoundary),
+}
+
+/// The body of the `igaparam_domain_set_boundary_*` functions: checks that the domain is of
+/// dimension `dim` (when given), makes the boundary, checks it against the built T-mesh (same
+/// orientation) and puts it in the handle.
+fn set_boundary(
+    function: &str,
+    domain: *mut igaparam_domain,
+    dim: Option<usize>,
+    make: impl FnOnce(usize) -> std::result::Result<NewBoundary, Failure>,
+) -> igaparam_status {
+    run(function, || {
+        let own = non_null(domain, "domain")?.dim();
+        if let Some(dim) = dim.filter(|&dim| dim != own) {
+            let (has, given) = match dim {
+                2 => ("a solid, bounded by six surfaces", "four curves"),
+                _ => ("planar, bounded by four curves", "six faces"),
+            };
+            return Err(Error::invalid(format!(
+                "the domain is {has}; a boundary of {given} cannot replace its boundary"
+            ))
+            .into());
+        }
+        let new = make(own)?;
+        match (non_null_mut(domain, "domain")?, new) {
+            (igaparam_domain::Planar(boundary, built), NewBoundary::Planar(new)) => {
+                if let Some(b) = built {
+                    b.check_boundary(&new)?;
+                }
+                *boundary = new;
+            }
+            (igaparam_domain::Solid(boundary, built), NewBoundary::Solid(new)) => {
+                if let Some(b) = built {
+                    b.check_boundary(&new)?;
+                }
+                **boundary = new;
+            }
+            _ => return Err(Error::invalid("the boundary is not of the domain's kind").into()),
+        }
+        Ok(())
+    })
+}
+
+/// Replaces the boundary of a domain by four B-spline or NURBS curves given as arrays (`count`
+/// = 4 entries of `curves`, read as by `igaparam_domain_new_from_curves`: give them in the order
+/// and direction of the first ones, so that each lands on the same side). The T-mesh of a built
+/// domain stays where it is until `igaparam_domain_update` moves it onto the new boundary (or
+/// `igaparam_domain_build` builds anew); fits need that first. Errors: those of
+/// `igaparam_domain_new_from_curves`, `IGAPARAM_STATUS_INVALID_ARGUMENT` for a solid or, once
+/// built, a boundary oriented the other way round (its parameterization mirrored relative to
+/// the domain's). On error the domain is unchanged. The arrays are copied.
+#[no_mangle]
+pub extern "C" fn igaparam_domain_set_boundary_curves(
+    domain: *mut igaparam_domain,
+    count: usize,
+    curves: *const igaparam_curve,
+) -> igaparam_status {
+    set_boundary(
+        "igaparam_domain_set_boundary_curves",
+        domain,
+        Some(2),
+        |_| Ok(NewBoundary::Planar(curves_boundary(count, curves)?)),
+    )
+}
+
+/// Replaces the boundary of a planar domain by four polylines (the arrays of
+/// `igaparam_domain_new_from_polylines`), as `igaparam_domain_set_boundary_curves` does.
+#[no_mangle]
+pub extern "C" fn igaparam_domain_set_boundary_polylines(
+    domain: *mut igaparam_domain,
+    counts: *const usize,
+    points: *const *const f64,
+) -> igaparam_status {
+    set_boundary(
+        "igaparam_domain_set_boundary_polylines",
+        domain,
+        Some(2),
+        |_| Ok(NewBoundary::Planar(polylines_boundary(counts, points)?)),
+    )
+}
+
+/// Replaces the boundary of a solid by six B-spline or NURBS surfaces given as arrays (`count`
+/// = 6 entries of `surfaces`, read as by `igaparam_domain_new_solid_from_surfaces`: give them in
+/// the order and with the parameterizations of the first ones), as
+/// `igaparam_domain_set_boundary_curves` does for planar domains. Errors: those of
+/// `igaparam_domain_new_solid_from_surfaces`, `IGAPARAM_STATUS_INVALID_ARGUMENT` for a planar
+/// domain or a boundary oriented the other way round. On error the domain is unchanged.
+#[no_mangle]
+pub extern "C" fn igaparam_domain_set_boundary_surfaces(
+    domain: *mut igaparam_domain,
+    count: usize,
+    surfaces: *const igaparam_surface,
+) -> igaparam_status {
+    set_boundary(
+        "igaparam_domain_set_boundary_surfaces",
+        domain,
+        Some(3),
+        |_| Ok(NewBoundary::Solid(surfaces_boundary(count, surfaces)?)),
+    )
+}
+
+/// Replaces the boundary of a solid by six triangulated faces (the arrays of
+/// `igaparam_domain_new_solid_from_triangulations`, each face parameterized anew by Floater's
+/// map), as `igaparam_domain_set_boundary_surfaces` does.
+#[no_mangle]
+pub extern "C" fn igaparam_domain_set_boundary_triangulations(
+    domain: *mut igaparam_domain,
+    vertex_counts: *const usize,
+    xyz: *const *const f64,
+    triangle_counts: *const usize,
+    triangles: *const *const u32,
+) -> igaparam_status {
+    set_boundary(
+        "igaparam_domain_set_boundary_triangulations",
+        domain,
+        Some(3),
+        |_| {
+            let b = triangulations_boundary(vertex_counts, xyz, triangle_counts, triangles)?;
+            Ok(NewBoundary::Solid(b))
+        },
+    )
+}
+
+/// Replaces the boundary of a domain by the one of a file: for a planar domain a `.xml` G+Smo
+/// B-rep of four curves or a `.txt` coastline (as `igaparam_domain_new_from_file`), for a solid a
+/// `.xml` B-rep of six surfaces or a folder of six `.obj` faces (as
+/// `igaparam_domain_new_solid_from_file`); otherwise as `igaparam_domain_set_boundary_curves`.
+#[no_mangle]
+pub extern "C" fn igaparam_domain_set_boundary_from_file(
+    domain: *mut igaparam_domain,
+    path: *const c_char,
+) -> igaparam_status {
+    set_boundary(
+        "igaparam_domain_set_boundary_from_file",
+        domain,
+        None,
+        |dim| {
+            let path = c_path(path, "path")?;
+            Ok(match dim {
+                2 => NewBoundary::Planar(planar_file_boundary(path)?),
+                _ => NewBoundary::Solid(solid_file_boundary(path, std::ptr::null())?),
+            })
+        },
+    )
+}
+
+/// Replaces the boundary of a solid by the one of a file or folder, its coordinates scaled
+/// first (`scale`: NULL or 3 finite positive factors, as
+/// `igaparam_domain_new_solid_from_file_scaled`); otherwise as
+/// `igaparam_domain_set_boundary_from_file`.
+#[no_mangle]
+pub extern "C" fn igaparam_domain_set_boundary_from_file_scaled(
+    domain: *mut igaparam_domain,
+    path: *const c_char,
+    scale: *const f64,
+) -> igaparam_status {
+    set_boundary(
+        "igaparam_domain_set_boundary_from_file_scaled",
+        domain,
+        Some(3),
+        |_| {
+            let path = c_path(path, "path")?;
+            Ok(NewBoundary::Solid(solid_file_boundary(path, scale)?))
+        },
+    )
+}
+
+/// The C form of an update report.
+fn c_update_report(r: &UpdateReport) -> igaparam_domain_update_report {
+    igaparam_domain_update_report {
+        domain: c_report(&r.domain),
+        tolerance_met: r.tolerance_met as i32,
+        cells_over_tolerance: r.cells_over_tolerance,
+        refined_cells: r.refined_cells,
+        boundary_motion: r.boundary_motion,
+        steps: r.steps,
+    }
+}
+
+/// Moves the built T-mesh onto the domain's current boundary (the one given by the last
+/// `igaparam_domain_set_boundary_*`), keeping its tree: every boundary vertex goes to the point
+/// of its parameters on the new boundary (keeping the offset the seam relief gave it, if any),
+/// the inner vertices to their current positions plus the harmonic extension of that motion
+/// (a motion of more than about four cell sizes in steps), and all are optimized again (with
+/// the seam relief of the build where cells stay folded). The targets of the cells stay those
+/// of the build (its bounding box), as for relocated meshes. The report says whether the
+/// tree's tolerance still holds; the tree changes only when `options->refine` is set. A spline
+/// fitted to the domain is refitted in its own space with `igaparam_spline_refit`.
+///
+/// `options` may be NULL for the defaults (`igaparam_domain_update_options_default`); `report`
+/// may be NULL. Errors: `IGAPARAM_STATUS_INVALID_ARGUMENT` when the domain has not been built
+/// (call `igaparam_domain_build` first) or for threads above 4096, `IGAPARAM_STATUS_CANCELLED`.
+/// On any error the domain is unchanged and `*report` is not written.
+#[no_mangle]
+pub extern "C" fn igaparam_domain_update(
+    domain: *mut igaparam_domain,
+    options: *const igaparam_domain_update_options,
+    report: *mut igaparam_domain_update_report,
+) -> igaparam_status {
+    run("igaparam_domain_update", || {
+        let d = non_null_mut(domain, "domain")?;
+        let raw = if options.is_null() {
+            igaparam_domain_update_options_default()
+        } else {
+            *non_null(options, "options")?
+        };
+        if raw.threads > 4096 {
+            return Err(Error::invalid(format!(
+                "threads = {} is above the limit of 4096",
+                raw.threads
+            ))
+            .into());
+        }
+        let opts = UpdateOptions {
+            max_sweeps: raw.max_sweeps,
+            threads: raw.threads as usize,
+            refine: raw.refine != 0,
+        };
+        let mut progress = optimization_progress(raw.progress, raw.progress_user);
+        let r = match d {
+            igaparam_domain::Planar(boundary, Some(built)) => {
+                built.update(boundary.clone(), &opts, &mut progress)?
+            }
+            igaparam_domain::Solid(boundary, Some(built)) => {
+                built.update(boundary.as_ref().clone(), &opts, &mut progress)?
+            }
+            _ => {
+                return Err(Error::invalid(
+                    "the domain has not been built: call igaparam_domain_build before \
+                     igaparam_domain_update",
+                )
+                .into())
+            }
+        };
+        if !report.is_null() {
+            *non_null_mut(report, "report")? = c_update_report(&r);
+        }
+        Ok(())
+    })
+}

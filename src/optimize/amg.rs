@@ -1,0 +1,644 @@
+//! Smoothed-aggregation algebraic multigrid (Vaněk, Mandel and Brezina) for the free block of a
+//! mesh's Hessian: the preconditioner of conjugate gradients on 3D meshes too large to factor.
+//!
+//! The Hessian of the mean-ratio objective behaves like an elasticity operator: its softest modes
+//! are the rigid motions, which the objective does not see. On quadratic cells (Q8, Q9, H20,
+//! H27) the first coarsening is the p-coarsening to the cells' corners (the coarse functions are
+//! the bi-/trilinear interpolants of the corner values): smoothed aggregation applied directly to
+//! their dense stencils gives coarse operators of over a thousand values per row (measured on the
+//! wing: 63 million values at the second level). Aggregates of strongly coupled nodes
+//! carry the rigid motions restricted to them (translations and rotations, orthonormalised per
+//! aggregate) as their coarse functions; the tentative prolongator is smoothed by one damped
+//! Jacobi step where the level is sparse enough for that to keep the coarse operator sparse;
+//! coarse operators are Galerkin products; each level is smoothed by a Chebyshev polynomial in
+//! the Jacobi-scaled operator (symmetric, so the V-cycle preconditions CG), and the coarsest level
+//! (at most 40,000 unknowns) is solved by a sparse Cholesky factorisation. Every step is sequential or
+//! row-parallel with a fixed summation order, so the result does not depend on the thread count.
+//!
+//! Hand-written: no maintained Rust crate provides aggregation with a rigid-motion near-null
+//! space; faer's sparse Cholesky factorises the coarsest level.
+
+use rayon::ThreadPool;
+
+use super::blocks::{BlockLayout, BlockMatrix};
+use super::csr::Csr;
+use super::lattice;
+use super::problem::Problem;
+use super::small::Vector;
+use super::sparse::{CholeskyPattern, Factor};
+
+/// Strength threshold of the aggregation: `‖A_ij‖ ≥ θ √(‖A_ii‖‖A_jj‖)`.
+const STRENGTH: f64 = 0.08;
+
+/// Stop coarsening below this many unknowns (then factor the level, sparse).
+const COARSEST: usize = 5_000;
+
+/// Smooth the prolongator only on levels with at most this many values per row: on denser
+/// ones the smoothed prolongator's coarse operator becomes dense.
+const SMOOTHING_DENSITY: usize = 40;
+
+/// Degree of the Chebyshev smoother.
+const CHEBYSHEV_DEGREE: usize = 3;
+
+/// The smoother damps the upper part `[λ_max/30, 1.1 λ_max]` of the Jacobi-scaled spectrum.
+const CHEBYSHEV_RATIO: f64 = 30.0;
+
+/// One level of the hierarchy.
+struct Level {
+    /// The operator.
+    a: Csr,
+    /// `1/diag(A)`.
+    inverse_diagonal: Vec<f64>,
+    /// Estimate of the largest eigenvalue of `D⁻¹A`.
+    lambda: f64,
+    /// Prolongation from the next level, and its transpose.
+    p: Csr,
+    r: Csr,
+}
+
+/// The multigrid hierarchy of `H_ff`.
+pub struct Amg {
+    levels: Vec<Level>,
+    coarsest: (CholeskyPattern, Factor),
+    coarsest_size: usize,
+    /// `dof[v·d + k]`: index of component `k` of node `v` among the free coordinates.
+    dof: Vec<u32>,
+}
+
+/// A level's unknowns grouped by node (level 0) or aggregate: node `i` owns unknowns
+/// `start[i]..start[i + 1]`.
+struct Grouping {
+    start: Vec<usize>,
+}
+
+impl Grouping {
+    fn count(&self) -> usize {
+        self.start.len() - 1
+    }
+
+    fn range(&self, i: usize) -> std::ops::Range<usize> {
+        self.start[i]..self.start[i + 1]
+    }
+}
+
+impl Amg {
+    /// The hierarchy of the free block of `hessian` (free coordinates per node given by `free`);
+    /// `x` are the node positions (for the rigid motions). `None` where the coarsest level is not
+    /// positive definite.
+    pub fn new<const D: usize>(
+        pool: &ThreadPool,
+        problem: &Problem<D>,
+        layout: &BlockLayout,
+        hessian: &BlockMatrix<D>,
+        free: &[u8],
+        x: &[Vector<D>],
+    ) -> Option<Amg> {
+        let (dof, a) = fine_level(layout, hessian, free);
+        let modes = D * (D + 1) / 2;
+        let mut levels = Vec::new();
+        let (mut a, mut grouping, mut null_space) = match corner_prolongator(problem, &dof, x) {
+            Some((p, grouping, null_space)) => {
+                let r = p.transpose();
+                let coarse = r.product(pool, &a.product(pool, &p));
+                let inverse_diagonal = inverse_diagonal(&a);
+                let lambda = spectral_radius(pool, &a, &inverse_diagonal);
+                levels.push(Level {
+                    a,
+                    inverse_diagonal,
+                    lambda,
+                    p,
+                    r,
+                });
+                (coarse, grouping, null_space)
+            }
+            None => {
+                let (grouping, null_space) = node_grouping(&dof, free.len(), x);
+                (a, grouping, null_space)
+            }
+        };
+        while a.rows() > COARSEST && levels.len() < 12 {
+            let clock = std::time::Instant::now();
+            let aggregates = aggregate(&a, &grouping);
+            let (tentative, coarse_grouping, coarse_null) =
+                tentative_prolongator(&grouping, &aggregates, &null_space, modes);
+            if std::env::var_os("IGAPARAM_DEBUG").is_some() {
+                eprintln!(
+                    "level {}: {} unknowns, {} stored, {} groups -> {} coarse ({:?})",
+                    levels.len(),
+                    a.rows(),
+                    a.stored(),
+                    grouping.count(),
+                    tentative.columns,
+                    clock.elapsed()
+                );
+            }
+            if tentative.columns as f64 > 0.8 * a.rows() as f64 {
+                break;
+            }
+            let inverse_diagonal = inverse_diagonal(&a);
+            let lambda = spectral_radius(pool, &a, &inverse_diagonal);
+            let p = match a.stored() <= SMOOTHING_DENSITY * a.rows() {
+                true => smooth_prolongator(pool, &a, &inverse_diagonal, lambda, &tentative),
+                false => tentative,
+            };
+            let r = p.transpose();
+            let coarse = r.product(pool, &a.product(pool, &p));
+            levels.push(Level {
+                a,
+                inverse_diagonal,
+                lambda,
+                p,
+                r,
+            });
+            a = coarse;
+            grouping = coarse_grouping;
+            null_space = coarse_null;
+        }
+        let n = a.rows();
+        let (pattern, positions) = CholeskyPattern::of_csr(&a).ok()?;
+        if std::env::var_os("IGAPARAM_DEBUG").is_some() {
+            eprintln!(
+                "coarsest: {n} unknowns, {} stored, factor {}",
+                a.stored(),
+                pattern.factor_size()
+            );
+        }
+        let factor = pattern
+            .factorize(positions.iter().map(|&p| a.value[p]).collect())
+            .ok()??;
+        if factor.modified {
+            return None;
+        }
+        Some(Amg {
+            levels,
+            coarsest: (pattern, factor),
+            coarsest_size: n,
+            dof,
+        })
+    }
+
+    /// Number of levels (the coarsest included).
+    pub fn level_count(&self) -> usize {
+        self.levels.len() + 1
+    }
+
+    /// One V-cycle applied to a residual given per node.
+    pub fn apply<const D: usize>(&self, pool: &ThreadPool, r: &[Vector<D>]) -> Vec<Vector<D>> {
+        let n = self
+            .levels
+            .first()
+            .map_or(self.coarsest_size, |l| l.a.rows());
+        let mut b = vec![0.0; n];
+        for (i, &d) in self.dof.iter().enumerate() {
+            if d != u32::MAX {
+                b[d as usize] = r[i / D][i % D];
+            }
+        }
+        let x = self.cycle(pool, 0, &b);
+        let mut out = vec![[0.0; D]; r.len()];
+        for (i, &d) in self.dof.iter().enumerate() {
+            if d != u32::MAX {
+                out[i / D][i % D] = x[d as usize];
+            }
+        }
+        out
+    }
+
+    fn cycle(&self, pool: &ThreadPool, level: usize, b: &[f64]) -> Vec<f64> {
+        let Some(l) = self.levels.get(level) else {
+            let mut x = b.to_vec();
+            self.coarsest.0.solve(&self.coarsest.1, &mut x);
+            return x;
+        };
+        // Pre-smoothing from zero keeps the residual up to date, post-smoothing starts from the
+        // residual after the coarse correction: six products with the level's operator.
+        let mut x = vec![0.0; b.len()];
+        let mut residual = b.to_vec();
+        chebyshev(pool, l, &mut x, &mut residual, false);
+        let mut coarse_b = vec![0.0; l.r.rows()];
+        l.r.apply(pool, &residual, &mut coarse_b);
+        let coarse_x = self.cycle(pool, level + 1, &coarse_b);
+        let mut correction = vec![0.0; b.len()];
+        l.p.apply(pool, &coarse_x, &mut correction);
+        let mut a_correction = vec![0.0; b.len()];
+        l.a.apply(pool, &correction, &mut a_correction);
+        for i in 0..b.len() {
+            x[i] += correction[i];
+            residual[i] -= a_correction[i];
+        }
+        chebyshev(pool, l, &mut x, &mut residual, true);
+        x
+    }
+}
+
+/// The fine level: the numbering of the free coordinates (node by node) and `H_ff` in
+/// compressed rows over them.
+fn fine_level<const D: usize>(
+    layout: &BlockLayout,
+    hessian: &BlockMatrix<D>,
+    free: &[u8],
+) -> (Vec<u32>, Csr) {
+    let mut dof = vec![u32::MAX; free.len() * D];
+    let mut count = 0u32;
+    for (v, &mask) in free.iter().enumerate() {
+        for k in (0..D).filter(|k| mask & (1 << k) != 0) {
+            dof[v * D + k] = count;
+            count += 1;
+        }
+    }
+    let mut rows = Vec::with_capacity(count as usize);
+    for (v, &mask) in free.iter().enumerate() {
+        let (blocks, neighbours) = layout.row(v);
+        for k in (0..D).filter(|k| mask & (1 << k) != 0) {
+            let mut row = Vec::new();
+            for (b, &w) in blocks.clone().zip(neighbours) {
+                for l in 0..D {
+                    let d = dof[w as usize * D + l];
+                    if d != u32::MAX {
+                        row.push((d, hessian.blocks[b][k][l]));
+                    }
+                }
+            }
+            rows.push(row);
+        }
+    }
+    (dof, Csr::from_rows(count as usize, rows))
+}
+
+/// Groups the unknowns numbered by `dof` (`node·d + k`) by node, with the rigid motions at the
+/// nodes' positions `x` as near-null space (row-major, `d(d+1)/2` values per unknown).
+fn node_grouping<const D: usize>(
+    dof: &[u32],
+    nodes: usize,
+    x: &[Vector<D>],
+) -> (Grouping, Vec<f64>) {
+    let modes = D * (D + 1) / 2;
+    let mut start = vec![0usize];
+    let mut null_space = Vec::new();
+    for v in 0..nodes {
+        let mut owned = 0;
+        for k in 0..D {
+            if dof[v * D + k] == u32::MAX {
+                continue;
+            }
+            owned += 1;
+            let mut row = vec![0.0; modes];
+            row[k] = 1.0;
+            // Rotations: in the plane of axes (a, b), component a gets −x_b and b gets x_a.
+            for (m, (a, b)) in rotation_planes(D).into_iter().enumerate() {
+                row[D + m] = match k {
+                    k if k == a => -x[v][b],
+                    k if k == b => x[v][a],
+                    _ => 0.0,
+                };
+            }
+            null_space.extend(row);
+        }
+        if owned > 0 {
+            start.push(start.last().expect("start") + owned);
+        }
+    }
+    (Grouping { start }, null_space)
+}
+
+/// The p-coarsening of quadratic cells: the corners of the cells carry the coarse unknowns (their
+/// free components), every free unknown interpolates them bi-/trilinearly over one of its cells.
+/// Returns the prolongator, the coarse grouping and near-null space; `None` when every node is a
+/// corner (linear cells, T-meshes).
+fn corner_prolongator<const D: usize>(
+    problem: &Problem<D>,
+    dof: &[u32],
+    x: &[Vector<D>],
+) -> Option<(Csr, Grouping, Vec<f64>)> {
+    let n = problem.node_count();
+    let mut corner = vec![false; n];
+    let mut all_corners = true;
+    for c in 0..problem.cell_count() {
+        let pattern = problem.pattern(c);
+        for (&l, &v) in pattern.real.iter().zip(problem.cell_nodes(c)) {
+            let is_corner = lattice::coords::<D>(l).iter().all(|&ck| ck != 1);
+            corner[v as usize] |= is_corner;
+            all_corners &= is_corner;
+        }
+    }
+    if all_corners {
+        return None;
+    }
+    let mut coarse_dof = vec![u32::MAX; n * D];
+    let mut count = 0u32;
+    for v in (0..n).filter(|&v| corner[v]) {
+        for k in 0..D {
+            if dof[v * D + k] != u32::MAX {
+                coarse_dof[v * D + k] = count;
+                count += 1;
+            }
+        }
+    }
+    let fine = dof.iter().filter(|&&d| d != u32::MAX).count();
+    let mut rows: Vec<Vec<(u32, f64)>> = vec![Vec::new(); fine];
+    for v in 0..n {
+        let Some(&(c, r)) = problem.incident_cells(v).first() else {
+            continue;
+        };
+        let (c, r) = (c as usize, r as usize);
+        let pattern = problem.pattern(c);
+        let nodes = problem.cell_nodes(c);
+        let at = lattice::coords::<D>(pattern.real[r]);
+        // The cell's corner nodes with their bi-/trilinear weights at the node's lattice point.
+        let weights: Vec<(usize, f64)> = pattern
+            .real
+            .iter()
+            .zip(nodes)
+            .filter_map(|(&l, &w)| {
+                let cc = lattice::coords::<D>(l);
+                let weight: f64 = (0..D)
+                    .map(|k| match (cc[k], at[k]) {
+                        (1, _) => 0.0,
+                        (_, 1) => 0.5,
+                        (a, b) if a == b => 1.0,
+                        _ => 0.0,
+                    })
+                    .product();
+                (weight != 0.0).then_some((w as usize, weight))
+            })
+            .collect();
+        for k in 0..D {
+            let d = dof[v * D + k];
+            if d == u32::MAX {
+                continue;
+            }
+            let mut row: Vec<(u32, f64)> = weights
+                .iter()
+                .filter_map(|&(w, weight)| {
+                    let cd = coarse_dof[w * D + k];
+                    (cd != u32::MAX).then_some((cd, weight))
+                })
+                .collect();
+            row.sort_unstable_by_key(|e| e.0);
+            rows[d as usize] = row;
+        }
+    }
+    let (grouping, null_space) = node_grouping(&coarse_dof, n, x);
+    Some((Csr::from_rows(count as usize, rows), grouping, null_space))
+}
+
+/// The coordinate planes of the rotations: (0, 1) in 2D; (1, 2), (2, 0), (0, 1) in 3D.
+fn rotation_planes(d: usize) -> Vec<(usize, usize)> {
+    match d {
+        2 => vec![(0, 1)],
+        _ => vec![(1, 2), (2, 0), (0, 1)],
+    }
+}
+
+fn inverse_diagonal(a: &Csr) -> Vec<f64> {
+    a.diagonal()
+        .iter()
+        .map(|&d| if d > 0.0 { 1.0 / d } else { 0.0 })
+        .collect()
+}
+
+/// Frobenius norm of the block of `a` between groups `i` and `j`.
+fn block_norm(a: &Csr, grouping: &Grouping, i: usize, j: usize) -> f64 {
+    let columns = grouping.range(j);
+    grouping
+        .range(i)
+        .map(|row| {
+            let (cols, vals) = a.row(row);
+            cols.iter()
+                .zip(vals)
+                .filter(|(c, _)| columns.contains(&(**c as usize)))
+                .map(|(_, v)| v * v)
+                .sum::<f64>()
+        })
+        .sum::<f64>()
+        .sqrt()
+}
+
+/// The groups coupled to each group, strongly or not.
+fn group_graph(a: &Csr, grouping: &Grouping) -> Vec<Vec<usize>> {
+    let mut owner = vec![0usize; a.rows()];
+    for i in 0..grouping.count() {
+        for d in grouping.range(i) {
+            owner[d] = i;
+        }
+    }
+    (0..grouping.count())
+        .map(|i| {
+            let mut neighbours: Vec<usize> = grouping
+                .range(i)
+                .flat_map(|row| a.row(row).0.iter().map(|&c| owner[c as usize]))
+                .filter(|&j| j != i)
+                .collect();
+            neighbours.sort_unstable();
+            neighbours.dedup();
+            neighbours
+        })
+        .collect()
+}
+
+/// Greedy aggregation of the groups of `a` (Vaněk's three passes): the aggregate of every group.
+fn aggregate(a: &Csr, grouping: &Grouping) -> Vec<usize> {
+    let n = grouping.count();
+    let graph = group_graph(a, grouping);
+    let own: Vec<f64> = (0..n).map(|i| block_norm(a, grouping, i, i)).collect();
+    let strong: Vec<Vec<(usize, f64)>> = (0..n)
+        .map(|i| {
+            graph[i]
+                .iter()
+                .map(|&j| (j, block_norm(a, grouping, i, j)))
+                .filter(|&(j, s)| s >= STRENGTH * (own[i] * own[j]).sqrt())
+                .collect()
+        })
+        .collect();
+    const NONE: usize = usize::MAX;
+    let mut aggregate = vec![NONE; n];
+    let mut count = 0;
+    for i in 0..n {
+        if aggregate[i] == NONE && strong[i].iter().all(|&(j, _)| aggregate[j] == NONE) {
+            aggregate[i] = count;
+            for &(j, _) in &strong[i] {
+                aggregate[j] = count;
+            }
+            count += 1;
+        }
+    }
+    let first = aggregate.clone();
+    for i in 0..n {
+        if aggregate[i] == NONE {
+            let best = strong[i]
+                .iter()
+                .filter(|&&(j, _)| first[j] != NONE)
+                .max_by(|x, y| x.1.total_cmp(&y.1));
+            if let Some(&(j, _)) = best {
+                aggregate[i] = first[j];
+            }
+        }
+    }
+    for i in 0..n {
+        if aggregate[i] == NONE {
+            aggregate[i] = count;
+            for &(j, _) in &strong[i] {
+                if aggregate[j] == NONE {
+                    aggregate[j] = count;
+                }
+            }
+            count += 1;
+        }
+    }
+    aggregate
+}
+
+/// The tentative prolongator: per aggregate, the near-null space restricted to its unknowns,
+/// orthonormalised (columns that are dependent there are dropped); the coarse level's grouping
+/// (one group per aggregate) and near-null space (the triangular factors).
+fn tentative_prolongator(
+    grouping: &Grouping,
+    aggregates: &[usize],
+    null_space: &[f64],
+    modes: usize,
+) -> (Csr, Grouping, Vec<f64>) {
+    let count = aggregates.iter().max().map_or(0, |&m| m + 1);
+    let mut members: Vec<Vec<usize>> = vec![Vec::new(); count];
+    for (group, &agg) in aggregates.iter().enumerate() {
+        members[agg].extend(grouping.range(group));
+    }
+    let fine = grouping.start.last().copied().unwrap_or(0);
+    let mut rows: Vec<Vec<(u32, f64)>> = vec![Vec::new(); fine];
+    let mut start = vec![0usize];
+    let mut coarse_null = Vec::new();
+    for unknowns in &members {
+        let first_column = *start.last().expect("start");
+        // Modified Gram–Schmidt on the columns of the local near-null space.
+        let mut q: Vec<Vec<f64>> = Vec::new();
+        let mut r = vec![vec![0.0; modes]; modes];
+        let mut kept = Vec::new();
+        for m in 0..modes {
+            let mut column: Vec<f64> = unknowns
+                .iter()
+                .map(|&u| null_space[u * modes + m])
+                .collect();
+            let original = column.iter().map(|v| v * v).sum::<f64>().sqrt();
+            for (c, qc) in q.iter().enumerate() {
+                let dot: f64 = qc.iter().zip(&column).map(|(a, b)| a * b).sum();
+                r[c][m] = dot;
+                for (v, qv) in column.iter_mut().zip(qc) {
+                    *v -= dot * qv;
+                }
+            }
+            let norm = column.iter().map(|v| v * v).sum::<f64>().sqrt();
+            if norm > 1e-10 * original && norm > 0.0 {
+                r[q.len()][m] = norm;
+                column.iter_mut().for_each(|v| *v /= norm);
+                q.push(column);
+                kept.push(m);
+            }
+        }
+        for (i, &u) in unknowns.iter().enumerate() {
+            for (c, qc) in q.iter().enumerate() {
+                rows[u].push(((first_column + c) as u32, qc[i]));
+            }
+        }
+        for row in r.iter().take(q.len()) {
+            coarse_null.extend_from_slice(row);
+        }
+        start.push(first_column + q.len());
+    }
+    let columns = *start.last().expect("start");
+    (
+        Csr::from_rows(columns, rows),
+        Grouping { start },
+        coarse_null,
+    )
+}
+
+/// `λ_max(D⁻¹A)` by 20 power iterations from a fixed start, with a 10% margin.
+fn spectral_radius(pool: &ThreadPool, a: &Csr, inverse_diagonal: &[f64]) -> f64 {
+    let n = a.rows();
+    let mut v: Vec<f64> = (0..n)
+        .map(|i| 1.0 + ((i * 7919) % 13) as f64 / 13.0)
+        .collect();
+    let mut w = vec![0.0; n];
+    let mut lambda = 1.0;
+    for _ in 0..20 {
+        let norm = v.iter().map(|x| x * x).sum::<f64>().sqrt();
+        v.iter_mut().for_each(|x| *x /= norm);
+        a.apply(pool, &v, &mut w);
+        for (wi, d) in w.iter_mut().zip(inverse_diagonal) {
+            *wi *= d;
+        }
+        lambda = w.iter().map(|x| x * x).sum::<f64>().sqrt();
+        std::mem::swap(&mut v, &mut w);
+    }
+    1.1 * lambda
+}
+
+/// `P = (I − ω D⁻¹A) P_tent` with `ω = 4/(3λ)`.
+fn smooth_prolongator(
+    pool: &ThreadPool,
+    a: &Csr,
+    inverse_diagonal: &[f64],
+    lambda: f64,
+    tentative: &Csr,
+) -> Csr {
+    let omega = 4.0 / (3.0 * lambda);
+    let ap = a.product(pool, tentative);
+    let rows: Vec<Vec<(u32, f64)>> = (0..a.rows())
+        .map(|i| {
+            let (tc, tv) = tentative.row(i);
+            let (ac, av) = ap.row(i);
+            let scale = omega * inverse_diagonal[i];
+            let mut row: Vec<(u32, f64)> =
+                ac.iter().zip(av).map(|(&c, &v)| (c, -scale * v)).collect();
+            for (&c, &v) in tc.iter().zip(tv) {
+                match row.binary_search_by_key(&c, |e| e.0) {
+                    Ok(p) => row[p].1 += v,
+                    Err(p) => row.insert(p, (c, v)),
+                }
+            }
+            row
+        })
+        .collect();
+    Csr::from_rows(tentative.columns, rows)
+}
+
+/// Chebyshev smoothing of `A x = b` in the Jacobi-scaled operator, from `x` in place, given and
+/// updating the residual `r = b − A x` (`CHEBYSHEV_DEGREE` products with `A`; one fewer when
+/// this is the `last` smoothing and the residual is not needed after it).
+fn chebyshev(pool: &ThreadPool, level: &Level, x: &mut [f64], residual: &mut [f64], last: bool) {
+    let (upper, lower) = (level.lambda, level.lambda / CHEBYSHEV_RATIO);
+    let theta = 0.5 * (upper + lower);
+    let delta = 0.5 * (upper - lower);
+    let sigma = theta / delta;
+    let mut rho = 1.0 / sigma;
+    let n = x.len();
+    let mut d: Vec<f64> = residual
+        .iter()
+        .zip(&level.inverse_diagonal)
+        .map(|(r, w)| r * w / theta)
+        .collect();
+    let mut ad = vec![0.0; n];
+    for k in 0..CHEBYSHEV_DEGREE {
+        for (xi, di) in x.iter_mut().zip(&d) {
+            *xi += di;
+        }
+        if last && k + 1 == CHEBYSHEV_DEGREE {
+            break;
+        }
+        level.a.apply(pool, &d, &mut ad);
+        for (r, a) in residual.iter_mut().zip(&ad) {
+            *r -= a;
+        }
+        if k + 1 == CHEBYSHEV_DEGREE {
+            break;
+        }
+        let rho_next = 1.0 / (2.0 * sigma - rho);
+        for ((di, r), w) in d
+            .iter_mut()
+            .zip(residual.iter())
+            .zip(&level.inverse_diagonal)
+        {
+            *di = rho_next * rho * *di + 2.0 * rho_next / delta * r * w;
+        }
+        rho = rho_next;
+    }
+}

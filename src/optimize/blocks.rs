@@ -1,0 +1,183 @@
+//! Symmetric matrices over node coordinates stored in d×d node blocks: the layout of a mesh's
+//! Hessian (which node pairs couple, and where each cell's pairs go) and the products with the
+//! parts of it that free and prescribed coordinates select.
+//!
+//! Two real nodes of a cell couple when some Gauss–Lobatto point's Jacobian depends on both.
+//! Blocks are stored for both triangles, so a row-wise product needs no transposition and
+//! parallelises with a result independent of the thread count.
+
+use rayon::prelude::*;
+use rayon::ThreadPool;
+
+use super::problem::Problem;
+use super::small::{Matrix, Vector};
+
+/// Marks a pair of a cell's nodes that does not couple.
+pub(super) const NONE: u32 = u32::MAX;
+
+/// Where the blocks of a mesh's Hessian are: the neighbours of node `v` are
+/// `columns[start[v]..start[v + 1]]`, sorted, `v` itself included; and, for every cell, the block
+/// of each ordered pair of its real nodes.
+#[derive(Clone, Debug)]
+pub struct BlockLayout {
+    start: Vec<usize>,
+    columns: Vec<u32>,
+    /// Per cell, `first[c]..first[c + 1]` indexes `cell_blocks`: the block of each pair `(r, s)`
+    /// of its real nodes, row-major, or [`NONE`].
+    first: Vec<usize>,
+    cell_blocks: Vec<u32>,
+}
+
+impl BlockLayout {
+    /// The layout of `problem`'s Hessian (it depends on the connectivity only).
+    pub fn new<const D: usize>(problem: &Problem<D>) -> Self {
+        let n = problem.node_count();
+        let mut rows: Vec<Vec<u32>> = (0..n as u32).map(|v| vec![v]).collect();
+        let couplings: Vec<Vec<bool>> = (0..problem.cell_count())
+            .map(|c| coupling(problem, c))
+            .collect();
+        for (c, couples) in couplings.iter().enumerate() {
+            let nodes = problem.cell_nodes(c);
+            for (r, &v) in nodes.iter().enumerate() {
+                for (s, &w) in nodes.iter().enumerate() {
+                    if couples[r * nodes.len() + s] && v != w {
+                        rows[v as usize].push(w);
+                    }
+                }
+            }
+        }
+        let mut start = Vec::with_capacity(n + 1);
+        let mut columns = Vec::new();
+        start.push(0);
+        for mut row in rows {
+            row.sort_unstable();
+            row.dedup();
+            columns.extend_from_slice(&row);
+            start.push(columns.len());
+        }
+        let mut layout = BlockLayout {
+            start,
+            columns,
+            first: Vec::with_capacity(problem.cell_count() + 1),
+            cell_blocks: Vec::new(),
+        };
+        for (c, couples) in couplings.iter().enumerate() {
+            layout.first.push(layout.cell_blocks.len());
+            let nodes = problem.cell_nodes(c);
+            for (r, &v) in nodes.iter().enumerate() {
+                for (s, &w) in nodes.iter().enumerate() {
+                    let block = match couples[r * nodes.len() + s] {
+                        true => layout
+                            .find(v as usize, w as usize)
+                            .map_or(NONE, |b| b as u32),
+                        false => NONE,
+                    };
+                    layout.cell_blocks.push(block);
+                }
+            }
+        }
+        layout.first.push(layout.cell_blocks.len());
+        layout
+    }
+
+    /// Number of nodes.
+    pub fn node_count(&self) -> usize {
+        self.start.len() - 1
+    }
+
+    /// The block indices and neighbours of node `v`.
+    pub fn row(&self, v: usize) -> (std::ops::Range<usize>, &[u32]) {
+        let range = self.start[v]..self.start[v + 1];
+        (range.clone(), &self.columns[range])
+    }
+
+    /// Number of stored blocks.
+    pub fn block_count(&self) -> usize {
+        self.columns.len()
+    }
+
+    /// Index of block `(v, w)`, if stored.
+    pub fn find(&self, v: usize, w: usize) -> Option<usize> {
+        let (range, cols) = self.row(v);
+        cols.binary_search(&(w as u32))
+            .ok()
+            .map(|i| range.start + i)
+    }
+
+    /// The blocks of the ordered pairs of cell `c`'s real nodes (row-major), [`NONE`] where a
+    /// pair does not couple.
+    pub fn cell_blocks(&self, c: usize) -> &[u32] {
+        &self.cell_blocks[self.first[c]..self.first[c + 1]]
+    }
+}
+
+/// Which pairs of cell `c`'s real nodes enter one Jacobian together (row-major `r·n + s`).
+fn coupling<const D: usize>(problem: &Problem<D>, c: usize) -> Vec<bool> {
+    let pattern = problem.pattern(c);
+    let n = pattern.real_count;
+    let mut couples = vec![false; n * n];
+    for stencil in &pattern.jacobian {
+        for &(r, _) in stencil {
+            for &(s, _) in stencil {
+                couples[r as usize * n + s as usize] = true;
+            }
+        }
+    }
+    couples
+}
+
+/// A symmetric matrix over node coordinates, in the blocks of a [`BlockLayout`].
+#[derive(Clone, Debug)]
+pub struct BlockMatrix<const D: usize> {
+    /// Block `b` of row `v` couples `v` with the layout's `b`-th column.
+    pub blocks: Vec<Matrix<D>>,
+}
+
+impl<const D: usize> BlockMatrix<D> {
+    /// The zero matrix of `layout`.
+    pub fn zero(layout: &BlockLayout) -> Self {
+        BlockMatrix {
+            blocks: vec![[[0.0; D]; D]; layout.block_count()],
+        }
+    }
+
+    /// `y = M x` restricted to the coordinates selected by `rows` (bit `k` of `rows[v]` selects
+    /// component `k` of node `v`) on both sides, i.e. `x` is read where `columns` selects and `y`
+    /// is written where `rows` selects, zero elsewhere. Rows run in parallel; each sums its
+    /// blocks in column order, so the result does not depend on the thread count.
+    pub fn product(
+        &self,
+        pool: &ThreadPool,
+        layout: &BlockLayout,
+        rows: &[u8],
+        columns: &[u8],
+        x: &[Vector<D>],
+        y: &mut [Vector<D>],
+    ) {
+        pool.install(|| {
+            y.par_iter_mut().enumerate().for_each(|(v, yv)| {
+                *yv = [0.0; D];
+                if rows[v] == 0 {
+                    return;
+                }
+                let (blocks, neighbours) = layout.row(v);
+                for (block, &w) in self.blocks[blocks].iter().zip(neighbours) {
+                    let (w, mask) = (w as usize, columns[w as usize]);
+                    if mask == 0 {
+                        continue;
+                    }
+                    let xw: Vector<D> =
+                        std::array::from_fn(|l| if mask & (1 << l) != 0 { x[w][l] } else { 0.0 });
+                    for (k, yk) in yv.iter_mut().enumerate() {
+                        *yk += (0..D).map(|l| block[k][l] * xw[l]).sum::<f64>();
+                    }
+                }
+                for (k, yk) in yv.iter_mut().enumerate() {
+                    if rows[v] & (1 << k) == 0 {
+                        *yk = 0.0;
+                    }
+                }
+            })
+        });
+    }
+}

@@ -1,0 +1,353 @@
+//! Solves with the free block `H_ff` of a mesh's Hessian: preconditioned conjugate gradients
+//! with the exact Hessian, and a preconditioner that may come from a nearby state (Newton's
+//! iterations and path following reuse it until it stops paying). The preconditioner is faer's
+//! sparse Cholesky factor where that factor is small (2D meshes, small 3D ones) — then a solve
+//! with the Hessian it was made from takes one iteration — and a block-Jacobi one otherwise (a
+//! 3D mesh of 10⁵ nodes would need a factor of 10⁹ values). A factor is modified where the
+//! matrix is not positive definite.
+
+use std::sync::Arc;
+
+use rayon::ThreadPool;
+
+use super::amg::Amg;
+use super::blocks::{BlockLayout, BlockMatrix};
+use super::small::{inverse, mul_vec, Matrix, Vector};
+use super::sparse::{Factor, FreeHessian};
+use crate::error::Result;
+
+/// Largest factor (stored values) the direct solver is used for: 3·10⁷ values, 240 MB.
+const DIRECT_FACTOR_LIMIT: usize = 30_000_000;
+
+/// Largest number of free coordinates of a 3D mesh whose factor is tried at all (the analysis of
+/// a larger one costs seconds and its factor would not fit the limit anyway).
+const DIRECT_3D_COORDINATES: usize = 60_000;
+
+/// How a solve went.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct SolveStats {
+    /// CG iterations.
+    pub iterations: usize,
+    /// Relative residual `‖b − H y‖/‖b‖` reached.
+    pub residual: f64,
+    /// Whether CG met a direction of non-positive curvature (the matrix is not positive
+    /// definite) and stopped there.
+    pub negative_curvature: bool,
+}
+
+/// The structure a solver needs for one mesh and one set of free coordinates, to be kept and
+/// reused across states of the same mesh.
+pub struct SolverSetup {
+    /// Per node, the bits of its free coordinates (nodes without cells have none).
+    pub free: Vec<u8>,
+    layout: Arc<BlockLayout>,
+    direct: Option<FreeHessian>,
+}
+
+impl std::fmt::Debug for SolverSetup {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("SolverSetup")
+            .field("direct", &self.direct.is_some())
+            .finish()
+    }
+}
+
+impl SolverSetup {
+    /// Prepares solves with `problem`'s free coordinates; the direct solver's symbolic
+    /// factorisation is computed here when it applies.
+    pub fn new<const D: usize>(
+        problem: &super::Problem<D>,
+        layout: Arc<BlockLayout>,
+    ) -> Result<Self> {
+        let free = Self::free_mask(problem);
+        let coordinates: usize = free.iter().map(|m| m.count_ones() as usize).sum();
+        let direct = if D == 2 || coordinates <= DIRECT_3D_COORDINATES {
+            let analysis = FreeHessian::new(problem, &layout)?;
+            (analysis.factor_size() <= DIRECT_FACTOR_LIMIT).then_some(analysis)
+        } else {
+            None
+        };
+        Ok(SolverSetup {
+            free,
+            layout,
+            direct,
+        })
+    }
+
+    /// Per node, the bits of its free coordinates: those of its free mask, none for a node in no
+    /// cell.
+    pub fn free_mask<const D: usize>(problem: &super::Problem<D>) -> Vec<u8> {
+        (0..problem.node_count())
+            .map(|v| match problem.incident_cells(v).is_empty() {
+                true => 0,
+                false => problem.free_mask(v) & ((1 << D) - 1),
+            })
+            .collect()
+    }
+
+    /// The layout of the Hessian.
+    pub fn layout(&self) -> &Arc<BlockLayout> {
+        &self.layout
+    }
+
+    /// Whether solves are direct (exact to round-off) rather than iterative.
+    pub fn is_direct(&self) -> bool {
+        self.direct.is_some()
+    }
+}
+
+/// A preconditioner of `H_ff`: a Cholesky factor (of this Hessian or a nearby one), an algebraic
+/// multigrid V-cycle, or the inverses of the diagonal blocks.
+pub enum Preconditioner<const D: usize> {
+    /// A sparse Cholesky factor.
+    Direct(Factor),
+    /// Smoothed-aggregation multigrid.
+    Multigrid(Box<Amg>),
+    /// Inverses of the nodes' diagonal blocks.
+    BlockJacobi(Vec<Matrix<D>>),
+}
+
+impl<const D: usize> Preconditioner<D> {
+    /// The preconditioner made from `hessian` at positions `x`: its factor (modified where
+    /// needed) when the setup is direct, else multigrid (block Jacobi where the multigrid's
+    /// coarsest level is not positive definite). `None` when the factorisation fails (a
+    /// non-finite or non-positive diagonal).
+    pub fn new(
+        pool: &ThreadPool,
+        problem: &super::Problem<D>,
+        setup: &SolverSetup,
+        hessian: &BlockMatrix<D>,
+        x: &[Vector<D>],
+    ) -> Result<Option<Self>> {
+        let layout = &setup.layout;
+        Ok(match &setup.direct {
+            Some(analysis) => analysis.factorize(hessian)?.map(Preconditioner::Direct),
+            None => Some(
+                match Amg::new(pool, problem, layout, hessian, &setup.free, x) {
+                    Some(amg) => Preconditioner::Multigrid(Box::new(amg)),
+                    None => Preconditioner::BlockJacobi(block_jacobi(setup, layout, hessian)),
+                },
+            ),
+        })
+    }
+
+    /// Whether the factor is that of a modified matrix (the Hessian was not positive definite).
+    pub fn modified(&self) -> bool {
+        match self {
+            Preconditioner::Direct(f) => f.modified,
+            _ => false,
+        }
+    }
+
+    fn apply(&self, pool: &ThreadPool, setup: &SolverSetup, r: &[Vector<D>]) -> Vec<Vector<D>> {
+        match self {
+            Preconditioner::Direct(factor) => {
+                let analysis = setup.direct.as_ref().expect("direct setup");
+                let coordinates = analysis.coordinates();
+                let mut flat = vec![0.0; coordinates.count()];
+                for (v, rv) in r.iter().enumerate() {
+                    for (k, &value) in rv.iter().enumerate() {
+                        if let Some(i) = coordinates.of(D, v, k) {
+                            flat[i] = value;
+                        }
+                    }
+                }
+                analysis.solve(factor, &mut flat);
+                let mut z = vec![[0.0; D]; r.len()];
+                for (v, zv) in z.iter_mut().enumerate() {
+                    for (k, value) in zv.iter_mut().enumerate() {
+                        if let Some(i) = coordinates.of(D, v, k) {
+                            *value = flat[i];
+                        }
+                    }
+                }
+                z
+            }
+            Preconditioner::Multigrid(amg) => amg.apply(pool, r),
+            Preconditioner::BlockJacobi(inverses) => {
+                r.iter().zip(inverses).map(|(r, m)| mul_vec(m, r)).collect()
+            }
+        }
+    }
+}
+
+/// A solver for `H_ff` at one state: the Hessian there and a preconditioner. It owns what it
+/// needs, so it can be kept for later solves (sensitivities, path following).
+pub struct HessianSolver<const D: usize> {
+    setup: Arc<SolverSetup>,
+    hessian: BlockMatrix<D>,
+    preconditioner: Arc<Preconditioner<D>>,
+}
+
+impl<const D: usize> HessianSolver<D> {
+    /// A solver of `hessian` with `preconditioner`.
+    pub fn new(
+        setup: Arc<SolverSetup>,
+        hessian: BlockMatrix<D>,
+        preconditioner: Arc<Preconditioner<D>>,
+    ) -> Self {
+        HessianSolver {
+            setup,
+            hessian,
+            preconditioner,
+        }
+    }
+
+    /// The Hessian this solver is for.
+    pub fn hessian(&self) -> &BlockMatrix<D> {
+        &self.hessian
+    }
+
+    /// The layout of the Hessian.
+    pub fn layout(&self) -> &BlockLayout {
+        &self.setup.layout
+    }
+
+    /// The free coordinates: per node, their bits.
+    pub fn free(&self) -> &[u8] {
+        &self.setup.free
+    }
+
+    /// The preconditioner.
+    pub fn preconditioner(&self) -> &Arc<Preconditioner<D>> {
+        &self.preconditioner
+    }
+
+    /// Solves `H_ff y = b` over the free coordinates (entries of `b` elsewhere are ignored,
+    /// those of `y` are 0) by preconditioned CG to a relative residual `tolerance`, in at most
+    /// `max_iterations`; CG stops early at negative curvature (the stats say so).
+    pub fn solve_with(
+        &self,
+        pool: &ThreadPool,
+        b: &[Vector<D>],
+        tolerance: f64,
+        max_iterations: usize,
+    ) -> (Vec<Vector<D>>, SolveStats) {
+        let free = &self.setup.free;
+        let b: Vec<Vector<D>> = mask(free, b);
+        let apply = |x: &[Vector<D>], y: &mut [Vector<D>]| {
+            self.hessian
+                .product(pool, &self.setup.layout, free, free, x, y)
+        };
+        let precondition = |r: &[Vector<D>]| self.preconditioner.apply(pool, &self.setup, r);
+        conjugate_gradients(&apply, &precondition, &b, tolerance, max_iterations)
+    }
+
+    /// The preconditioner applied to `r`.
+    pub fn precondition(&self, pool: &ThreadPool, r: &[Vector<D>]) -> Vec<Vector<D>> {
+        self.preconditioner
+            .apply(pool, &self.setup, &mask(&self.setup.free, r))
+    }
+
+    /// [`HessianSolver::solve_with`] with an iteration limit that only a failing solve meets.
+    pub fn solve(
+        &self,
+        pool: &ThreadPool,
+        b: &[Vector<D>],
+        tolerance: f64,
+    ) -> (Vec<Vector<D>>, SolveStats) {
+        self.solve_with(pool, b, tolerance, 20 * b.len() + 100)
+    }
+}
+
+/// `x` with the entries outside `free` set to 0.
+pub fn mask<const D: usize>(free: &[u8], x: &[Vector<D>]) -> Vec<Vector<D>> {
+    x.iter()
+        .zip(free)
+        .map(|(x, &m)| std::array::from_fn(|k| if m & (1 << k) != 0 { x[k] } else { 0.0 }))
+        .collect()
+}
+
+fn dot<const D: usize>(a: &[Vector<D>], b: &[Vector<D>]) -> f64 {
+    a.iter()
+        .zip(b)
+        .map(|(x, y)| (0..D).map(|k| x[k] * y[k]).sum::<f64>())
+        .sum()
+}
+
+fn norm<const D: usize>(a: &[Vector<D>]) -> f64 {
+    dot(a, a).sqrt()
+}
+
+/// Inverse of every node's diagonal block restricted to its free coordinates (identity rows for
+/// the others); a block that is not invertible is replaced by the inverse of its diagonal.
+fn block_jacobi<const D: usize>(
+    setup: &SolverSetup,
+    layout: &BlockLayout,
+    hessian: &BlockMatrix<D>,
+) -> Vec<Matrix<D>> {
+    (0..layout.node_count())
+        .map(|v| {
+            let free = setup.free[v];
+            let on = |k: usize| free & (1 << k) != 0;
+            let block = layout
+                .find(v, v)
+                .map_or([[0.0; D]; D], |b| hessian.blocks[b]);
+            let m: Matrix<D> = std::array::from_fn(|k| {
+                std::array::from_fn(|l| match (on(k), on(l)) {
+                    (true, true) => block[k][l],
+                    _ => f64::from(u8::from(k == l)),
+                })
+            });
+            inverse(&m).unwrap_or_else(|| {
+                std::array::from_fn(|k| {
+                    std::array::from_fn(|l| match k == l && m[k][k] != 0.0 {
+                        true => 1.0 / m[k][k].abs(),
+                        false => 0.0,
+                    })
+                })
+            })
+        })
+        .collect()
+}
+
+/// Preconditioned conjugate gradients from 0 to a relative residual `tolerance`; stops at
+/// negative curvature (returning the iterate so far) or after `max_iterations`.
+fn conjugate_gradients<const D: usize>(
+    apply: &dyn Fn(&[Vector<D>], &mut [Vector<D>]),
+    precondition: &dyn Fn(&[Vector<D>]) -> Vec<Vector<D>>,
+    b: &[Vector<D>],
+    tolerance: f64,
+    max_iterations: usize,
+) -> (Vec<Vector<D>>, SolveStats) {
+    let n = b.len();
+    let b_norm = norm(b);
+    let mut x = vec![[0.0; D]; n];
+    let mut stats = SolveStats::default();
+    if b_norm == 0.0 {
+        return (x, stats);
+    }
+    let mut r = b.to_vec();
+    let mut z = precondition(&r);
+    let mut p = z.clone();
+    let mut rz = dot(&r, &z);
+    let mut ap = vec![[0.0; D]; n];
+    stats.residual = 1.0;
+    while stats.iterations < max_iterations && stats.residual > tolerance {
+        apply(&p, &mut ap);
+        let curvature = dot(&p, &ap);
+        if curvature.is_nan() || curvature <= 0.0 {
+            stats.negative_curvature = true;
+            break;
+        }
+        let alpha = rz / curvature;
+        for i in 0..n {
+            for k in 0..D {
+                x[i][k] += alpha * p[i][k];
+                r[i][k] -= alpha * ap[i][k];
+            }
+        }
+        stats.iterations += 1;
+        stats.residual = norm(&r) / b_norm;
+        z = precondition(&r);
+        let rz_next = dot(&r, &z);
+        let beta = rz_next / rz;
+        rz = rz_next;
+        for i in 0..n {
+            for k in 0..D {
+                p[i][k] = z[i][k] + beta * p[i][k];
+            }
+        }
+    }
+    (x, stats)
+}

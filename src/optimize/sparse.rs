@@ -1,0 +1,298 @@
+//! The Hessian restricted to the free coordinates, `H_ff`, as a sparse matrix factorised by faer's
+//! sparse Cholesky (AMD ordering, supernodal where it pays, sequential so the result is the same
+//! for any thread count). The matrix is scaled to a unit diagonal first (`D^{-1/2} H D^{-1/2}`),
+//! so that one relative shift serves cells of every size; where it is not positive definite, the
+//! smallest of the shifts `τ = 10⁻², 10⁻¹, 1, 10` of the unit diagonal that makes it so gives the
+//! modified Newton step.
+
+use faer::dyn_stack::{MemBuffer, MemStack};
+use faer::linalg::cholesky::llt::factor::LltRegularization;
+use faer::reborrow::Reborrow;
+use faer::sparse::linalg::cholesky::{
+    factorize_symbolic_cholesky, CholeskySymbolicParams, LltRef, SymbolicCholesky,
+    SymmetricOrdering,
+};
+use faer::sparse::linalg::SupernodalThreshold;
+use faer::sparse::{SparseColMatRef, SymbolicSparseColMat};
+use faer::{Conj, MatMut, Par, Side};
+
+use super::blocks::{BlockLayout, BlockMatrix};
+use super::csr::Csr;
+use super::problem::Problem;
+use crate::error::{Error, Result};
+
+/// Marks a coordinate that is not free.
+const NONE: u32 = u32::MAX;
+
+/// The free coordinates of a problem: component `k` of node `v` is free when its bit is set in
+/// the node's free mask and the node belongs to a cell.
+#[derive(Clone, Debug)]
+pub struct Coordinates {
+    /// `id[v·d + k]`: index of the coordinate among the free ones, or `NONE`.
+    id: Vec<u32>,
+    count: usize,
+}
+
+impl Coordinates {
+    /// The free coordinates of `problem`, numbered node by node.
+    pub fn free<const D: usize>(problem: &Problem<D>) -> Result<Self> {
+        let mut id = vec![NONE; problem.node_count() * D];
+        let mut count = 0usize;
+        for v in 0..problem.node_count() {
+            if problem.incident_cells(v).is_empty() {
+                continue;
+            }
+            for k in 0..D {
+                if problem.free_mask(v) & (1 << k) != 0 {
+                    id[v * D + k] = u32::try_from(count)
+                        .map_err(|_| Error::invalid("more than 2^32 - 1 free coordinates"))?;
+                    count += 1;
+                }
+            }
+        }
+        Ok(Coordinates { id, count })
+    }
+
+    /// Number of free coordinates.
+    pub fn count(&self) -> usize {
+        self.count
+    }
+
+    /// Index of component `k` of node `v` among the free coordinates.
+    pub fn of(&self, dimension: usize, v: usize, k: usize) -> Option<usize> {
+        let i = self.id[v * dimension + k];
+        (i != NONE).then_some(i as usize)
+    }
+}
+
+/// Where one stored value of `H_ff`'s lower triangle comes from: block, row and column in it.
+#[derive(Clone, Copy, Debug)]
+struct Source {
+    block: u32,
+    a: u8,
+    b: u8,
+}
+
+/// The lower triangle's structure of a symmetric matrix (compressed columns) with its symbolic
+/// Cholesky factorisation, computed once and reused for every matrix of that structure.
+pub struct CholeskyPattern {
+    structure: SymbolicSparseColMat<usize>,
+    /// Position of each column's diagonal value.
+    diagonal: Vec<usize>,
+    symbolic: SymbolicCholesky<usize>,
+}
+
+/// The structure of `H_ff` (lower triangle, columns by free coordinate) and its symbolic
+/// Cholesky factorisation, computed once per problem.
+pub struct FreeHessian {
+    coordinates: Coordinates,
+    sources: Vec<Source>,
+    pattern: CholeskyPattern,
+}
+
+/// Shifts of the unit diagonal tried, in order, where the scaled matrix is not positive definite.
+const SHIFTS: [f64; 4] = [1e-2, 1e-1, 1.0, 10.0];
+
+/// A numeric factorisation `D^{-1/2} A D^{-1/2} = L Lᵀ`, possibly of a modified matrix.
+pub struct Factor {
+    values: Vec<f64>,
+    /// `D^{-1/2}`, per unknown.
+    scale: Vec<f64>,
+    /// Whether the diagonal was shifted (the matrix was not positive definite).
+    pub modified: bool,
+}
+
+impl CholeskyPattern {
+    /// The pattern of an `n × n` lower triangle given by columns (rows ascending, the diagonal
+    /// first in each column).
+    pub fn new(n: usize, col_ptr: Vec<usize>, row_idx: Vec<usize>) -> Result<Self> {
+        let diagonal = col_ptr[..n].to_vec();
+        if (0..n).any(|j| row_idx.get(diagonal[j]) != Some(&j)) {
+            return Err(Error::invalid(
+                "a column of the matrix has no diagonal value",
+            ));
+        }
+        let structure = SymbolicSparseColMat::new_checked(n, n, col_ptr, None, row_idx);
+        let symbolic = factorize_symbolic_cholesky(
+            structure.rb(),
+            Side::Lower,
+            SymmetricOrdering::Amd,
+            CholeskySymbolicParams {
+                supernodal_flop_ratio_threshold: SupernodalThreshold::FORCE_SUPERNODAL,
+                ..Default::default()
+            },
+        )
+        .map_err(|e| Error::invalid(format!("cannot analyse the matrix's structure: {e:?}")))?;
+        Ok(CholeskyPattern {
+            structure,
+            diagonal,
+            symbolic,
+        })
+    }
+
+    /// The pattern of a symmetric matrix stored in full compressed rows (its upper triangle by
+    /// rows is the lower triangle by columns), and the positions of those values in `a`.
+    pub fn of_csr(a: &Csr) -> Result<(Self, Vec<usize>)> {
+        let mut col_ptr = vec![0];
+        let mut row_idx = Vec::new();
+        let mut positions = Vec::new();
+        for j in 0..a.rows() {
+            let (cols, _) = a.row(j);
+            for (p, &c) in cols.iter().enumerate() {
+                if c as usize >= j {
+                    row_idx.push(c as usize);
+                    positions.push(a.start[j] + p);
+                }
+            }
+            col_ptr.push(row_idx.len());
+        }
+        Ok((CholeskyPattern::new(a.rows(), col_ptr, row_idx)?, positions))
+    }
+
+    /// Number of stored values of the Cholesky factor (memory: 8 bytes each).
+    pub fn factor_size(&self) -> usize {
+        self.symbolic.len_val()
+    }
+
+    /// Factorises the matrix with these lower-triangle `values`, scaled to a unit diagonal and
+    /// shifted where it is not positive definite; `None` for a non-finite or non-positive
+    /// diagonal value, or a matrix no shift helps.
+    pub fn factorize(&self, mut values: Vec<f64>) -> Result<Option<Factor>> {
+        let diagonal: Vec<f64> = self.diagonal.iter().map(|&p| values[p]).collect();
+        if diagonal.iter().any(|d| !(d.is_finite() && *d > 0.0)) {
+            return Ok(None);
+        }
+        let scale: Vec<f64> = diagonal.iter().map(|d| 1.0 / d.sqrt()).collect();
+        let (col_ptr, row_idx) = (self.structure.col_ptr(), self.structure.row_idx());
+        for j in 0..col_ptr.len() - 1 {
+            for p in col_ptr[j]..col_ptr[j + 1] {
+                values[p] *= scale[row_idx[p]] * scale[j];
+            }
+        }
+        for (i, &shift) in [0.0].iter().chain(&SHIFTS).enumerate() {
+            if i > 0 {
+                for &p in &self.diagonal {
+                    values[p] = 1.0 + shift;
+                }
+            }
+            if let Some(l) = self.try_factorize(&values)? {
+                return Ok(Some(Factor {
+                    values: l,
+                    scale,
+                    modified: i > 0,
+                }));
+            }
+        }
+        Ok(None)
+    }
+
+    fn try_factorize(&self, values: &[f64]) -> Result<Option<Vec<f64>>> {
+        let mut l = Vec::new();
+        l.try_reserve_exact(self.symbolic.len_val())
+            .map_err(|_| Error::invalid("not enough memory for a Cholesky factor"))?;
+        l.resize(self.symbolic.len_val(), 0.0);
+        let matrix = SparseColMatRef::new(self.structure.rb(), values);
+        let scratch = self
+            .symbolic
+            .factorize_numeric_llt_scratch::<f64>(Par::Seq, Default::default());
+        let mut buffer = MemBuffer::try_new(scratch)
+            .map_err(|_| Error::invalid("not enough memory to factorise a matrix"))?;
+        let result = self.symbolic.factorize_numeric_llt(
+            &mut l,
+            matrix,
+            Side::Lower,
+            LltRegularization::default(),
+            Par::Seq,
+            MemStack::new(&mut buffer),
+            Default::default(),
+        );
+        Ok(result.is_ok().then_some(l))
+    }
+
+    /// Solves with the factored (possibly modified) matrix in place.
+    pub fn solve(&self, factor: &Factor, b: &mut [f64]) {
+        let n = b.len();
+        for (v, s) in b.iter_mut().zip(&factor.scale) {
+            *v *= s;
+        }
+        let llt = LltRef::new(&self.symbolic, &factor.values);
+        let scratch = self.symbolic.solve_in_place_scratch::<f64>(1, Par::Seq);
+        let mut buffer = MemBuffer::new(scratch);
+        llt.solve_in_place_with_conj(
+            Conj::No,
+            MatMut::from_column_major_slice_mut(b, n, 1),
+            Par::Seq,
+            MemStack::new(&mut buffer),
+        );
+        for (v, s) in b.iter_mut().zip(&factor.scale) {
+            *v *= s;
+        }
+    }
+}
+
+impl FreeHessian {
+    /// The structure of the free block of `problem`'s Hessian, laid out by `layout`.
+    pub fn new<const D: usize>(problem: &Problem<D>, layout: &BlockLayout) -> Result<Self> {
+        let coordinates = Coordinates::free(problem)?;
+        let n = coordinates.count();
+        let mut col_ptr = Vec::with_capacity(n + 1);
+        let mut row_idx = Vec::new();
+        let mut sources = Vec::new();
+        col_ptr.push(0);
+        for w in 0..problem.node_count() {
+            for l in 0..D {
+                let Some(j) = coordinates.of(D, w, l) else {
+                    continue;
+                };
+                let (blocks, neighbours) = layout.row(w);
+                for (b, &v) in blocks.zip(neighbours) {
+                    for k in 0..D {
+                        match coordinates.of(D, v as usize, k) {
+                            Some(i) if i >= j => {
+                                row_idx.push(i);
+                                // Block (w, v) holds ∂²F/∂x_wl∂x_vk at [l][k].
+                                sources.push(Source {
+                                    block: b as u32,
+                                    a: l as u8,
+                                    b: k as u8,
+                                });
+                            }
+                            _ => {}
+                        }
+                    }
+                }
+                col_ptr.push(row_idx.len());
+            }
+        }
+        Ok(FreeHessian {
+            coordinates,
+            sources,
+            pattern: CholeskyPattern::new(n, col_ptr, row_idx)?,
+        })
+    }
+
+    /// The free coordinates.
+    pub fn coordinates(&self) -> &Coordinates {
+        &self.coordinates
+    }
+
+    /// Number of stored values of the Cholesky factor (memory: 8 bytes each).
+    pub fn factor_size(&self) -> usize {
+        self.pattern.factor_size()
+    }
+
+    /// Factorises `H_ff` of `hessian` (see [`CholeskyPattern::factorize`]).
+    pub fn factorize<const D: usize>(&self, hessian: &BlockMatrix<D>) -> Result<Option<Factor>> {
+        let values = self
+            .sources
+            .iter()
+            .map(|s| hessian.blocks[s.block as usize][s.a as usize][s.b as usize])
+            .collect();
+        self.pattern.factorize(values)
+    }
+
+    /// Solves with a factor of `H_ff` in place (`b` over the free coordinates).
+    pub fn solve(&self, factor: &Factor, b: &mut [f64]) {
+        self.pattern.solve(factor, b);
+    }
+}

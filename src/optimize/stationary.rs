@@ -1,0 +1,220 @@
+//! The Newton stage: on a valid mesh, minimises the one global objective
+//! `F(x) = Σ_c w_c η̄*_c(x)` with δ = 0 (where `η* = ‖S‖²/(d σ^{2/d})` is smooth and infinite at
+//! folds) until the scaled gradient is below a tolerance.
+//!
+//! The scaled gradient of a free coordinate is `|∂F/∂x_vk| · L_v / W_v` (`L_v` the node's local
+//! length, `W_v` the weights of its cells): the gradient of the node's own objective times its
+//! length, the quantity the per-node solver stops on, so both tolerances mean the same thing.
+//! Steps come from the sparse Hessian (`solver.rs`), are cut to no more than a local length per
+//! node and backtracked until `F` decreases (a fold makes `F` infinite, so the mesh stays valid).
+
+use std::sync::Arc;
+
+use rayon::ThreadPool;
+
+use super::global::{Evaluation, GlobalObjective};
+use super::problem::Problem;
+use super::small::Vector;
+use super::solver::{mask, HessianSolver, Preconditioner, SolverSetup};
+use crate::error::{Error, Result};
+
+/// Stopping rules of the Newton stage.
+#[derive(Clone, Copy, Debug)]
+pub struct StationaryOptions {
+    /// Stop when the scaled gradient's max-norm is at most this.
+    pub tolerance: f64,
+    /// Largest number of Newton iterations.
+    pub max_iterations: u32,
+}
+
+/// What the Newton stage did.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct StationaryStats {
+    /// Newton iterations performed.
+    pub iterations: u32,
+    /// Scaled max-norm of `∇F` at the end (`+∞` on an invalid mesh).
+    pub gradient_norm: f64,
+    /// Whether `gradient_norm ≤ tolerance`.
+    pub converged: bool,
+}
+
+/// Scaled max-norm of a gradient over the free coordinates.
+pub fn scaled_gradient_norm<const D: usize>(
+    objective: &GlobalObjective<'_, D>,
+    free: &[u8],
+    gradient: &[Vector<D>],
+) -> f64 {
+    let problem = objective.problem();
+    let mut norm = 0.0f64;
+    for (v, g) in gradient.iter().enumerate() {
+        if free[v] == 0 {
+            continue;
+        }
+        let scale = problem.node_length(v) / objective.node_weight(v);
+        for (k, gk) in g.iter().enumerate() {
+            if free[v] & (1 << k) != 0 {
+                norm = norm.max(gk.abs() * scale);
+            }
+        }
+    }
+    norm
+}
+
+/// Largest move of a node in one Newton step, in local lengths (the line search backtracks from
+/// there where a cell would fold).
+const NODE_STEP: f64 = 4.0;
+
+/// CG iterations a preconditioner from an earlier state gets before a fresh one is made (a
+/// fresh factor costs about as much as this many iterations with a lagged one).
+const LAGGED_ITERATIONS: usize = 4;
+
+/// Minimises `F` over the free coordinates of `x` (a valid state). `preconditioner`, when given,
+/// comes from a nearby state and is used while it pays. Returns the stats and the solver of the
+/// Hessian at the final `x` (when one could be made): the sensitivities' operator where the
+/// tolerance was met, the predictor of path following. `progress(iterations)` may cancel.
+pub fn minimise<const D: usize>(
+    pool: &ThreadPool,
+    problem: &Problem<D>,
+    setup: &Arc<SolverSetup>,
+    x: &mut [Vector<D>],
+    options: &StationaryOptions,
+    preconditioner: Option<Arc<Preconditioner<D>>>,
+    progress: &mut dyn FnMut(usize) -> bool,
+) -> Result<(StationaryStats, Option<HessianSolver<D>>)> {
+    let objective = GlobalObjective::new(problem, setup.layout(), None, 0.0);
+    let free = setup.free.clone();
+    let mut stats = StationaryStats {
+        gradient_norm: f64::INFINITY,
+        ..Default::default()
+    };
+    let mut eval = objective.evaluate(pool, x, true);
+    if !eval.value.is_finite() {
+        return Ok((stats, None));
+    }
+    let mut preconditioner = preconditioner;
+    loop {
+        stats.gradient_norm = scaled_gradient_norm(&objective, &free, &eval.gradient);
+        let hessian = eval.hessian.take().expect("Hessian evaluated");
+        let (lagged, fresh) = match preconditioner.take() {
+            Some(p) => (true, p),
+            None => match Preconditioner::new(pool, problem, setup, &hessian, x)? {
+                Some(p) => (false, Arc::new(p)),
+                None => return Ok((stats, None)),
+            },
+        };
+        let mut solver = HessianSolver::new(setup.clone(), hessian, fresh);
+        if stats.gradient_norm <= options.tolerance {
+            stats.converged = true;
+            return Ok((stats, Some(solver)));
+        }
+        if stats.iterations >= options.max_iterations {
+            return Ok((stats, Some(solver)));
+        }
+        if !progress(stats.iterations as usize) {
+            return Err(Error::cancelled());
+        }
+        stats.iterations += 1;
+        let minus_g: Vec<Vector<D>> = eval.gradient.iter().map(|g| g.map(|v| -v)).collect();
+        // Inexact Newton: the inner tolerance shrinks with the gradient (superlinear rate).
+        let inner = stats.gradient_norm.sqrt().clamp(1e-14, 0.1);
+        let (mut step, mut solved) = solver.solve_with(pool, &minus_g, inner, LAGGED_ITERATIONS);
+        if lagged && (solved.residual > inner || solved.negative_curvature) {
+            // The earlier preconditioner stopped paying: make one from this Hessian.
+            let hessian = solver.hessian().clone();
+            let Some(p) = Preconditioner::new(pool, problem, setup, &hessian, x)? else {
+                return Ok((stats, Some(solver)));
+            };
+            solver = HessianSolver::new(setup.clone(), hessian, Arc::new(p));
+            (step, solved) = solver.solve(pool, &minus_g, inner);
+        }
+        if solver.preconditioner().modified() || solved.iterations == 0 {
+            // An indefinite Hessian: the step of its modified factor (modified Newton), or the
+            // preconditioned gradient, is a descent direction.
+            step = solver.precondition(pool, &minus_g);
+        }
+        if std::env::var_os("IGAPARAM_DEBUG").is_some() {
+            eprintln!(
+                "newton {} g {:e} F {} solve {:?} lagged {lagged}",
+                stats.iterations, stats.gradient_norm, eval.value, solved
+            );
+        }
+        match line_search(
+            pool,
+            &objective,
+            &free,
+            x,
+            &eval,
+            &step,
+            stats.gradient_norm,
+        ) {
+            Some((next, next_eval)) => {
+                x.copy_from_slice(&next);
+                eval = next_eval;
+                preconditioner = Some(solver.preconditioner().clone());
+            }
+            None => return Ok((stats, Some(solver))),
+        }
+    }
+}
+
+/// Backtracks along `step` from `x` until `F` decreases enough (Armijo), or — where the decrease
+/// is below `F`'s round-off — until the scaled gradient decreases. The step is first cut so that
+/// no node moves more than a few local lengths.
+fn line_search<const D: usize>(
+    pool: &ThreadPool,
+    objective: &GlobalObjective<'_, D>,
+    free: &[u8],
+    x: &[Vector<D>],
+    eval: &Evaluation<D>,
+    step: &[Vector<D>],
+    gradient_norm: f64,
+) -> Option<(Vec<Vector<D>>, Evaluation<D>)> {
+    let step = mask(free, step);
+    let slope: f64 = eval
+        .gradient
+        .iter()
+        .zip(&step)
+        .map(|(g, p)| (0..D).map(|k| g[k] * p[k]).sum::<f64>())
+        .sum();
+    if slope.is_nan() || slope >= 0.0 {
+        return None;
+    }
+    let problem = objective.problem();
+    let mut alpha = 1.0f64;
+    for (v, p) in step.iter().enumerate() {
+        let length = (0..D).map(|k| p[k] * p[k]).sum::<f64>().sqrt();
+        let limit = NODE_STEP * problem.node_length(v);
+        if length > limit && limit > 0.0 {
+            alpha = alpha.min(limit / length);
+        }
+    }
+    let round_off = 16.0 * f64::EPSILON * eval.value.abs();
+    for _ in 0..40 {
+        let trial: Vec<Vector<D>> = x
+            .iter()
+            .zip(&step)
+            .map(|(x, p)| std::array::from_fn(|k| x[k] + alpha * p[k]))
+            .collect();
+        let value = objective.value(pool, &trial);
+        if std::env::var_os("IGAPARAM_DEBUG").is_some() {
+            eprintln!(
+                "  alpha {alpha:e} value {value} (F {} slope {slope:e})",
+                eval.value
+            );
+        }
+        if value.is_finite() {
+            if value <= eval.value + 1e-4 * alpha * slope {
+                let next = objective.evaluate(pool, &trial, true);
+                return Some((trial, next));
+            }
+            if value - eval.value <= round_off {
+                let next = objective.evaluate(pool, &trial, true);
+                if scaled_gradient_norm(objective, free, &next.gradient) < gradient_norm {
+                    return Some((trial, next));
+                }
+            }
+        }
+        alpha *= 0.5;
+    }
+    None
+}

@@ -1,0 +1,207 @@
+//! Sensitivities of relocation: the adjoint and tangent products against central differences of
+//! full relocations, their duality, the Newton stage's stationarity, warm starts, and refusals.
+
+mod common;
+
+use common::{boundary_mask, grid, load_case, Lcg};
+use igaparam::{CellType, ErrorKind, Mesh, Placement, RelocateOptions, RelocateReport};
+
+/// Tight stationarity: the finite differences below resolve the optimum's motion to ~1e-8.
+const TOLERANCE: f64 = 1e-12;
+
+fn options(threads: usize, placement: Placement) -> RelocateOptions {
+    RelocateOptions {
+        threads,
+        placement,
+        stationarity_tolerance: TOLERANCE,
+        ..Default::default()
+    }
+}
+
+fn relocate(mesh: &mut Mesh, options: &RelocateOptions) -> RelocateReport {
+    let report = mesh
+        .relocate(options, &mut |_, _, _| true)
+        .expect("relocation");
+    assert_eq!(report.invalid_after, 0);
+    assert!(
+        report.gradient_norm <= TOLERANCE,
+        "gradient {}",
+        report.gradient_norm
+    );
+    report
+}
+
+/// A unit grid whose top side is bent into a bump (2D) or whose top face is domed (3D), with the
+/// boundary prescribed.
+fn bumped(cell_type: CellType, n: usize) -> Mesh {
+    let d = cell_type.dimension();
+    let (xyz, conn) = grid(cell_type, n);
+    let mut mesh = Mesh::new(cell_type, &xyz, &conn).unwrap();
+    let mask = boundary_mask(&xyz, d);
+    mesh.set_fixed(&mask).unwrap();
+    let mut moved = xyz.clone();
+    for p in moved.chunks_mut(3) {
+        if p[d - 1] == 1.0 {
+            let bump: f64 = p[..d - 1]
+                .iter()
+                .map(|&t| (std::f64::consts::PI * t).sin())
+                .product();
+            p[d - 1] -= 0.2 * bump;
+        }
+    }
+    mesh.move_nodes(None, &moved).unwrap();
+    mesh
+}
+
+/// A random motion of the prescribed coordinates (zero at free ones), scaled to `size`.
+fn prescribed_motion(mesh: &Mesh, size: f64, seed: u64) -> Vec<f64> {
+    let mut rng = Lcg(seed);
+    let d = mesh.dimension();
+    let mut v = vec![0.0; 3 * mesh.node_count()];
+    for (node, &mask) in mesh.fixed().iter().enumerate() {
+        for k in 0..d {
+            if mask & (1 << k) != 0 {
+                v[3 * node + k] = size * rng.next();
+            }
+        }
+    }
+    v
+}
+
+fn dot(a: &[f64], b: &[f64]) -> f64 {
+    a.iter().zip(b).map(|(x, y)| x * y).sum()
+}
+
+/// Relocates `base` (a relocated mesh) after moving its prescribed coordinates by `t·v`.
+fn moved_by(base: &Mesh, v: &[f64], t: f64) -> Vec<f64> {
+    let mut mesh = base.clone();
+    let xyz: Vec<f64> = mesh
+        .positions()
+        .iter()
+        .flatten()
+        .zip(v)
+        .map(|(x, dv)| x + t * dv)
+        .collect();
+    mesh.move_nodes(None, &xyz).unwrap();
+    relocate(&mut mesh, &options(2, Placement::Incremental));
+    mesh.positions().iter().flatten().copied().collect()
+}
+
+/// Checks `tangent` and `adjoint` at the relocated state of `mesh` against central differences
+/// with step `h` (relative to the motion `v`), and their duality.
+fn check_sensitivities(mut mesh: Mesh, h: f64, fd_tolerance: f64) {
+    relocate(&mut mesh, &options(2, Placement::Laplacian));
+    let n = 3 * mesh.node_count();
+    let mut rng = Lcg(99);
+    let w: Vec<f64> = (0..n).map(|_| rng.next()).collect();
+    let v = prescribed_motion(&mesh, 1.0, 5);
+    let tangent = mesh.tangent(2, &v).unwrap();
+    let adjoint = mesh.adjoint(2, &w).unwrap();
+    let (wt, av) = (dot(&w, &tangent), dot(&adjoint, &v));
+    assert!(
+        (wt - av).abs() <= 1e-10 * wt.abs().max(av.abs()),
+        "duality: {wt} vs {av}"
+    );
+    // Free coordinates carry no adjoint (nodes in no cell pass it through), prescribed ones keep
+    // their motion.
+    for (node, &mask) in mesh.fixed().iter().enumerate() {
+        for k in 0..mesh.dimension() {
+            let i = 3 * node + k;
+            match mask & (1 << k) {
+                0 => assert!(adjoint[i] == 0.0 || adjoint[i] == w[i]),
+                _ => assert_eq!(tangent[i], v[i]),
+            }
+        }
+    }
+    let (plus, minus) = (moved_by(&mesh, &v, h), moved_by(&mesh, &v, -h));
+    let fd: Vec<f64> = plus
+        .iter()
+        .zip(&minus)
+        .map(|(p, m)| (p - m) / (2.0 * h))
+        .collect();
+    let error = fd
+        .iter()
+        .zip(&tangent)
+        .map(|(f, t)| (f - t).abs())
+        .fold(0.0, f64::max);
+    let scale = tangent.iter().fold(0.0f64, |m, t| m.max(t.abs()));
+    assert!(
+        error <= fd_tolerance * scale,
+        "tangent vs central differences: {error:e} of {scale:e}"
+    );
+    let fd_j = dot(&w, &fd);
+    assert!(
+        (fd_j - av).abs() <= fd_tolerance * av.abs().max(1e-300),
+        "adjoint vs central differences: {fd_j} vs {av}"
+    );
+}
+
+#[test]
+fn q9_sensitivities_match_central_differences() {
+    check_sensitivities(bumped(CellType::Quad9, 6), 1e-5, 1e-6);
+}
+
+#[test]
+fn q4_and_q8_sensitivities_match_central_differences() {
+    check_sensitivities(bumped(CellType::Quad4, 8), 1e-5, 1e-6);
+    check_sensitivities(bumped(CellType::Quad8, 5), 1e-5, 1e-6);
+}
+
+#[test]
+fn h27_box_sensitivities_match_central_differences() {
+    check_sensitivities(bumped(CellType::Hex27, 3), 1e-5, 1e-6);
+}
+
+#[test]
+fn airfoil_sensitivities_match_central_differences() {
+    check_sensitivities(load_case("airfoil_0012_q9.vtu"), 1e-6, 1e-6);
+}
+
+/// The bundled wing (12,250 H27 cells, 105,060 nodes): too large for a factorisation, so the
+/// Newton stage and the products solve by multigrid-preconditioned conjugate gradients.
+#[test]
+fn wing_sensitivities_match_central_differences() {
+    check_sensitivities(load_case("wing_0012_h27.vtu"), 1e-6, 1e-6);
+}
+
+#[test]
+fn the_newton_stage_gives_the_same_result_for_one_and_two_threads() {
+    let mut one = bumped(CellType::Hex27, 3);
+    let mut two = one.clone();
+    relocate(&mut one, &options(1, Placement::Laplacian));
+    relocate(&mut two, &options(2, Placement::Laplacian));
+    assert_eq!(one.positions(), two.positions());
+    let v = prescribed_motion(&one, 1.0, 3);
+    assert_eq!(one.tangent(1, &v).unwrap(), two.tangent(2, &v).unwrap());
+}
+
+#[test]
+fn sensitivities_are_refused_without_a_stationary_point() {
+    let mut mesh = bumped(CellType::Quad9, 4);
+    let v = prescribed_motion(&mesh, 1.0, 1);
+    let refused = |mesh: &Mesh, what: &str| {
+        let e = mesh.tangent(1, &v).unwrap_err();
+        assert_eq!(e.kind, ErrorKind::InvalidArgument);
+        assert!(e.message.contains(what), "{}", e.message);
+    };
+    refused(&mesh, "no relocation");
+    mesh.relocate(&RelocateOptions::default(), &mut |_, _, _| true)
+        .unwrap();
+    refused(&mesh, "stationarity_tolerance = 0");
+    relocate(&mut mesh, &options(1, Placement::Laplacian));
+    assert!(mesh.tangent(1, &v).is_ok());
+    // Wrong sizes and non-finite values.
+    assert_eq!(
+        mesh.tangent(1, &v[1..]).unwrap_err().kind,
+        ErrorKind::InvalidArgument
+    );
+    let mut nan = v.clone();
+    nan[7] = f64::NAN;
+    assert_eq!(
+        mesh.adjoint(1, &nan).unwrap_err().kind,
+        ErrorKind::NotFinite
+    );
+    let xyz: Vec<f64> = mesh.positions().iter().flatten().copied().collect();
+    mesh.move_nodes(None, &xyz).unwrap();
+    refused(&mesh, "moved");
+}
