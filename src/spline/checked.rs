@@ -66,14 +66,8 @@ impl<const D: usize> SplineMap<D, ThbSpace<D>> {
         split(&mut stages.certify);
         if validity.certified_positive {
             let mut map = map;
-            let (validity, smoothed) = map.smooth(
-                validity,
-                options,
-                untangle.smoothing_sweeps,
-                untangle.samples,
-            );
+            let validity = map.smooth_into(validity, options, untangle, &mut report);
             split(&mut stages.smooth);
-            report.smoothed = smoothed.moved;
             report.seconds = start.elapsed().as_secs_f64();
             report.stages = stages;
             return Ok((map, report, validity));
@@ -89,18 +83,31 @@ impl<const D: usize> SplineMap<D, ThbSpace<D>> {
         };
         let (validity, untangled) = map.untangle(validity, options, untangle);
         split(&mut stages.untangle);
-        let (validity, smoothed) = map.smooth(
-            validity,
-            options,
-            untangle.smoothing_sweeps,
-            untangle.samples,
-        );
+        let validity = map.smooth_into(validity, options, untangle, &mut report);
         split(&mut stages.smooth);
-        report.smoothed = smoothed.moved;
         report.untangled = untangled.moved;
         report.boundary_offset = untangled.boundary_offset;
         report.seconds = start.elapsed().as_secs_f64();
         report.stages = stages;
         Ok((map, report, validity))
+    }
+
+    /// [`SplineMap::smooth`] with the sweeps and samples of `untangle`, the control points
+    /// moved written to `report`; returns the validity of the map kept.
+    fn smooth_into(
+        &mut self,
+        validity: ValidityReport,
+        options: &ValidityOptions,
+        untangle: &UntangleOptions,
+        report: &mut FitReport,
+    ) -> ValidityReport {
+        let (validity, smoothed) = self.smooth(
+            validity,
+            options,
+            untangle.smoothing_sweeps,
+            untangle.samples,
+        );
+        report.smoothed = smoothed.moved;
+        validity
     }
 }
