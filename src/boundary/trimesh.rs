@@ -186,6 +186,12 @@ impl TriMesh {
     }
 }
 
+/// Smallest sine of a triangle's angle that [`floater_parameterize`] accepts: thinner triangles
+/// (those of faces whose coordinates mix units, a terrain in degrees and metres) are refused as
+/// degenerate, as one with an angle of 180° is, so that a caller can retry in other
+/// coordinates.
+pub(crate) const SLIVER: f64 = 1e-7;
+
 /// Floater's mean-value parameterization of a disk-like triangulation onto the unit square.
 ///
 /// `corners` are the vertices sent to (0,0), (1,0), (1,1), (0,1); they must lie on the boundary
@@ -193,9 +199,9 @@ impl TriMesh {
 /// keep a positive orientation). The boundary vertices between two corners are placed on the
 /// square's side by chord length; every interior vertex is the weighted mean of its neighbours
 /// with w_ij = (tan(α/2) + tan(β/2)) / |v_j − v_i|, α and β the angles at v_i of the two
-/// triangles sharing edge ij; a triangle with an angle of 180° is an error. The sparse linear
-/// system (an irreducibly diagonally dominant M-matrix) is solved by a sparse LU; a computed
-/// map that folds a triangle is an error too. Returns the (u, v) of every vertex.
+/// triangles sharing edge ij; a triangle with an angle whose sine is under 10⁻⁷ is an
+/// error. The sparse linear system (an irreducibly diagonally dominant
+/// M-matrix) is solved by a sparse LU. Returns the (u, v) of every vertex.
 pub fn floater_parameterize(mesh: &TriMesh, corners: [usize; 4]) -> Result<Vec<Point2>> {
     let lp = mesh.boundary_loop()?;
     let pos: HashMap<usize, usize> = lp.iter().enumerate().map(|(k, &v)| (v, k)).collect();
@@ -262,14 +268,17 @@ pub fn floater_parameterize(mesh: &TriMesh, corners: [usize; 4]) -> Result<Vec<P
             // tan(α/2) = |a×b| / (|a||b| + a·b), or (|a||b| − a·b) / |a×b| for obtuse angles:
             // no cancellation, finite for angles up to (not including) π.
             let (cross, dot) = (norm3(cross3(ej, el)), dot3(ej, el));
+            if cross < SLIVER * nj * nl {
+                return Err(Error::mesh(format!(
+                    "triangle {tri:?} is degenerate (an angle whose sine is {:.1e}, under \
+                     {SLIVER:e})",
+                    cross / (nj * nl)
+                )));
+            }
             let half_tan = if dot >= 0.0 {
                 cross / (nj * nl + dot)
-            } else if cross > 0.0 {
-                (nj * nl - dot) / cross
             } else {
-                return Err(Error::mesh(format!(
-                    "triangle {tri:?} is degenerate (an angle of 180°)"
-                )));
+                (nj * nl - dot) / cross
             };
             weights.push((i, j, half_tan / nj));
             weights.push((i, l, half_tan / nl));
