@@ -1706,7 +1706,9 @@ igaparam_status igaparam_spline_basis_count_at(const igaparam_spline *spline,
  * doubles) and `gradients` their gradients with respect to the parametric coordinates
  * (`m × d` doubles). The buffers hold `len` functions (`len ≥ m`, see
  * `igaparam_spline_basis_count_at`); any of them may be NULL to skip it. The values sum to 1,
- * and `Σ values[i] × control_point[functions[i]]` is the map's value at `param`.
+ * and `Σ values[i] × control_point[functions[i]]` is the map's value at `param`. When the
+ * buffers are too small (`IGAPARAM_STATUS_BUFFER_TOO_SMALL`) `*count` still receives `m` and
+ * nothing else is written.
  */
 igaparam_status igaparam_spline_basis_at(const igaparam_spline *spline,
                                          const double *param,

@@ -356,6 +356,33 @@ fn open_loop_is_refused() {
 }
 
 #[test]
+fn self_intersecting_loop_is_refused() {
+    // The top side dips through the bottom one; every corner stays convex and the area positive,
+    // so only the crossing check stands between this loop and a T-mesh with inverted cells.
+    let mut sides = square_sides();
+    let dip = vec![[0., 1.], [0.4, 1.], [0.5, -0.5], [0.6, 1.], [1., 1.]];
+    sides[3] = Curve2::polyline(dip).unwrap();
+    let e = BoundaryLoop2::from_curves(sides).unwrap_err();
+    assert_eq!(e.kind, ErrorKind::InvalidArgument);
+    assert!(
+        e.message.contains("crosses itself")
+            && e.message.contains("curve 2")
+            && e.message.contains("curve 3"),
+        "{}",
+        e.message
+    );
+    // A loop that only touches itself (the top's lowest vertex on the bottom side) is refused
+    // too; the same loop kept just clear of the bottom is accepted.
+    for (y, refused) in [(0.0, true), (1e-9, false)] {
+        let mut sides = square_sides();
+        let touch = vec![[0., 1.], [0.4, 1.], [0.5, y], [0.6, 1.], [1., 1.]];
+        sides[3] = Curve2::polyline(touch).unwrap();
+        let r = BoundaryLoop2::from_curves(sides);
+        assert_eq!(r.is_err(), refused, "lowest vertex at {y}: {:?}", r.err());
+    }
+}
+
+#[test]
 fn nan_coordinates_are_refused() {
     let e = Curve2::polyline(vec![[0., 0.], [f64::NAN, 1.]]).unwrap_err();
     assert_eq!(e.kind, ErrorKind::NotFinite);

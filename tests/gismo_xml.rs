@@ -143,3 +143,35 @@ fn two_thb_patches_keep_their_own_boxes() {
     let swapped = file.replace("type=\"id_range\">0 1", "type=\"id_index\">1 0");
     assert!(same_map(&read_gismo_thb::<2>(&swapped).unwrap(), &b));
 }
+
+#[test]
+fn thb_files_asking_for_absurd_refinement_are_refused() {
+    let map = thb_map(refined_tree([1, 1]), 1.0);
+    let text = write_gismo_thb(&map);
+    // Both are refused from their counts, before anything is refined (which would take hours).
+    // One box of level 20 over the whole square: 4^20 cells for a few dozen coefficients.
+    let whole = text.replacen(
+        "   <box",
+        "   <box level=\"20\">0 0 1048576 1048576</box>\n   <box",
+        1,
+    );
+    let e = read_gismo_thb::<2>(&whole).unwrap_err();
+    assert!(e.message.contains("cells"), "{}", e.message);
+    // Level-0 knots of 2^10 spans in each of three directions: 2^30 cells from 3 x 1031 knots.
+    let knots: Vec<String> = (0..=1024)
+        .map(|i| format!("{}", i as f64 / 1024.0))
+        .collect();
+    let kv = format!("0 0 0 {} 1 1 1", knots.join(" "));
+    let bases: String = (0..3)
+        .map(|i| format!("<Basis type=\"BSplineBasis\" index=\"{i}\"><KnotVector degree=\"3\">{kv}</KnotVector></Basis>"))
+        .collect();
+    let solid = format!(
+        "<xml><Geometry type=\"THBSpline3\" id=\"0\"><Basis type=\"THBSplineBasis3\">\
+         <Basis type=\"TensorBSplineBasis3\">{bases}</Basis></Basis>\
+         <coefs geoDim=\"3\">0 0 0</coefs></Geometry></xml>"
+    );
+    let e = read_gismo_thb::<3>(&solid).unwrap_err();
+    assert!(e.message.contains("1.074e9 cells"), "{}", e.message);
+    // The map as written still reads back.
+    assert!(same_map(&read_gismo_thb::<2>(&text).unwrap(), &map));
+}

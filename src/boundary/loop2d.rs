@@ -3,10 +3,49 @@
 
 use std::path::Path;
 
-use super::curve::{distance, Curve2, Point2};
+use super::crossing::first_crossing;
+use super::curve::{distance, Curve2, CurveKind, Point2};
 use super::gismo_xml::read_gismo_curves;
 use crate::error::{Error, ErrorKind, Result};
 use crate::optimize::small::bounding_box;
+
+/// Refuses a loop that crosses or touches itself: the polygon of the chained curves (a
+/// polyline's own vertices, a spline sampled at 16 points per control point and at least 256)
+/// must be simple. `chain` holds the curves head to tail with their given indices.
+fn check_simple(chain: &[(usize, Curve2)]) -> Result<()> {
+    let mut points: Vec<Point2> = Vec::new();
+    let mut owner: Vec<usize> = Vec::new();
+    for (index, curve) in chain {
+        let samples = match curve.kind() {
+            CurveKind::Polyline(_) => curve.sample(0),
+            CurveKind::Spline(s) => curve.sample((16 * s.bspline().num_control_points()).max(256)),
+        };
+        // The last point is the next curve's first, to the loop's tolerance.
+        for &p in &samples[..samples.len() - 1] {
+            if points.last() != Some(&p) {
+                points.push(p);
+                owner.push(*index);
+            }
+        }
+    }
+    while points.len() > 1 && points.last() == points.first() {
+        points.pop();
+        owner.pop();
+    }
+    match first_crossing(&points) {
+        None => Ok(()),
+        Some(c) => Err(Error::invalid(format!(
+            "the boundary loop crosses itself: curve {} meets curve {} at {} (edges {} and {} of \
+             its {}-point polygon); the boundary of a domain must be a simple closed curve",
+            owner[c.first],
+            owner[c.second],
+            fmt_point(c.at),
+            c.first,
+            c.second,
+            points.len()
+        ))),
+    }
+}
 
 /// A side of the unit square.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -86,11 +125,11 @@ impl BoundaryLoop2 {
     /// Orders and orients four curves into a closed counter-clockwise loop by matching their end
     /// points (reversing curves as needed), and assigns them to sides: the first given curve
     /// becomes side u = 0, the others follow counter-clockwise from corner (0,0): v = 0, u = 1,
-    /// v = 1. Errors: not four curves, an end point that meets no other curve or a loop that does
-    /// not close (`InvalidArgument`, naming the curve and the gap), a degenerate loop of zero
-    /// area, a corner whose interior angle reaches `max_corner_angle_deg` (`InvalidArgument`,
-    /// naming the corner, its position and angle). Non-finite coordinates are refused when the
-    /// curves are built (`NotFinite`).
+    /// v = 1. Errors (`InvalidArgument`): not four curves, an end point that meets no other curve
+    /// or a loop that does not close (naming the curve and the gap), a degenerate loop of zero
+    /// area, a corner whose interior angle reaches `max_corner_angle_deg` (naming the corner, its
+    /// position and angle), a loop that crosses or touches itself (naming the curves and the
+    /// point). Non-finite coordinates are refused when the curves are built (`NotFinite`).
     pub fn from_curves_with(curves: Vec<Curve2>, options: LoopOptions) -> Result<Self> {
         if curves.len() != 4 {
             return Err(Error::invalid(format!(
@@ -208,6 +247,7 @@ impl BoundaryLoop2 {
                 )));
             }
         }
+        check_simple(&chain)?;
         let mut it = chain.into_iter().map(|(_, c)| c);
         let v0 = it.next().unwrap();
         let u1 = it.next().unwrap();

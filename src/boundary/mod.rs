@@ -3,6 +3,7 @@
 //! projection onto a boundary curve.
 
 pub mod bspline;
+mod crossing;
 pub mod curve;
 pub mod gismo_xml;
 pub mod loop2d;

@@ -153,6 +153,17 @@ pub(crate) fn slice_mut<'a, T>(
     Ok(unsafe { std::slice::from_raw_parts_mut(ptr, len) })
 }
 
+/// The first `needed` elements of an optional output buffer, `None` when `ptr` is NULL. Only
+/// what is written is sliced (the caller has checked that the buffer holds `needed`), so that
+/// a call validates all its buffers before it writes to any and an overstated length is harmless.
+pub(crate) fn optional_out<'a, T>(ptr: *mut T, needed: usize) -> Option<&'a mut [T]> {
+    if ptr.is_null() {
+        return None;
+    }
+    // SAFETY: `ptr` is not NULL and the caller checked that it holds `needed` elements.
+    Some(unsafe { std::slice::from_raw_parts_mut(ptr, needed) })
+}
+
 /// Checks that an output buffer of `len` elements holds `needed`.
 pub(crate) fn check_capacity(name: &str, len: usize, needed: usize) -> Result<()> {
     if len < needed {

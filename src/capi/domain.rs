@@ -4,7 +4,9 @@
 use std::ffi::{c_char, c_int, c_void, CStr};
 use std::path::Path;
 
-use super::boundary::{check_capacity, non_null, non_null_mut, run, slice_mut, Failure};
+use super::boundary::{
+    check_capacity, non_null, non_null_mut, optional_out, run, slice_mut, Failure,
+};
 use super::mesh::call_progress;
 use super::spline::AnyMap;
 use super::{igaparam_progress_fn, igaparam_stage, igaparam_status};
@@ -606,14 +608,11 @@ pub extern "C" fn igaparam_domain_copy_cells(
             .ok_or_else(|| Error::invalid("the domain has not been built"))?;
         let n = v.levels.len();
         check_capacity("levels/bounds (cells)", len, n)?;
-        if !levels.is_null() {
-            slice_mut(levels, len, "levels")?[..n].copy_from_slice(&v.levels);
+        if let Some(out) = optional_out(levels, n) {
+            out.copy_from_slice(&v.levels);
         }
-        if !bounds.is_null() {
-            let total = len
-                .checked_mul(2 * v.dim)
-                .ok_or_else(|| Error::invalid("len is too large"))?;
-            slice_mut(bounds, total, "bounds")?[..v.bounds.len()].copy_from_slice(&v.bounds);
+        if let Some(out) = optional_out(bounds, v.bounds.len()) {
+            out.copy_from_slice(&v.bounds);
         }
         Ok(())
     })

@@ -5,7 +5,9 @@
 
 use std::ffi::{c_char, c_void};
 
-use super::boundary::{check_capacity, non_null, non_null_mut, run, slice, slice_mut, Failure};
+use super::boundary::{
+    check_capacity, non_null, non_null_mut, optional_out, run, slice, slice_mut, Failure,
+};
 use super::domain::{adapt_domain, c_path, fit_domain, igaparam_domain};
 use super::igaparam_status;
 use super::mesh::call_progress;
@@ -530,19 +532,18 @@ pub extern "C" fn igaparam_spline_copy_elements(
         let d = dim(m);
         let n = with_map!(m, m => m.element_count());
         check_capacity("levels/bounds (elements)", len, n)?;
-        if let Some(out) = points_out(bounds, len, 2 * d, "bounds")? {
+        if let Some(out) = optional_out(bounds, 2 * d * n) {
             with_map!(m, m => {
-                for (e, o) in out.chunks_mut(2 * d).take(n).enumerate() {
+                for (e, o) in out.chunks_mut(2 * d).enumerate() {
                     let (lo, hi) = m.element_bounds(e);
                     o[..d].copy_from_slice(&lo);
                     o[d..].copy_from_slice(&hi);
                 }
             });
         }
-        if !levels.is_null() {
-            let out = slice_mut(levels, len, "levels")?;
+        if let Some(out) = optional_out(levels, n) {
             with_map!(m, m => {
-                for (e, o) in out[..n].iter_mut().enumerate() {
+                for (e, o) in out.iter_mut().enumerate() {
                     *o = m.element_level(e);
                 }
             });
@@ -751,15 +752,11 @@ pub extern "C" fn igaparam_spline_basis_count_at(
     param: *const f64,
     count: *mut usize,
 ) -> igaparam_status {
-    igaparam_spline_basis_at(
-        spline,
-        param,
-        count,
-        std::ptr::null_mut(),
-        std::ptr::null_mut(),
-        std::ptr::null_mut(),
-        0,
-    )
+    run("igaparam_spline_basis_count_at", || {
+        let (f, _, _) = basis_at(spline, param)?;
+        *non_null_mut(count, "count")? = f.len();
+        Ok(())
+    })
 }
 
 /// The basis functions non-zero on the element holding the parametric point `param` (`d`
@@ -768,7 +765,9 @@ pub extern "C" fn igaparam_spline_basis_count_at(
 /// doubles) and `gradients` their gradients with respect to the parametric coordinates
 /// (`m × d` doubles). The buffers hold `len` functions (`len ≥ m`, see
 /// `igaparam_spline_basis_count_at`); any of them may be NULL to skip it. The values sum to 1,
-/// and `Σ values[i] × control_point[functions[i]]` is the map's value at `param`.
+/// and `Σ values[i] × control_point[functions[i]]` is the map's value at `param`. When the
+/// buffers are too small (`IGAPARAM_STATUS_BUFFER_TOO_SMALL`) `*count` still receives `m` and
+/// nothing else is written.
 #[no_mangle]
 pub extern "C" fn igaparam_spline_basis_at(
     spline: *const igaparam_spline,
@@ -780,33 +779,46 @@ pub extern "C" fn igaparam_spline_basis_at(
     len: usize,
 ) -> igaparam_status {
     run("igaparam_spline_basis_at", || {
-        let m = map(spline)?;
-        let d = dim(m);
-        let x = points_in(param, 1, d, "param")?;
-        let (f, v, g): (Vec<usize>, Vec<f64>, Vec<f64>) = with_map!(m, m => {
-            let p = point(x, 0);
-            check_parameter(p, 0)?;
-            let b = m.basis_at(p)
-                .ok_or_else(|| Error::invalid("the point is outside the parametric domain"))?;
-            (b.functions, b.values, b.gradients.iter().flatten().copied().collect())
-        });
+        let (f, v, g) = basis_at(spline, param)?;
         let count = non_null_mut(count, "count")?;
-        let wanted = !functions.is_null() || !values.is_null() || !gradients.is_null();
-        if wanted {
-            check_capacity("functions/values/gradients (functions)", len, f.len())?;
+        let m = f.len();
+        *count = m;
+        if !functions.is_null() || !values.is_null() || !gradients.is_null() {
+            check_capacity("functions/values/gradients (functions)", len, m)?;
         }
-        if !functions.is_null() {
-            slice_mut(functions, len, "functions")?[..f.len()].copy_from_slice(&f);
+        for (out, from) in [
+            (optional_out(values, m), &v),
+            (optional_out(gradients, g.len()), &g),
+        ] {
+            if let Some(out) = out {
+                out.copy_from_slice(from);
+            }
         }
-        if !values.is_null() {
-            slice_mut(values, len, "values")?[..v.len()].copy_from_slice(&v);
+        if let Some(out) = optional_out(functions, m) {
+            out.copy_from_slice(&f);
         }
-        if let Some(out) = points_out(gradients, len, d, "gradients")? {
-            out[..g.len()].copy_from_slice(&g);
-        }
-        *count = f.len();
         Ok(())
     })
+}
+
+/// Functions, values and gradients (`d` per function) of the basis at a point.
+type BasisAt = (Vec<usize>, Vec<f64>, Vec<f64>);
+
+/// The functions non-zero at `param`, their values and their gradients.
+fn basis_at(
+    spline: *const igaparam_spline,
+    param: *const f64,
+) -> std::result::Result<BasisAt, Failure> {
+    let m = map(spline)?;
+    let d = dim(m);
+    let x = points_in(param, 1, d, "param")?;
+    Ok(with_map!(m, m => {
+        let p = point(x, 0);
+        check_parameter(p, 0)?;
+        let b = m.basis_at(p)
+            .ok_or_else(|| Error::invalid("the point is outside the parametric domain"))?;
+        (b.functions, b.values, b.gradients.iter().flatten().copied().collect())
+    }))
 }
 
 /// h-refines the spline space, the map staying the same (the refined space contains the old

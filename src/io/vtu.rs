@@ -36,6 +36,14 @@ pub enum Encoding {
     AppendedBase64,
 }
 
+impl Encoding {
+    /// Every encoding, in the order above.
+    pub fn all() -> [Encoding; 4] {
+        use Encoding::*;
+        [Ascii, Binary, Appended, AppendedBase64]
+    }
+}
+
 /// The storage of a written `.vtu` file: an [`Encoding`] and, for the binary ones, zlib
 /// compression (`compressor="vtkZLibDataCompressor"`).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -162,12 +170,7 @@ mod tests {
     #[test]
     fn every_format_round_trips() {
         let g = grid();
-        for encoding in [
-            Encoding::Ascii,
-            Encoding::Binary,
-            Encoding::Appended,
-            Encoding::AppendedBase64,
-        ] {
+        for encoding in Encoding::all() {
             for zlib in [false, true] {
                 let f = Format { encoding, zlib };
                 match to_bytes(&g, f) {

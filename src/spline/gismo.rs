@@ -127,9 +127,11 @@ fn level0_shift<const D: usize>(tensor: Node<'_, '_>) -> Result<u8> {
     Ok(shift.unwrap_or(0))
 }
 
-/// Refines `tree` to hold the leaves of level ≥ 1 given by the `<box level="l">` children of a
-/// THB basis (lower then upper corner in the level's knot-span indices).
-fn apply_boxes<const D: usize>(tree: &mut Tree<D>, thb: Node<'_, '_>, shift: u8) -> Result<()> {
+/// The `<box level="l">` children of a THB basis: each leaf of level ≥ 1 (the level counted
+/// from the tree's root, `shift` added) with its lower then upper corner in the level's
+/// knot-span indices.
+fn boxes<const D: usize>(thb: Node<'_, '_>, shift: u8) -> Result<Vec<(u8, Vec<f64>)>> {
+    let mut out = Vec::new();
     for b in xml::children(thb, "box") {
         let at = line(b);
         let level: u8 = b
@@ -144,6 +146,43 @@ fn apply_boxes<const D: usize>(tree: &mut Tree<D>, thb: Node<'_, '_>, shift: u8)
                 corners.len()
             )));
         }
+        out.push((level, corners));
+    }
+    Ok(out)
+}
+
+/// Refuses, before anything is refined, a file whose level-0 basis and boxes would make far
+/// more cells than its coefficients can describe: a valid file gives a coefficient per basis
+/// function, and the cells of a refined region carry about as many functions as cells (thin
+/// boxes carry fewer, hence the allowance of 2^20 cells). A few kilobytes of knots or one box
+/// could otherwise ask for 4^20 cells.
+fn check_cells<const D: usize>(
+    shift: u8,
+    boxes: &[(u8, Vec<f64>)],
+    functions: usize,
+) -> Result<()> {
+    let spans = |level: u8| (1u64 << level) as f64;
+    let mut cells = spans(shift).powi(D as i32);
+    for (level, corners) in boxes {
+        let side = spans(*level);
+        let extent =
+            |k: usize| (corners[D + k].clamp(0.0, side) - corners[k].clamp(0.0, side)).max(0.0);
+        cells += (0..D).map(extent).product::<f64>();
+    }
+    let limit = 16.0 * functions as f64 + (1u64 << 20) as f64;
+    if cells > limit {
+        return Err(Error::io(format!(
+            "the level-0 basis and the <box> entries make at least {cells:.3e} cells, more than \
+             {functions} basis functions (the coefficients given) can describe"
+        )));
+    }
+    Ok(())
+}
+
+/// Refines `tree` to hold the given boxes.
+fn apply_boxes<const D: usize>(tree: &mut Tree<D>, boxes: &[(u8, Vec<f64>)]) -> Result<()> {
+    for (level, corners) in boxes {
+        let level = *level;
         let unit = crate::tmesh::UNIT as u64 >> level;
         tree.refine_while(false, |tree, c| {
             let cell = tree.cells()[c];
@@ -162,11 +201,6 @@ fn apply_boxes<const D: usize>(tree: &mut Tree<D>, thb: Node<'_, '_>, shift: u8)
 fn read_thb_geometry<const D: usize>(geometry: Node<'_, '_>) -> Result<SplineMap<D, ThbSpace<D>>> {
     let thb = basis(geometry, &format!("THBSplineBasis{D}"))?;
     let shift = level0_shift::<D>(basis(thb, &format!("TensorBSplineBasis{D}"))?)?;
-    let mut tree = Tree::<D>::new();
-    tree.refine_uniformly(shift)?;
-    apply_boxes(&mut tree, thb, shift)?;
-    tree.balance()?;
-    let space = ThbSpace::new(tree)?;
     let coefs = xml::children(geometry, "coefs")
         .next()
         .ok_or_else(|| Error::io(format!("line {}: no <coefs>", line(geometry))))?;
@@ -177,6 +211,14 @@ fn read_thb_geometry<const D: usize>(geometry: Node<'_, '_>) -> Result<SplineMap
         )));
     }
     let values = xml::numbers(coefs, "coefs")?;
+    let boxes = boxes::<D>(thb, shift)?;
+    check_cells::<D>(shift, &boxes, values.len() / D)
+        .map_err(|e| Error::io(format!("line {}: {}", line(thb), e.message)))?;
+    let mut tree = Tree::<D>::new();
+    tree.refine_uniformly(shift)?;
+    apply_boxes(&mut tree, &boxes)?;
+    tree.balance()?;
+    let space = ThbSpace::new(tree)?;
     if values.len() != D * space.basis_count() {
         return Err(Error::io(format!(
             "line {}: {} coefficients for {} basis functions of dimension {D}",

@@ -382,6 +382,8 @@ static void test_errors(igaparam_spline *s) {
   CHECK(out[0] == -7 && out[1] == -7, "a failed evaluation wrote its output");
   EXPECT(igaparam_spline_mean_ratio(s, 1, bad, out), IGAPARAM_STATUS_INVALID_ARGUMENT);
   EXPECT(igaparam_spline_basis_count_at(s, bad, &n), IGAPARAM_STATUS_INVALID_ARGUMENT);
+  CHECK(strncmp(message(), "igaparam_spline_basis_count_at:", 31) == 0,
+        "the message names another function: %s", message());
   EXPECT(igaparam_spline_invert(s, 1, nan2, 4, out, NULL), IGAPARAM_STATUS_NOT_FINITE);
   EXPECT(igaparam_spline_invert(s, 1, bad, 1, out, NULL), IGAPARAM_STATUS_INVALID_ARGUMENT);
   EXPECT(igaparam_spline_invert(s, 1, bad, 4, NULL, NULL), IGAPARAM_STATUS_NULL_ARGUMENT);
@@ -390,8 +392,16 @@ static void test_errors(igaparam_spline *s) {
   double small[1];
   EXPECT(igaparam_spline_copy_control_points(s, small, 1), IGAPARAM_STATUS_BUFFER_TOO_SMALL);
   double p[2] = {0.5, 0.5};
-  size_t f[1];
+  size_t f[1] = {SIZE_MAX}, m_at = 0;
+  EXPECT(igaparam_spline_basis_count_at(s, p, &m_at), IGAPARAM_STATUS_OK);
+  n = 0;
   EXPECT(igaparam_spline_basis_at(s, p, &n, f, NULL, NULL, 1), IGAPARAM_STATUS_BUFFER_TOO_SMALL);
+  CHECK(n == m_at && f[0] == SIZE_MAX, "too small: count %zu (needed %zu), functions written",
+        n, m_at);
+  /* An overstated length is harmless: only the functions needed are written. */
+  double *vg = malloc(3 * m_at * sizeof(double));
+  EXPECT(igaparam_spline_basis_at(s, p, &n, NULL, vg, vg + m_at, SIZE_MAX), IGAPARAM_STATUS_OK);
+  free(vg);
   EXPECT(igaparam_spline_element_function_count(s, ne, &n), IGAPARAM_STATUS_INVALID_ARGUMENT);
   EXPECT(igaparam_spline_copy_elements(s, NULL, small, 0), IGAPARAM_STATUS_BUFFER_TOO_SMALL);
 

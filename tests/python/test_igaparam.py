@@ -168,20 +168,24 @@ def test_airfoil_laplacian_only():
         assert report.invalid_after == report.invalid_after_placement
 
 
-def test_progress_and_cancel():
+@pytest.mark.parametrize(
+    "method, stage",
+    [("sweeps", igaparam.Stage.OPTIMIZATION), ("newton", igaparam.Stage.STATIONARITY)],
+)
+def test_progress_and_cancel(method, stage):
     mesh, *_ = airfoil_mesh()
     with mesh:
         before = mesh.positions
         calls = []
 
-        def progress(stage, done, total):
-            calls.append((stage, done, total))
-            return stage != igaparam.Stage.OPTIMIZATION  # cancel at the first sweep
+        def progress(s, done, total):
+            calls.append((s, done, total))
+            return s != stage  # cancel at the first sweep / Newton iteration
 
         with pytest.raises(IgaparamError) as error:
-            mesh.relocate(progress=progress)
+            mesh.relocate(progress=progress, method=method)
         assert error.value.status == Status.CANCELLED
-        assert calls and calls[-1][0] == igaparam.Stage.OPTIMIZATION
+        assert calls and calls[-1][0] == stage
         assert np.array_equal(mesh.positions, before)  # unchanged
 
         def broken(stage, done, total):

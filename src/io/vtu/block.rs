@@ -110,36 +110,33 @@ impl Layout {
                 .decode(t)
                 .map_err(|e| Error::io(format!("bad base64 data: {e}")))
         };
-        let chars = |bytes: usize| bytes.div_ceil(3) * 4;
         let slice = |from: usize, to: usize| {
             text.get(from..to)
                 .ok_or_else(|| Error::io("base64 data ends before its block does"))
         };
         // The first three values fill whole base64 groups in both layouts.
         let peek_len = if self.zlib { 3 } else { 1 } * self.header_bytes;
-        let peek = decode(slice(0, chars(peek_len).min(text.len()))?)?;
+        let peek = decode(slice(0, chars(peek_len)?.min(text.len()))?)?;
         let header_len = self.header_len(&peek)?;
-        let group = chars(header_len);
+        let group = chars(header_len)?;
         let separate = header_len % 3 != 0 && text.get(group - 1) == Some(&b'=');
-        if separate {
+        let (header, data) = if separate {
             let header = decode(slice(0, group)?)?;
             let size = self.payload_size(&header)?;
-            let data = decode(slice(group, group.saturating_add(chars(size)))?)?;
-            Ok((header, data))
+            let data = decode(slice(group, group.saturating_add(chars(size)?))?)?;
+            (header, at_least(data, size)?)
         } else {
-            let whole_header = decode(slice(0, group)?)?;
-            let header = whole_header
-                .get(..header_len)
-                .ok_or_else(|| Error::io("bad base64 block header"))?
-                .to_vec();
+            let whole_header = at_least(decode(slice(0, group)?)?, header_len)?;
+            let header = whole_header[..header_len].to_vec();
             let size = self.payload_size(&header)?;
             let total = header_len
                 .checked_add(size)
                 .ok_or_else(|| Error::io("a binary block is too large"))?;
-            let mut all = decode(slice(0, chars(total))?)?;
-            all.truncate(total);
-            Ok((header, all.split_off(header_len)))
-        }
+            let mut all = at_least(decode(slice(0, chars(total)?)?)?, total)?;
+            let data = all.split_off(header_len);
+            (header, data)
+        };
+        Ok((header, data))
     }
 
     /// The data of a block from its header and payload, inflated when compressed.
@@ -170,26 +167,81 @@ impl Layout {
         if total != expected {
             return Err(mismatch(total));
         }
-        let mut out = Vec::new();
+        // Each block's size is checked against what its compressed bytes can hold before
+        // anything is allocated, and the allocation itself may fail with an error: a header
+        // may claim any size.
+        let mut chunks = Vec::with_capacity(blocks.min(payload.len()));
         let mut at = 0usize;
         for b in 0..blocks {
             let compressed = self.value(header, 3 + b)?;
-            let chunk = &payload[at..at + compressed];
-            at += compressed;
-            let before = out.len();
-            flate2::read::ZlibDecoder::new(chunk)
-                .take(size_of(b) as u64 + 1)
-                .read_to_end(&mut out)
-                .map_err(|e| Error::io(format!("compressed block {b}: {e}")))?;
-            if out.len() - before != size_of(b) {
+            let chunk = at
+                .checked_add(compressed)
+                .and_then(|end| payload.get(at..end))
+                .ok_or_else(|| Error::io(format!("compressed block {b} ends past the data")))?;
+            if size_of(b) / MAX_DEFLATE_RATIO > compressed {
                 return Err(Error::io(format!(
-                    "compressed block {b} inflates to {} bytes, its header says {}",
-                    out.len() - before,
+                    "compressed block {b} of {compressed} bytes cannot inflate to the {} bytes its header says",
                     size_of(b)
                 )));
             }
+            chunks.push(chunk);
+            at += compressed;
+        }
+        let mut out = Vec::new();
+        out.try_reserve_exact(total)
+            .map_err(|_| Error::io(format!("the block's {total} bytes cannot be allocated")))?;
+        out.resize(total, 0);
+        let mut start = 0;
+        for (b, chunk) in chunks.into_iter().enumerate() {
+            let end = start + size_of(b);
+            inflate(chunk, &mut out[start..end])
+                .map_err(|e| Error::io(format!("compressed block {b}: {e}")))?;
+            start = end;
         }
         Ok(out)
+    }
+}
+
+/// The most a deflate stream inflates by (a byte per 1032 is zlib's limit, with some room).
+const MAX_DEFLATE_RATIO: usize = 1100;
+
+/// Characters of the base64 text of `bytes` bytes.
+fn chars(bytes: usize) -> Result<usize> {
+    bytes
+        .div_ceil(3)
+        .checked_mul(4)
+        .ok_or_else(|| Error::io("a binary block is too large"))
+}
+
+/// `data`, which must hold at least `len` bytes, cut to `len`.
+fn at_least(mut data: Vec<u8>, len: usize) -> Result<Vec<u8>> {
+    if data.len() < len {
+        return Err(Error::io("base64 data ends before its block does"));
+    }
+    data.truncate(len);
+    Ok(data)
+}
+
+/// Inflates the zlib stream `chunk` into `out`, which it must fill exactly.
+fn inflate(chunk: &[u8], out: &mut [u8]) -> std::result::Result<(), String> {
+    let mut decoder = flate2::read::ZlibDecoder::new(chunk);
+    decoder.read_exact(out).map_err(|e| match e.kind() {
+        std::io::ErrorKind::UnexpectedEof => {
+            format!(
+                "inflates to fewer bytes than the {} its header says",
+                out.len()
+            )
+        }
+        _ => e.to_string(),
+    })?;
+    let mut more = [0u8; 1];
+    match decoder.read(&mut more) {
+        Ok(0) => Ok(()),
+        Ok(_) => Err(format!(
+            "inflates to more than the {} bytes its header says",
+            out.len()
+        )),
+        Err(e) => Err(e.to_string()),
     }
 }
 

@@ -312,7 +312,7 @@ impl Reader<'_> {
                 line(point_array)
             )));
         }
-        let xyz = self.array(point_array, 3 * points)?.floats();
+        let xyz = self.array(point_array, values_of(points, 3)?)?.floats();
         let cell_array = |name: &str| {
             section_arrays(piece, "Cells")
                 .find(|a| a.attribute("Name") == Some(name))
@@ -351,7 +351,9 @@ impl Reader<'_> {
                     components: components(node)?,
                     values: Vec::new(),
                 };
-                let values = self.array(node, tuples * array.components)?.floats();
+                let values = self
+                    .array(node, values_of(tuples, array.components)?)?
+                    .floats();
                 if node.attribute("type") == Some("UInt8")
                     && !grid.uint8_arrays.contains(&array.name)
                 {
@@ -362,6 +364,15 @@ impl Reader<'_> {
         }
         Ok(())
     }
+}
+
+/// The number of values of `tuples` tuples of `components`.
+fn values_of(tuples: usize, components: usize) -> Result<usize> {
+    tuples.checked_mul(components).ok_or_else(|| {
+        Error::io(format!(
+            "{tuples} tuples of {components} values are too many"
+        ))
+    })
 }
 
 /// Adds one piece's values of an array to the grid's array of that name.
