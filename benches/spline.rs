@@ -8,10 +8,29 @@
 use std::path::Path;
 use std::time::Instant;
 
-use igaparam::boundary::{BoundaryLoop2, Coastline, SolidBoundary};
+use igaparam::boundary::{
+    floater_parameterize, signed_areas, BoundaryLoop2, Coastline, SolidBoundary, TriMesh,
+};
 use igaparam::domain::{DomainOptions, PlanarDomain, PlanarOptions, SolidDomain};
 use igaparam::spline::{QuadraticMap, SplineMap, ThbSpace, UntangleOptions, ValidityOptions};
 use igaparam::tmesh::{TMesh, Tree};
+
+/// CPU seconds (user + system) of this process so far, from `/proc/self/stat` (0 where that
+/// is not readable): on a shared machine, wall-clock time over CPU time shows the contention.
+fn cpu_seconds() -> f64 {
+    let Ok(stat) = std::fs::read_to_string("/proc/self/stat") else {
+        return 0.0;
+    };
+    // Fields after the command name (which is in parentheses): utime is the 12th, stime the 13th.
+    let rest = stat.rsplit(')').next().unwrap_or("");
+    let fields: Vec<f64> = rest
+        .split_whitespace()
+        .skip(11)
+        .take(2)
+        .filter_map(|v| v.parse().ok())
+        .collect();
+    fields.iter().sum::<f64>() / 100.0
+}
 
 fn median(mut v: Vec<f64>) -> f64 {
     v.sort_by(f64::total_cmp);
@@ -33,10 +52,10 @@ fn bench<const D: usize>(name: &str, mesh: &TMesh<D>, positions: &[[f64; D]]) {
         let validity = map.validity(&ValidityOptions::default());
         certify.push(t.elapsed().as_secs_f64());
         row = format!(
-            "{} | {} | {} | {} | {}",
+            "{} | {} | {:.1e} | {} | {}",
             map.element_count(),
             map.basis_count(),
-            report.bandwidth,
+            report.reciprocal_condition,
             if report.least_squares {
                 "least squares"
             } else {
@@ -61,6 +80,7 @@ fn bench_checked<const D: usize>(name: &str, mesh: &TMesh<D>, positions: &[[f64;
     let (plain, _) = SplineMap::fit(space, |x| source.eval(x)).expect("fit");
     let before = plain.validity(&ValidityOptions::default()).uncertified;
     let t = Instant::now();
+    let cpu = cpu_seconds();
     let (map, report, validity) = SplineMap::fit_tmesh_checked(
         mesh,
         positions,
@@ -69,14 +89,58 @@ fn bench_checked<const D: usize>(name: &str, mesh: &TMesh<D>, positions: &[[f64;
     )
     .expect("checked fit");
     println!(
-        "| {name} | {} | {before} | {} | {:.3} | {} ({} uncertified) | {:.3} | {:.2} |",
+        "| {name} | {} | {before} | {} | {:.3} | {} ({} uncertified) | {:.3} | {:.2} | {:.2} |",
         map.element_count(),
         report.untangled,
         report.boundary_offset,
         validity.certified_positive,
         validity.uncertified,
         validity.min_quality,
-        t.elapsed().as_secs_f64()
+        t.elapsed().as_secs_f64(),
+        cpu_seconds() - cpu
+    );
+    let s = report.stages;
+    eprintln!(
+        "  {name}: fit {:.2} s, certification {:.2} s, untangling {:.2} s, smoothing {:.2} s ({} moved)",
+        s.fit, s.certify, s.untangle, s.smooth, report.smoothed
+    );
+}
+
+/// Floater's mean-value map of a bumpy `n × n` vertex grid surface (jittered triangulation)
+/// onto the square: one face of a solid from a fine triangulation.
+fn bench_floater(n: usize) {
+    let mut vertices = Vec::with_capacity(n * n);
+    for j in 0..n {
+        for i in 0..n {
+            let (x, y) = (i as f64 / (n - 1) as f64, j as f64 / (n - 1) as f64);
+            let jitter = if i > 0 && j > 0 && i + 1 < n && j + 1 < n {
+                0.3 / n as f64 * ((i * 7 + j * 13) as f64).sin()
+            } else {
+                0.0
+            };
+            let z = 0.2 * (3.0 * x).sin() * (2.0 * y).cos();
+            vertices.push([x + jitter, y - jitter, z]);
+        }
+    }
+    let mut triangles = Vec::with_capacity(2 * (n - 1) * (n - 1));
+    for j in 0..n - 1 {
+        for i in 0..n - 1 {
+            let v = j * n + i;
+            triangles.push([v, v + 1, v + n + 1]);
+            triangles.push([v, v + n + 1, v + n]);
+        }
+    }
+    let mesh = TriMesh::new(vertices, triangles).expect("mesh");
+    let t = Instant::now();
+    let uv = floater_parameterize(&mesh, [0, n - 1, n * n - 1, n * (n - 1)]).expect("floater");
+    let seconds = t.elapsed().as_secs_f64();
+    let folded = signed_areas(&mesh, &uv)
+        .iter()
+        .filter(|&&a| a <= 0.0)
+        .count();
+    println!(
+        "| Floater map, {} vertices | {folded} folded triangles | {seconds:.3} |",
+        n * n
     );
 }
 
@@ -92,7 +156,7 @@ fn main() {
     let filter: Option<String> = std::env::args().skip(1).find(|a| !a.starts_with('-'));
     let wanted = |name: &str| filter.as_ref().is_none_or(|f| name.contains(f.as_str()));
     println!(
-        "| case | elements | basis | bandwidth | fit | certified | build s | fit s | certify s |"
+        "| case | elements | basis | reciprocal condition | fit | certified | build s | fit s | certify s |"
     );
     println!("|---|---|---|---|---|---|---|---|---|");
     for file in [
@@ -119,9 +183,16 @@ fn main() {
         let (mesh, positions) = uniform::<3>(3);
         bench("uniform 3D level 3", &mesh, &positions);
     }
+    if wanted("floater") {
+        println!();
+        println!("| case | result | seconds |");
+        println!("|---|---|---|");
+        bench_floater(100);
+        bench_floater(300);
+    }
     println!();
-    println!("| case | elements | uncertified after the fit | untangled | boundary move | certified | min q_S | checked fit s |");
-    println!("|---|---|---|---|---|---|---|---|");
+    println!("| case | elements | uncertified after the fit | untangled | boundary move | certified | min q_S | checked fit s | CPU s |");
+    println!("|---|---|---|---|---|---|---|---|---|");
     let data = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/boundary");
     if wanted("gran_canaria") {
         let coast = Coastline::read(data.join("gran_canaria.txt")).expect("coastline");
@@ -136,9 +207,15 @@ fn main() {
         max_level: 4,
         ..Default::default()
     };
-    for (name, boundary) in [
-        ("duck3d_BRep.xml (1e-4, 4)", "duck3d_BRep.xml"),
-        ("duck OBJ faces (1e-4, 4)", "duck_faces"),
+    let fine = DomainOptions {
+        tolerance: 1e-5,
+        max_level: 5,
+        ..Default::default()
+    };
+    for (name, boundary, options) in [
+        ("duck3d_BRep.xml (1e-4, 4)", "duck3d_BRep.xml", &options),
+        ("duck OBJ faces (1e-4, 4)", "duck_faces", &options),
+        ("duck3d_BRep.xml (1e-5, 5)", "duck3d_BRep.xml", &fine),
     ] {
         if !wanted(name) {
             continue;
@@ -150,7 +227,7 @@ fn main() {
             SolidBoundary::from_gismo_file(path)
         }
         .expect("boundary");
-        let (domain, _) = SolidDomain::build(boundary, &options, &mut |_, _| true).expect("domain");
+        let (domain, _) = SolidDomain::build(boundary, options, &mut |_, _| true).expect("domain");
         bench_checked(name, domain.mesh(), domain.positions());
     }
 }

@@ -4,7 +4,7 @@
 // Index loops over coordinates and vertices read best in this numerical code.
 #![allow(clippy::needless_range_loop)]
 
-use std::collections::{BTreeMap, HashMap};
+use std::collections::HashMap;
 use std::path::Path;
 
 use super::bspline::Vec3;
@@ -186,6 +186,12 @@ impl TriMesh {
     }
 }
 
+/// Smallest sine of a triangle's angle that [`floater_parameterize`] accepts: thinner triangles
+/// (those of faces whose coordinates mix units, a terrain in degrees and metres) are refused as
+/// degenerate, as one with an angle of 180° is, so that a caller can retry in other
+/// coordinates.
+pub(crate) const SLIVER: f64 = 1e-7;
+
 /// Floater's mean-value parameterization of a disk-like triangulation onto the unit square.
 ///
 /// `corners` are the vertices sent to (0,0), (1,0), (1,1), (0,1); they must lie on the boundary
@@ -193,8 +199,9 @@ impl TriMesh {
 /// keep a positive orientation). The boundary vertices between two corners are placed on the
 /// square's side by chord length; every interior vertex is the weighted mean of its neighbours
 /// with w_ij = (tan(α/2) + tan(β/2)) / |v_j − v_i|, α and β the angles at v_i of the two
-/// triangles sharing edge ij. The linear system is solved by Gauss–Seidel iteration (the
-/// matrix is an irreducibly diagonally dominant M-matrix). Returns the (u, v) of every vertex.
+/// triangles sharing edge ij; a triangle with an angle whose sine is under 10⁻⁷ is an
+/// error. The sparse linear system (an irreducibly diagonally dominant
+/// M-matrix) is solved by a sparse LU. Returns the (u, v) of every vertex.
 pub fn floater_parameterize(mesh: &TriMesh, corners: [usize; 4]) -> Result<Vec<Point2>> {
     let lp = mesh.boundary_loop()?;
     let pos: HashMap<usize, usize> = lp.iter().enumerate().map(|(k, &v)| (v, k)).collect();
@@ -240,9 +247,8 @@ pub fn floater_parameterize(mesh: &TriMesh, corners: [usize; 4]) -> Result<Vec<P
             fixed[v] = true;
         }
     }
-    // Mean-value weights.
-    // Ordered maps: the rows, and so the solution, do not depend on hashing order.
-    let mut weights: Vec<BTreeMap<usize, f64>> = vec![BTreeMap::new(); nv];
+    // Mean-value weights, as triplets (duplicates add up in the sparse matrix).
+    let mut weights: Vec<(usize, usize, f64)> = Vec::new();
     for tri in &mesh.triangles {
         for k in 0..3 {
             let (i, j, l) = (tri[k], tri[(k + 1) % 3], tri[(k + 2) % 3]);
@@ -262,146 +268,98 @@ pub fn floater_parameterize(mesh: &TriMesh, corners: [usize; 4]) -> Result<Vec<P
             // tan(α/2) = |a×b| / (|a||b| + a·b), or (|a||b| − a·b) / |a×b| for obtuse angles:
             // no cancellation, finite for angles up to (not including) π.
             let (cross, dot) = (norm3(cross3(ej, el)), dot3(ej, el));
+            if cross < SLIVER * nj * nl {
+                return Err(Error::mesh(format!(
+                    "triangle {tri:?} is degenerate (an angle whose sine is {:.1e}, under \
+                     {SLIVER:e})",
+                    cross / (nj * nl)
+                )));
+            }
             let half_tan = if dot >= 0.0 {
                 cross / (nj * nl + dot)
-            } else if cross > 0.0 {
-                (nj * nl - dot) / cross
             } else {
-                return Err(Error::mesh(format!(
-                    "triangle {tri:?} is degenerate (an angle of 180°)"
-                )));
+                (nj * nl - dot) / cross
             };
-            *weights[i].entry(j).or_insert(0.0) += half_tan / nj;
-            *weights[i].entry(l).or_insert(0.0) += half_tan / nl;
+            weights.push((i, j, half_tan / nj));
+            weights.push((i, l, half_tan / nl));
         }
     }
-    let rows: Vec<Row> = (0..nv)
-        .filter(|&i| !fixed[i] && !weights[i].is_empty())
-        .map(|i| {
-            let r: Vec<(usize, f64)> = weights[i].iter().map(|(&j, &w)| (j, w)).collect();
-            let sum = r.iter().map(|e| e.1).sum();
-            (i, r, sum)
-        })
-        .collect();
-    if let Some((i, _, _)) = rows.iter().find(|r| !(r.2 > 0.0 && r.2.is_finite())) {
+    solve_mean_value(&weights, &fixed, &mut uv)?;
+    // Floater's theorem makes the map one-to-one; where the triangles are so thin that their
+    // angles round to 0 or π, the computed one can fold: say so rather than return it.
+    let folded = signed_areas(mesh, &uv)
+        .iter()
+        .filter(|&&a| a.is_nan() || a <= 0.0)
+        .count();
+    if folded > 0 {
         return Err(Error::mesh(format!(
-            "vertex {i} has degenerate neighbouring triangles"
+            "the mean-value map folds {folded} of {} triangles (degenerate triangles: angles \
+             that round to 0 or π)",
+            mesh.triangles.len()
         )));
-    }
-    // Krylov solve first (fast on large meshes), then Gauss–Seidel sweeps polish the result and
-    // guarantee convergence if the Krylov method stalls.
-    bicgstab_solve(&rows, &fixed, &mut uv);
-    let max_sweeps = 200_000;
-    for sweep in 0..=max_sweeps {
-        let mut change: f64 = 0.0;
-        for (i, r, sum) in &rows {
-            let mut acc = [0.0; 2];
-            for &(j, w) in r {
-                acc[0] += w * uv[j][0];
-                acc[1] += w * uv[j][1];
-            }
-            let new = [acc[0] / sum, acc[1] / sum];
-            change = change.max((new[0] - uv[*i][0]).abs().max((new[1] - uv[*i][1]).abs()));
-            uv[*i] = new;
-        }
-        if change < 1e-13 {
-            break;
-        }
-        if sweep == max_sweeps {
-            return Err(Error::invalid(format!(
-                "mean-value parameterization did not converge in {max_sweeps} sweeps (last change {change:.2e})"
-            )));
-        }
     }
     Ok(uv)
 }
 
-/// A row of the mean-value system: the vertex, its weighted neighbours, the sum of the weights.
-type Row = (usize, Vec<(usize, f64)>, f64);
-
-/// Solves the mean-value system for the free vertices by BiCGSTAB (the matrix, scaled by its
-/// diagonal, is I − P with P row-stochastic on the free vertices), each coordinate separately.
-/// Leaves `uv` unchanged for a coordinate whose iterate is not finite.
-fn bicgstab_solve(rows: &[Row], fixed: &[bool], uv: &mut [Point2]) {
-    let m = rows.len();
-    if m == 0 {
-        return;
+/// Solves the mean-value system for the free vertices: `Σ_j w_ij (uv_i − uv_j) = 0` for every
+/// free vertex `i` with weights (`weights`: `(i, j, w_ij)`, repeated pairs adding up), the fixed
+/// ones keeping their `uv`. The matrix is an irreducibly diagonally dominant M-matrix,
+/// non-symmetric (w_ij ≠ w_ji): sparse LU by faer, both coordinates at once.
+fn solve_mean_value(
+    weights: &[(usize, usize, f64)],
+    fixed: &[bool],
+    uv: &mut [Point2],
+) -> Result<()> {
+    let mut sum = vec![0.0f64; uv.len()];
+    for &(i, _, w) in weights {
+        sum[i] += w;
     }
-    let mut local = vec![usize::MAX; uv.len()];
-    for (k, r) in rows.iter().enumerate() {
-        local[r.0] = k;
+    // Unknowns: the free vertices with neighbours, in vertex order.
+    let mut unknown = vec![usize::MAX; uv.len()];
+    let mut free = Vec::new();
+    for i in 0..uv.len() {
+        if !fixed[i] && sum[i] != 0.0 {
+            unknown[i] = free.len();
+            free.push(i);
+        }
     }
-    let apply = |x: &[f64], y: &mut [f64]| {
-        for (k, (_, r, sum)) in rows.iter().enumerate() {
-            let mut acc = x[k];
-            for &(j, w) in r {
-                if !fixed[j] && local[j] != usize::MAX {
-                    acc -= w / sum * x[local[j]];
-                }
-            }
-            y[k] = acc;
-        }
-    };
-    let dot = |a: &[f64], b: &[f64]| a.iter().zip(b).map(|(x, y)| x * y).sum::<f64>();
-    for c in 0..2 {
-        let b: Vec<f64> = rows
-            .iter()
-            .map(|(_, r, sum)| {
-                r.iter()
-                    .filter(|&&(j, _)| fixed[j])
-                    .map(|&(j, w)| w / sum * uv[j][c])
-                    .sum()
-            })
-            .collect();
-        let mut x: Vec<f64> = rows.iter().map(|r| uv[r.0][c]).collect();
-        let mut r = vec![0.0; m];
-        apply(&x, &mut r);
-        for k in 0..m {
-            r[k] = b[k] - r[k];
-        }
-        let r0 = r.clone();
-        let bnorm = dot(&b, &b).sqrt().max(1e-300);
-        let (mut rho, mut alpha, mut omega) = (1.0f64, 1.0f64, 1.0f64);
-        let mut v = vec![0.0; m];
-        let mut p = vec![0.0; m];
-        let mut s = vec![0.0; m];
-        let mut t = vec![0.0; m];
-        for _ in 0..(10 * m).max(1000) {
-            if dot(&r, &r).sqrt() <= 1e-15 * bnorm {
-                break;
-            }
-            let rho_new = dot(&r0, &r);
-            if rho_new.abs() < 1e-300 || omega.abs() < 1e-300 {
-                break;
-            }
-            let beta = (rho_new / rho) * (alpha / omega);
-            rho = rho_new;
-            for k in 0..m {
-                p[k] = r[k] + beta * (p[k] - omega * v[k]);
-            }
-            apply(&p, &mut v);
-            let r0v = dot(&r0, &v);
-            if r0v.abs() < 1e-300 {
-                break;
-            }
-            alpha = rho / r0v;
-            for k in 0..m {
-                s[k] = r[k] - alpha * v[k];
-            }
-            apply(&s, &mut t);
-            let tt = dot(&t, &t);
-            omega = if tt > 0.0 { dot(&t, &s) / tt } else { 0.0 };
-            for k in 0..m {
-                x[k] += alpha * p[k] + omega * s[k];
-                r[k] = s[k] - omega * t[k];
-            }
-        }
-        if x.iter().all(|v| v.is_finite()) {
-            for (k, row) in rows.iter().enumerate() {
-                uv[row.0][c] = x[k];
+    if let Some(&i) = free
+        .iter()
+        .find(|&&i| !(sum[i] > 0.0 && sum[i].is_finite()))
+    {
+        return Err(Error::mesh(format!(
+            "vertex {i} has degenerate neighbouring triangles"
+        )));
+    }
+    if free.is_empty() {
+        return Ok(());
+    }
+    // Rows scaled by the weight sums: unit diagonal, off-diagonal −w_ij / Σ_j w_ij.
+    let mut entries: Vec<(usize, usize, f64)> = (0..free.len()).map(|k| (k, k, 1.0)).collect();
+    let mut rhs = vec![[0.0; 2]; free.len()];
+    for &(i, j, w) in weights {
+        let r = unknown[i];
+        let c = w / sum[i];
+        if unknown[j] != usize::MAX {
+            entries.push((r, unknown[j], -c));
+        } else {
+            for k in 0..2 {
+                rhs[r][k] += c * uv[j][k];
             }
         }
     }
+    let lu = crate::sparse::SparseSolver::lu(free.len(), &entries)
+        .map_err(|e| Error::mesh(format!("mean-value parameterization: {}", e.message)))?;
+    lu.solve(&mut rhs);
+    if rhs.iter().flatten().any(|v| !v.is_finite()) {
+        return Err(Error::mesh(
+            "mean-value parameterization: the solution is not finite",
+        ));
+    }
+    for (&i, x) in free.iter().zip(rhs) {
+        uv[i] = x;
+    }
+    Ok(())
 }
 
 /// Twice the signed area of the image of every triangle under `uv` (positive when

@@ -4,7 +4,8 @@
 
 use std::time::Instant;
 
-use super::map::{FitReport, SplineMap};
+use super::fit::FitReport;
+use super::map::SplineMap;
 use super::untangle::UntangleOptions;
 use super::validity::{ValidityOptions, ValidityReport};
 use crate::domain::{CubeMap, Domain, DomainOptions};

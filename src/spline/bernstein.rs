@@ -179,37 +179,42 @@ impl<const D: usize> Bernstein<D> {
         out
     }
 
-    /// The product of two polynomials (degrees add).
+    /// The product of two polynomials (degrees add): in the basis scaled by the binomial
+    /// coefficients the product is a plain convolution, and the index of a product term is the
+    /// sum of the offsets of its factors in the product's layout.
     pub fn mul(&self, other: &Self) -> Self {
         let degree = std::array::from_fn(|k| self.degree[k] + other.degree[k]);
         let mut out = Bernstein::zero(degree);
         let os = out.strides();
-        // Scale by binomials so the product is a plain convolution, then unscale.
-        let scaled = |b: &Self| -> Vec<f64> {
+        let layout = |b: &Self| -> (Vec<f64>, Vec<usize>) {
             b.coef
                 .iter()
                 .enumerate()
                 .map(|(f, &c)| {
                     let i = b.multi_index(f);
-                    (0..D).fold(c, |acc, k| acc * binomial(b.degree[k], i[k]))
+                    let scaled = (0..D).fold(c, |acc, k| acc * binomial(b.degree[k], i[k]));
+                    (scaled, (0..D).map(|k| i[k] * os[k]).sum::<usize>())
                 })
-                .collect()
+                .unzip()
         };
-        let (a, b) = (scaled(self), scaled(other));
-        for (fa, &ca) in a.iter().enumerate() {
+        let (a, oa) = layout(self);
+        let (b, ob) = layout(other);
+        for (&ca, &base) in a.iter().zip(&oa) {
             if ca == 0.0 {
                 continue;
             }
-            let ia = self.multi_index(fa);
-            for (fb, &cb) in b.iter().enumerate() {
-                let ib = other.multi_index(fb);
-                let target: usize = (0..D).map(|k| (ia[k] + ib[k]) * os[k]).sum();
-                out.coef[target] += ca * cb;
+            for (&cb, &offset) in b.iter().zip(&ob) {
+                out.coef[base + offset] += ca * cb;
             }
         }
+        let unscale: [Vec<f64>; D] = std::array::from_fn(|k| {
+            (0..=degree[k])
+                .map(|i| 1.0 / binomial(degree[k], i))
+                .collect()
+        });
         for f in 0..out.coef.len() {
             let i = out.multi_index(f);
-            out.coef[f] /= (0..D).fold(1.0, |acc, k| acc * binomial(degree[k], i[k]));
+            out.coef[f] *= (0..D).map(|k| unscale[k][i[k]]).product::<f64>();
         }
         out
     }

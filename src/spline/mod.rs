@@ -10,12 +10,16 @@
 
 mod adapt;
 pub mod bernstein;
+mod checked;
+mod control;
+mod fit;
 mod gismo;
 mod map;
+mod piece;
 mod quadratic;
 mod quasi;
 mod refit;
-mod solve;
+mod smooth;
 mod space;
 mod thb;
 mod untangle;
@@ -23,11 +27,12 @@ mod validity;
 mod vtu;
 
 pub use adapt::{adapt, AdaptOptions, AdaptReport, AdaptRound};
+pub use fit::{FitReport, FitStages};
 pub use gismo::{read_gismo_thb, write_gismo_thb};
-pub use map::{FitReport, InverseMap, SplineMap};
+pub use map::{InverseMap, SplineMap};
 pub use quadratic::QuadraticMap;
 pub use refit::{FitRecord, FitRule};
-pub use solve::SparseLu;
+pub use smooth::SmoothReport;
 pub use space::{BasisValues, SplineSpace};
 pub use thb::ThbSpace;
 pub use untangle::{UntangleOptions, UntangleReport};

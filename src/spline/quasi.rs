@@ -10,40 +10,13 @@ use std::time::Instant;
 
 use rayon::prelude::*;
 
-use super::bernstein::{bernstein3, bernstein_blossom, extraction, knot, Matrix4};
-use super::map::{FitReport, SplineMap};
+use super::bernstein::{bernstein3, extraction, Matrix4};
+use super::fit::FitReport;
+use super::map::SplineMap;
+use super::piece::Piece;
 use super::space::SplineSpace;
 use super::thb::{support_span_indices, tensor_apply, ThbSpace};
 use crate::error::{check_finite, Error, Result};
-
-/// A polynomial of degree 3 per direction on a box: its tensor Bernstein coefficients there
-/// (`4^d` points, direction 0 fastest).
-#[derive(Clone, Debug)]
-struct Piece<const D: usize> {
-    lo: [f64; D],
-    hi: [f64; D],
-    bernstein: Vec<[f64; D]>,
-}
-
-impl<const D: usize> Piece<D> {
-    /// The coefficient of B-spline `f` of `level` in this polynomial: its blossom at the
-    /// function's inner knots, per direction.
-    fn coefficient(&self, level: u8, f: &[u32; D]) -> [f64; D] {
-        let dual: [[f64; 4]; D] = std::array::from_fn(|k| {
-            bernstein_blossom(std::array::from_fn(|r| {
-                (knot(level, f[k] as i64 + 1 + r as i64) - self.lo[k]) / (self.hi[k] - self.lo[k])
-            }))
-        });
-        let mut out = [0.0; D];
-        for (b, p) in self.bernstein.iter().enumerate() {
-            let w: f64 = (0..D).map(|k| dual[k][b >> (2 * k) & 3]).product();
-            for k in 0..D {
-                out[k] += w * p[k];
-            }
-        }
-        out
-    }
-}
 
 /// Interior points of the local interpolation, per direction, in [0, 1].
 const LOCAL_POINTS: [f64; 4] = [0.125, 0.375, 0.625, 0.875];
@@ -142,22 +115,6 @@ impl<const D: usize> SplineMap<D, ThbSpace<D>> {
         SplineMap::new(space, control)
     }
 
-    /// The polynomial piece of the map on element `e`.
-    fn piece(&self, e: usize) -> Piece<D> {
-        let (lo, hi) = self.space.element_bounds(e);
-        let local = 4usize.pow(D as u32);
-        let (functions, c) = self.space.extraction(e);
-        let mut bernstein = vec![[0.0; D]; local];
-        for (&j, row) in functions.iter().zip(c.chunks_exact(local)) {
-            for (b, &v) in bernstein.iter_mut().zip(row) {
-                for (bk, ck) in b.iter_mut().zip(&self.control[j]) {
-                    *bk += v * ck;
-                }
-            }
-        }
-        Piece { lo, hi, bernstein }
-    }
-
     /// Largest coordinate difference between this map and `other` at this map's Greville points.
     fn difference_at_greville(&self, other: impl Fn([f64; D]) -> Option<[f64; D]> + Sync) -> f64 {
         self.space
@@ -176,11 +133,9 @@ impl<const D: usize> SplineMap<D, ThbSpace<D>> {
             residual,
             least_squares: false,
             quasi_interpolation: true,
-            smallest_pivot: 1.0,
-            bandwidth: 0,
-            untangled: 0,
-            boundary_offset: 0.0,
+            reciprocal_condition: 1.0,
             seconds: start.elapsed().as_secs_f64(),
+            ..Default::default()
         }
     }
 

@@ -48,6 +48,27 @@ pub trait SplineSpace<const D: usize>: Clone + Send + Sync {
         Some(self.basis_on(self.element_at(x)?, x))
     }
 
+    /// The values at `x` of the functions non-zero on element `e` (in the order of
+    /// [`SplineSpace::extraction`]): [`SplineSpace::basis_on`] without the gradients.
+    fn values_on(&self, e: usize, x: [f64; D]) -> Vec<f64> {
+        let (lo, hi) = self.element_bounds(e);
+        let value: [[f64; SPAN_FUNCTIONS]; D] = std::array::from_fn(|k| {
+            bernstein3(((x[k] - lo[k]) / (hi[k] - lo[k])).clamp(0.0, 1.0)).0
+        });
+        let count = SPAN_FUNCTIONS.pow(D as u32);
+        let b: Vec<f64> = (0..count)
+            .map(|flat| {
+                (0..D)
+                    .map(|k| value[k][flat / SPAN_FUNCTIONS.pow(k as u32) % SPAN_FUNCTIONS])
+                    .product()
+            })
+            .collect();
+        let (_, c) = self.extraction(e);
+        c.chunks_exact(count)
+            .map(|row| row.iter().zip(&b).map(|(cij, bj)| cij * bj).sum())
+            .collect()
+    }
+
     /// [`SplineSpace::basis_at`] with the element given: the polynomials of element `e` at `x`
     /// (a point of the element or of its boundary; outside it, `x` is clamped to the element).
     fn basis_on(&self, e: usize, x: [f64; D]) -> BasisValues<D> {

@@ -10,6 +10,7 @@ use rayon::prelude::*;
 
 use super::bernstein::Bernstein;
 use super::map::SplineMap;
+use super::piece::Piece;
 use super::space::SplineSpace;
 use crate::optimize::metric::mean_ratio;
 use crate::optimize::small::det;
@@ -112,23 +113,7 @@ impl<const D: usize, S: SplineSpace<D>> SplineMap<D, S> {
     /// `det J_S` on element `e` as a Bernstein polynomial on the element mapped to [0,1]^d,
     /// the Jacobian taken with respect to the parametric coordinates.
     pub fn det_polynomial(&self, e: usize) -> Bernstein<D> {
-        let (functions, c) = self.extraction(e);
-        let (lo, hi) = self.element_bounds(e);
-        let count = 4usize.pow(D as u32);
-        // Bézier control points of each component.
-        let patches: Vec<Bernstein<D>> = (0..D)
-            .map(|a| {
-                let mut p = Bernstein::zero([3; D]);
-                for (row, &f) in c.chunks_exact(count).zip(functions) {
-                    let x = self.control_points()[f][a];
-                    for (b, &v) in row.iter().enumerate() {
-                        p.coef[b] += v * x;
-                    }
-                }
-                p
-            })
-            .collect();
-        jacobian_determinant(&patches, lo, hi)
+        self.piece(e).det_polynomial()
     }
 
     /// Certified validity of element `e` and its sampled quality.
@@ -142,29 +127,21 @@ impl<const D: usize, S: SplineSpace<D>> SplineMap<D, S> {
         e: usize,
         options: &ValidityOptions,
     ) -> (ElementValidity, [usize; HISTOGRAM_BINS]) {
-        let poly = self.det_polynomial(e);
-        let bound = lower_bound(&poly, options.max_depth);
-        let (lo, hi) = self.element_bounds(e);
-        let (mut min_det, mut min_q, mut sum_q) = (f64::INFINITY, f64::INFINITY, 0.0);
-        let mut histogram = [0; HISTOGRAM_BINS];
-        let per = options.samples.max(2).pow(D as u32);
-        for x in element_grid(lo, hi, options.samples) {
-            if let Some((_, j)) = self.eval_with_jacobian(x) {
-                let q = mean_ratio(&j);
-                min_det = min_det.min(det(&j));
-                min_q = min_q.min(q);
-                sum_q += q;
-                histogram[((q * HISTOGRAM_BINS as f64) as usize).min(HISTOGRAM_BINS - 1)] += 1;
-            }
-        }
-        let element = ElementValidity {
-            certified_positive: bound > 0.0,
-            det_lower_bound: bound,
-            sampled_min_det: min_det,
-            min_quality: min_q,
-            mean_quality: sum_q / per as f64,
-        };
-        (element, histogram)
+        piece_samples(&self.piece(e), options)
+    }
+
+    /// Whether `det J > 0` is proven on element `e` for the map of this space with control
+    /// points `control` (certified as [`SplineMap::validity`] does with `options`).
+    pub(super) fn certified_with(
+        &self,
+        e: usize,
+        control: &[[f64; D]],
+        options: &ValidityOptions,
+    ) -> bool {
+        lower_bound(
+            &self.piece_with(e, control).det_polynomial(),
+            options.max_depth,
+        ) > 0.0
     }
 
     /// Certified validity and sampled quality of every element (in parallel; the result does
@@ -213,20 +190,30 @@ impl<const D: usize, S: SplineSpace<D>> SplineMap<D, S> {
     }
 }
 
-/// The `n^d` points (`n` at least 2) of the uniform grid of the box `[lo, hi]`, its corners
-/// included, direction 0 fastest.
-pub(super) fn element_grid<const D: usize>(
-    lo: [f64; D],
-    hi: [f64; D],
-    n: usize,
-) -> impl Iterator<Item = [f64; D]> {
-    let n = n.max(2);
-    (0..n.pow(D as u32)).map(move |s| {
-        std::array::from_fn(|k| {
-            let i = s / n.pow(k as u32) % n;
-            lo[k] + (hi[k] - lo[k]) * i as f64 / (n - 1) as f64
-        })
-    })
+/// [`SplineMap::element_validity`] of one piece, with the histogram of its sampled mean ratios.
+fn piece_samples<const D: usize>(
+    piece: &Piece<D>,
+    options: &ValidityOptions,
+) -> (ElementValidity, [usize; HISTOGRAM_BINS]) {
+    let bound = lower_bound(&piece.det_polynomial(), options.max_depth);
+    let (mut min_det, mut min_q, mut sum_q) = (f64::INFINITY, f64::INFINITY, 0.0);
+    let mut histogram = [0; HISTOGRAM_BINS];
+    let per = options.samples.max(2).pow(D as u32);
+    for j in piece.grid_jacobians(options.samples) {
+        let q = mean_ratio(&j);
+        min_det = min_det.min(det(&j));
+        min_q = min_q.min(q);
+        sum_q += q;
+        histogram[((q * HISTOGRAM_BINS as f64) as usize).min(HISTOGRAM_BINS - 1)] += 1;
+    }
+    let element = ElementValidity {
+        certified_positive: bound > 0.0,
+        det_lower_bound: bound,
+        sampled_min_det: min_det,
+        min_quality: min_q,
+        mean_quality: sum_q / per as f64,
+    };
+    (element, histogram)
 }
 
 /// `det J` of the map whose components are the Bernstein `patches` (all of one degree p per

@@ -1,0 +1,350 @@
+//! Optimization of a spline map's control points on the quality of its own Jacobian: the
+//! elements and sample points an objective looks at, and coloured Gauss–Seidel sweeps of the
+//! T-mesh optimizer's per-node Newton solver over the free control points.
+//!
+//! `J_S` at a point is affine in each control point (`J_S = A + P_i ∇N_iᵀ`), exactly the form of
+//! a T-mesh node's terms ([`Term`]), so the kernel's objective (the regularised mean-ratio
+//! distortion), its δ rule and its solver apply unchanged. Control points whose supports share
+//! no element do not interact: they are coloured so, each colour is solved in parallel and its
+//! moves applied in order, so the result does not depend on the number of threads.
+
+use std::collections::{BTreeSet, HashMap};
+
+use rayon::prelude::*;
+
+use super::bernstein::bernstein3;
+use super::map::SplineMap;
+use super::space::SplineSpace;
+use super::thb::ThbSpace;
+use crate::optimize::metric::{mean_ratio, Term};
+use crate::optimize::node::minimise;
+use crate::optimize::small::{add_outer, det, Matrix, Vector};
+use crate::optimize::NodeSolverOptions;
+
+/// One element of a [`Region`]: its functions and, per sample, their gradients.
+type SampledElement<const D: usize> = (Vec<usize>, Vec<Vec<[f64; D]>>);
+
+/// The elements and samples the objective of some free control points looks at.
+pub(super) struct Region<const D: usize> {
+    /// The elements, in increasing order.
+    pub(super) order: Vec<usize>,
+    /// Per element: its functions and, per sample, their gradients.
+    elements: Vec<SampledElement<D>>,
+    /// Per element and sample, `J_S` in the coordinates of the control points given.
+    jacobians: Vec<Vec<Matrix<D>>>,
+    /// Per free function: its (element, position in the element's functions) pairs.
+    touches: Vec<(usize, Vec<(usize, usize)>)>,
+    /// Per free function: a length of its support (parametric).
+    lengths: Vec<f64>,
+    /// The free functions (positions in `touches`) by colour: no two of a colour share an
+    /// element.
+    colours: Vec<Vec<usize>>,
+}
+
+/// The gradients of the cubic `coef` (tensor Bernstein coefficients on the box `[lo, hi]`,
+/// `4^d`, direction 0 fastest) at the `n^d` points of the box's uniform grid, its corners
+/// included, by sum factorisation.
+pub(super) fn grid_gradients<const D: usize>(
+    coef: &[f64],
+    lo: [f64; D],
+    hi: [f64; D],
+    n: usize,
+) -> Vec<[f64; D]> {
+    let n = n.max(2);
+    // Per direction: the four Bernstein values and slopes at each grid point.
+    type Table = (Vec<[f64; 4]>, Vec<[f64; 4]>);
+    let tables: [Table; D] = std::array::from_fn(|k| {
+        let h = hi[k] - lo[k];
+        (0..n)
+            .map(|i| {
+                let (v, d) = bernstein3(i as f64 / (n - 1) as f64);
+                (v, d.map(|s| s / h))
+            })
+            .unzip()
+    });
+    let derivative: [Vec<f64>; D] = std::array::from_fn(|c| {
+        let mut cur = coef.to_vec();
+        for (k, (values, slopes)) in tables.iter().enumerate() {
+            let table = if k == c { slopes } else { values };
+            // Directions before k are already on the grid (n points), k and after are not.
+            let before = n.pow(k as u32);
+            let after = 4usize.pow((D - k - 1) as u32);
+            let mut next = vec![0.0; before * n * after];
+            for outer in 0..after {
+                for (i, row) in table.iter().enumerate() {
+                    for inner in 0..before {
+                        next[inner + before * (i + n * outer)] = (0..4)
+                            .map(|b| row[b] * cur[inner + before * (b + 4 * outer)])
+                            .sum();
+                    }
+                }
+            }
+            cur = next;
+        }
+        cur
+    });
+    (0..n.pow(D as u32))
+        .map(|s| std::array::from_fn(|c| derivative[c][s]))
+        .collect()
+}
+
+impl<const D: usize> SplineMap<D, ThbSpace<D>> {
+    /// Per function, the elements it is non-zero on.
+    pub(super) fn function_elements(&self) -> Vec<Vec<usize>> {
+        let mut support = vec![Vec::new(); self.basis_count()];
+        for e in 0..self.element_count() {
+            for &f in self.space.extraction(e).0 {
+                support[f].push(e);
+            }
+        }
+        support
+    }
+
+    /// The region of the free `functions` (increasing): the elements of their supports with
+    /// `samples^d` points each, the Jacobians there for the control points `y`.
+    pub(super) fn region(
+        &self,
+        functions: &BTreeSet<usize>,
+        support: &[Vec<usize>],
+        samples: usize,
+        y: &[Vector<D>],
+    ) -> Region<D> {
+        let mut objective_elements = BTreeSet::new();
+        for &f in functions {
+            objective_elements.extend(support[f].iter().copied());
+        }
+        let order: Vec<usize> = objective_elements.into_iter().collect();
+        let local = 4usize.pow(D as u32);
+        let elements: Vec<SampledElement<D>> = order
+            .par_iter()
+            .map(|&e| {
+                let (lo, hi) = self.space.element_bounds(e);
+                let (functions, c) = self.space.extraction(e);
+                let per_function: Vec<Vec<[f64; D]>> = c
+                    .chunks_exact(local)
+                    .map(|row| grid_gradients(row, lo, hi, samples))
+                    .collect();
+                let count = per_function.first().map_or(0, Vec::len);
+                let per_sample = (0..count)
+                    .map(|s| per_function.iter().map(|g| g[s]).collect())
+                    .collect();
+                (functions.to_vec(), per_sample)
+            })
+            .collect();
+        let position: HashMap<usize, usize> =
+            order.iter().enumerate().map(|(i, &e)| (e, i)).collect();
+        let mut touches = Vec::with_capacity(functions.len());
+        let mut lengths = Vec::with_capacity(functions.len());
+        for &f in functions {
+            let list: Vec<(usize, usize)> = support[f]
+                .iter()
+                .map(|e| {
+                    let r = position[e];
+                    let at = elements[r]
+                        .0
+                        .binary_search(&f)
+                        .expect("a function of its support's elements");
+                    (r, at)
+                })
+                .collect();
+            let side: f64 = support[f]
+                .iter()
+                .map(|&e| {
+                    let (lo, hi) = self.space.element_bounds(e);
+                    hi[0] - lo[0]
+                })
+                .sum::<f64>()
+                / support[f].len().max(1) as f64;
+            lengths.push(side);
+            touches.push((f, list));
+        }
+        let jacobians = elements
+            .par_iter()
+            .map(|(functions, samples)| {
+                samples
+                    .iter()
+                    .map(|gradients| {
+                        let mut j = [[0.0; D]; D];
+                        for (&h, g) in functions.iter().zip(gradients) {
+                            j = add_outer(&j, &y[h], g);
+                        }
+                        j
+                    })
+                    .collect()
+            })
+            .collect();
+        let colours = colour(&touches, order.len());
+        Region {
+            order,
+            elements,
+            jacobians,
+            touches,
+            lengths,
+            colours,
+        }
+    }
+}
+
+/// Greedy colouring of the free functions in their order: the smallest colour not used by a
+/// function sharing an element.
+fn colour(touches: &[(usize, Vec<(usize, usize)>)], elements: usize) -> Vec<Vec<usize>> {
+    let mut used: Vec<Vec<usize>> = vec![Vec::new(); elements];
+    let mut colours: Vec<Vec<usize>> = Vec::new();
+    for (i, (_, list)) in touches.iter().enumerate() {
+        let mut taken: Vec<usize> = list
+            .iter()
+            .flat_map(|&(r, _)| used[r].iter().copied())
+            .collect();
+        taken.sort_unstable();
+        taken.dedup();
+        let c = (0..).find(|c| taken.binary_search(c).is_err()).unwrap_or(0);
+        if c == colours.len() {
+            colours.push(Vec::new());
+        }
+        colours[c].push(i);
+        for &(r, _) in list {
+            used[r].push(c);
+        }
+    }
+    colours
+}
+
+impl<const D: usize> Region<D> {
+    /// The number of elements with a sample where `det J_S ≤ 0`, the smallest `det J_S` and
+    /// the smallest mean ratio at the samples (in the coordinates of the control points).
+    pub(super) fn folded(&self) -> (usize, f64, f64) {
+        let mut count = 0;
+        let mut smallest = f64::INFINITY;
+        let mut quality = f64::INFINITY;
+        for samples in &self.jacobians {
+            let least = samples.iter().map(det).fold(f64::INFINITY, f64::min);
+            count += (least <= 0.0) as usize;
+            smallest = smallest.min(least);
+            quality = samples.iter().map(mean_ratio).fold(quality, f64::min);
+        }
+        (count, smallest, quality)
+    }
+
+    /// The smallest and the mean mean ratio at the samples.
+    pub(super) fn quality(&self) -> (f64, f64) {
+        let (mut smallest, mut sum, mut count) = (f64::INFINITY, 0.0, 0usize);
+        for samples in &self.jacobians {
+            for j in samples {
+                let q = mean_ratio(j);
+                smallest = smallest.min(q);
+                sum += q;
+                count += 1;
+            }
+        }
+        (smallest, sum / count.max(1) as f64)
+    }
+
+    /// Updates the Jacobians after free function `i` (of `touches`) moved by `delta`.
+    fn shift(&mut self, i: usize, delta: Vector<D>) {
+        for &(r, at) in &self.touches[i].1 {
+            let (_, samples) = &self.elements[r];
+            for (j, gradients) in self.jacobians[r].iter_mut().zip(samples) {
+                *j = add_outer(j, &delta, &gradients[at]);
+            }
+        }
+    }
+
+    /// The objective terms of free function `i` (of `touches`), its control point at `y[f]`:
+    /// one per sample of each element it touches, weighted equally per element.
+    fn terms(&self, i: usize, y: &[Vector<D>]) -> Vec<Term<D>> {
+        let (f, touches) = &self.touches[i];
+        let minus: Vector<D> = y[*f].map(|v| -v);
+        let mut out = Vec::new();
+        for &(r, at) in touches {
+            let samples = &self.elements[r].1;
+            let w = 1.0 / samples.len() as f64;
+            for (gradients, j) in samples.iter().zip(&self.jacobians[r]) {
+                let g = gradients[at];
+                if g.iter().all(|&v| v == 0.0) {
+                    continue;
+                }
+                out.push(Term {
+                    a: add_outer(j, &minus, &g),
+                    g,
+                    w,
+                });
+            }
+        }
+        out
+    }
+
+    /// One coloured Gauss–Seidel sweep over the free functions: each moves its control point
+    /// (in `y`) to the minimum of the regularised mean-ratio distortion at the samples of its
+    /// support, then `constrain(f, next)` bounds the move. Returns the largest move relative
+    /// to the function's support length, and adds the functions moved to `moved`.
+    pub(super) fn sweep(
+        &mut self,
+        y: &mut [Vector<D>],
+        solver: &NodeSolverOptions,
+        constrain: &(impl Fn(usize, Vector<D>) -> Vector<D> + Sync),
+        moved: &mut BTreeSet<usize>,
+    ) -> f64 {
+        let mut largest = 0.0f64;
+        for c in 0..self.colours.len() {
+            let this = &*self;
+            let y_now = &*y;
+            let moves: Vec<(usize, Vector<D>)> = this.colours[c]
+                .par_iter()
+                .filter_map(|&i| {
+                    let f = this.touches[i].0;
+                    let terms = this.terms(i, y_now);
+                    let weight_sum: f64 = terms.iter().map(|t| t.w).sum();
+                    let next = minimise(
+                        &terms,
+                        y_now[f],
+                        (1 << D) - 1,
+                        weight_sum,
+                        this.lengths[i],
+                        solver,
+                    )?;
+                    Some((i, constrain(f, next)))
+                })
+                .collect();
+            for (i, next) in moves {
+                let f = self.touches[i].0;
+                let delta: Vector<D> = std::array::from_fn(|k| next[k] - y[f][k]);
+                let step = delta.iter().map(|v| v * v).sum::<f64>().sqrt();
+                largest = largest.max(step / self.lengths[i]);
+                if step > 0.0 {
+                    self.shift(i, delta);
+                    y[f] = next;
+                    moved.insert(f);
+                }
+            }
+        }
+        largest
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn grid_gradients_match_the_bernstein_derivatives() {
+        let coef: Vec<f64> = (0..64).map(|i| (i as f64 * 0.37).sin()).collect();
+        let p = super::super::bernstein::Bernstein::<3> {
+            degree: [3; 3],
+            coef: coef.clone(),
+        };
+        let (lo, hi) = ([0.25, 0.5, 0.0], [0.5, 0.75, 0.5]);
+        let n = 3;
+        let g = grid_gradients(&coef, lo, hi, n);
+        for (s, gs) in g.iter().enumerate() {
+            let t: [f64; 3] = std::array::from_fn(|k| (s / n.pow(k as u32) % n) as f64 / 2.0);
+            for c in 0..3 {
+                let expected = p.derivative(c).eval(t) / (hi[c] - lo[c]);
+                assert!(
+                    (gs[c] - expected).abs() < 1e-12,
+                    "{s} {c}: {} {expected}",
+                    gs[c]
+                );
+            }
+        }
+    }
+}

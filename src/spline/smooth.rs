@@ -1,0 +1,113 @@
+//! Smoothing of a certified spline map: every inner control point (of a function vanishing on
+//! the boundary of [0,1]^d, so the map's boundary is kept) moves to the minimum of the
+//! regularised mean-ratio distortion of `J_S` at the sample points of its support, in coloured
+//! Gauss–Seidel sweeps ([`Region::sweep`](super::control::Region)). The distortion grows without
+//! bound as `det J_S → 0`, so its minimisation keeps the map away from folds and raises its worst
+//! mean ratio together with its mean. Coordinates are scaled by one factor for all axes, so the
+//! objective's mean ratio is the reported `q_S`. The new map is kept only when it is certified
+//! valid and its smallest sampled mean ratio (or, that equal, its mean) is higher.
+
+use std::collections::BTreeSet;
+
+use super::map::SplineMap;
+use super::thb::ThbSpace;
+use super::validity::{ValidityOptions, ValidityReport};
+use crate::optimize::small::{bounding_box, Vector};
+use crate::optimize::NodeSolverOptions;
+
+/// What [`SplineMap::smooth`] did.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct SmoothReport {
+    /// Sweeps made.
+    pub sweeps: u32,
+    /// Control points moved (0 when the map was kept as it was).
+    pub moved: usize,
+    /// Smallest sampled mean ratio before.
+    pub min_quality_before: f64,
+    /// Smallest sampled mean ratio of the map kept.
+    pub min_quality_after: f64,
+}
+
+impl<const D: usize> SplineMap<D, ThbSpace<D>> {
+    /// Smooths a certified map (see the module documentation) with at most `sweeps` sweeps
+    /// over its inner control points, `samples` points per direction and element; the sweeps
+    /// stop when one no longer lifts the smallest sampled mean ratio by 0.1% of itself or the
+    /// mean by 0.1%. `validity` is the map's validity with the options `certify`; returns the
+    /// validity of the map kept. A map that is not certified is left as it is.
+    pub fn smooth(
+        &mut self,
+        validity: ValidityReport,
+        certify: &ValidityOptions,
+        sweeps: u32,
+        samples: usize,
+    ) -> (ValidityReport, SmoothReport) {
+        let mut report = SmoothReport {
+            min_quality_before: validity.min_quality,
+            min_quality_after: validity.min_quality,
+            ..Default::default()
+        };
+        if !validity.certified_positive || sweeps == 0 {
+            return (validity, report);
+        }
+        let (lo, hi) = bounding_box(self.control.iter().copied());
+        let extent = (0..D).map(|k| hi[k] - lo[k]).fold(0.0, f64::max);
+        let scale = if extent > 0.0 && extent.is_finite() {
+            1.0 / extent
+        } else {
+            1.0
+        };
+        let mut y: Vec<Vector<D>> = self.control.iter().map(|p| p.map(|v| v * scale)).collect();
+        let functions: BTreeSet<usize> = (0..self.basis_count())
+            .filter(|&f| self.boundary_sides(f) == 0)
+            .collect();
+        if functions.is_empty() {
+            return (validity, report);
+        }
+        let support = self.function_elements();
+        let mut region = self.region(&functions, &support, samples, &y);
+        let solver = NodeSolverOptions {
+            gradient_tolerance: 1e-4,
+            max_iterations: 20,
+            relaxation: 1.0,
+        };
+        let mut moved = BTreeSet::new();
+        let mut best = region.quality();
+        let mut states: Vec<(Vec<Vector<D>>, BTreeSet<usize>)> = Vec::new();
+        for _ in 0..sweeps {
+            region.sweep(&mut y, &solver, &|_, next| next, &mut moved);
+            report.sweeps += 1;
+            let now = region.quality();
+            if now.0 <= 0.0 {
+                break;
+            }
+            states.push((y.clone(), moved.clone()));
+            let better = now.0 > best.0 * 1.001 || (now.0 >= best.0 && now.1 > best.1 * 1.001);
+            if !better {
+                break;
+            }
+            best = now;
+        }
+        // The last state that is certified and better than the map given, latest first.
+        for (y, moved) in states.into_iter().rev() {
+            let mut control = self.control.clone();
+            for &f in &moved {
+                control[f] = y[f].map(|v| v / scale);
+            }
+            let trial = SplineMap {
+                space: self.space.clone(),
+                control,
+            };
+            let after = trial.validity(certify);
+            let higher = after.min_quality > validity.min_quality
+                || (after.min_quality >= validity.min_quality
+                    && after.mean_quality > validity.mean_quality);
+            if after.certified_positive && higher {
+                report.moved = moved.len();
+                report.min_quality_after = after.min_quality;
+                *self = trial;
+                return (after, report);
+            }
+        }
+        (validity, report)
+    }
+}
