@@ -209,8 +209,10 @@ fn line_search<const D: usize>(
             );
         }
         if value.is_finite() {
-            let mut derivatives =
-                || full.take().unwrap_or_else(|| objective.evaluate(pool, &trial, true));
+            let mut derivatives = || {
+                full.take()
+                    .unwrap_or_else(|| objective.evaluate(pool, &trial, true))
+            };
             if value <= eval.value + 1e-4 * alpha * slope {
                 let next = derivatives();
                 return Some((trial, next));
