@@ -230,7 +230,7 @@ fn target(code: igaparam_target) -> Result<TargetKind> {
     }
 }
 
-fn relocate_options(o: &igaparam_relocate_options) -> Result<RelocateOptions> {
+pub(super) fn relocate_options(o: &igaparam_relocate_options) -> Result<RelocateOptions> {
     let placement = match o.placement {
         IGAPARAM_PLACEMENT_LAPLACIAN => Placement::Laplacian,
         IGAPARAM_PLACEMENT_CURRENT => Placement::Current,
@@ -445,25 +445,30 @@ pub extern "C" fn igaparam_mesh_relocate(
         // Mesh::relocate changes nothing on error or cancellation.
         let r = handle.mesh.relocate(&opts, &mut progress)?;
         if !report.is_null() {
-            *non_null_mut(report, "report")? = igaparam_relocate_report {
-                cells: r.cells,
-                nodes: r.nodes,
-                free_nodes: r.free_nodes,
-                invalid_before: r.invalid_before,
-                invalid_after_placement: r.invalid_after_placement,
-                invalid_after: r.invalid_after,
-                min_quality: r.min_quality,
-                mean_quality: r.mean_quality,
-                sweeps: r.sweeps,
-                steps: r.steps,
-                converged: r.converged as c_int,
-                gradient_norm: r.gradient_norm,
-                newton_iterations: r.newton_iterations,
-                seconds: r.seconds,
-            };
+            *non_null_mut(report, "report")? = report_of(&r);
         }
         Ok(())
     })
+}
+
+/// The C form of a relocation's report.
+pub(super) fn report_of(r: &crate::homesh::RelocateReport) -> igaparam_relocate_report {
+    igaparam_relocate_report {
+        cells: r.cells,
+        nodes: r.nodes,
+        free_nodes: r.free_nodes,
+        invalid_before: r.invalid_before,
+        invalid_after_placement: r.invalid_after_placement,
+        invalid_after: r.invalid_after,
+        min_quality: r.min_quality,
+        mean_quality: r.mean_quality,
+        sweeps: r.sweeps,
+        steps: r.steps,
+        converged: r.converged as c_int,
+        gradient_norm: r.gradient_norm,
+        newton_iterations: r.newton_iterations,
+        seconds: r.seconds,
+    }
 }
 
 /// Copies the current node positions into `xyz` (`len` doubles, at least `3 × num_nodes`; x0 y0

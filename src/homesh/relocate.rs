@@ -106,7 +106,8 @@ impl Default for RelocateOptions {
 }
 
 impl RelocateOptions {
-    fn validate(&self) -> Result<()> {
+    /// Checks the values of the options.
+    pub(crate) fn validate(&self) -> Result<()> {
         let values = [
             ("move_tolerance", self.move_tolerance),
             ("gradient_tolerance", self.gradient_tolerance),
@@ -135,6 +136,21 @@ impl RelocateOptions {
             )));
         }
         Ok(())
+    }
+}
+
+impl RelocateOptions {
+    /// The stopping rules of the sweeps.
+    pub(crate) fn sweep_options(&self) -> SweepOptions {
+        SweepOptions {
+            max_sweeps: self.max_sweeps,
+            move_tolerance: self.move_tolerance,
+            node: NodeSolverOptions {
+                gradient_tolerance: self.gradient_tolerance,
+                max_iterations: self.max_newton_iterations,
+                relaxation: self.relaxation,
+            },
+        }
     }
 }
 
@@ -283,15 +299,7 @@ impl Mesh {
         if !options.optimize {
             return Ok(x);
         }
-        let sweep_options = SweepOptions {
-            max_sweeps: options.max_sweeps,
-            move_tolerance: options.move_tolerance,
-            node: NodeSolverOptions {
-                gradient_tolerance: options.gradient_tolerance,
-                max_iterations: options.max_newton_iterations,
-                relaxation: options.relaxation,
-            },
-        };
+        let sweep_options = options.sweep_options();
         let mut on_sweep = |done: usize| progress(Stage::Optimization, done, 0);
         let stats = if options.placement == Placement::Current {
             motion::optimize_in_place(pool, problem, &mut x, &sweep_options, &mut on_sweep)?
