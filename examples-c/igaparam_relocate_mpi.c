@@ -2,7 +2,8 @@
  * igaparam_relocate_mpi: relocation of a mesh partitioned over the ranks of an MPI job.
  *
  *   mpirun -np N igaparam_relocate_mpi IN.vtu OUT.pvtu [--gather WHOLE.vtu] [--threads T]
- *   igaparam_relocate_mpi IN.vtu - --serial          (the whole mesh in one process)
+ *                                      [--max-sweeps S]
+ *   igaparam_relocate_mpi IN.vtu - --serial [--threads T] [--max-sweeps S]   (one process)
  *
  * Every rank reads IN (with its point arrays `fixed_components` and `moved`, as relocate_vtu),
  * partitions the cells by recursive coordinate bisection of their centres, builds its part
@@ -142,7 +143,7 @@ int main(int argc, char **argv) {
   if (parse(argc, argv, &o) != 0) {
     if (rank == 0)
       fprintf(stderr, "usage: igaparam_relocate_mpi IN.vtu OUT.pvtu [--gather WHOLE.vtu] [--threads N]"
-                      " | IN.vtu - --serial [--threads N]\n");
+                      " [--max-sweeps S] | IN.vtu - --serial [--threads N] [--max-sweeps S]\n");
     MPI_Finalize();
     return 2;
   }

@@ -2,7 +2,7 @@
 
 typedef struct {
   const char *input, *output, *gather;
-  unsigned threads;
+  unsigned threads, max_sweeps;
   int serial;
 } options;
 
@@ -12,6 +12,7 @@ static int parse(int argc, char **argv, options *o) {
   for (int i = 3; i < argc; ++i) {
     if (!strcmp(argv[i], "--gather") && i + 1 < argc) o->gather = argv[++i];
     else if (!strcmp(argv[i], "--threads") && i + 1 < argc) o->threads = (unsigned)strtoul(argv[++i], NULL, 10);
+    else if (!strcmp(argv[i], "--max-sweeps") && i + 1 < argc) o->max_sweeps = (unsigned)strtoul(argv[++i], NULL, 10);
     else if (!strcmp(argv[i], "--serial")) o->serial = 1;
     else return 1;
   }
@@ -33,6 +34,7 @@ static int run_serial(whole_mesh *w, const options *o, int rank) {
   igaparam_relocate_options opt = igaparam_relocate_options_default();
   opt.method = IGAPARAM_METHOD_SWEEPS;
   opt.threads = o->threads;
+  if (o->max_sweeps) opt.max_sweeps = o->max_sweeps;
   igaparam_relocate_report r;
   igaparam_status st = igaparam_mesh_relocate(w->mesh, &opt, &r);
   if (st != IGAPARAM_STATUS_OK) return fail("igaparam_mesh_relocate", st);
@@ -204,6 +206,7 @@ static int run_parts(whole_mesh *w, const options *o, MPI_Comm comm, int rank, i
   igaparam_relocate_options opt = igaparam_relocate_options_default();
   opt.method = IGAPARAM_METHOD_SWEEPS;
   opt.threads = o->threads;
+  if (o->max_sweeps) opt.max_sweeps = o->max_sweeps;
   igaparam_partition_report r;
   MPI_Barrier(comm);
   double t0 = MPI_Wtime();
