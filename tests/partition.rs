@@ -148,9 +148,9 @@ fn part_of(c: &Case, rank: usize, size: usize, halo: bool) -> Part {
         })
         .collect();
     let mut owner = vec![usize::MAX; nodes];
-    for k in 0..cells {
-        for &v in &c.conn[4 * k..4 * k + 4] {
-            owner[v as usize] = owner[v as usize].min(rank_of[k]);
+    for (cell, &r) in c.conn.chunks(4).zip(&rank_of) {
+        for &v in cell {
+            owner[v as usize] = owner[v as usize].min(r);
         }
     }
     let take: Vec<usize> = (0..cells)
