@@ -434,14 +434,7 @@ pub extern "C" fn igaparam_mesh_relocate(
             *non_null(options, "options")?
         };
         let opts = relocate_options(&raw)?;
-        let mut progress = |stage: Stage, done: usize, total: usize| {
-            let stage = match stage {
-                Stage::Placement => igaparam_stage::IGAPARAM_STAGE_PLACEMENT,
-                Stage::Optimization => igaparam_stage::IGAPARAM_STAGE_OPTIMIZATION,
-                Stage::Stationarity => igaparam_stage::IGAPARAM_STAGE_STATIONARITY,
-            };
-            call_progress(raw.progress, raw.progress_user, stage, done, total)
-        };
+        let mut progress = relocation_progress(&raw);
         // Mesh::relocate changes nothing on error or cancellation.
         let r = handle.mesh.relocate(&opts, &mut progress)?;
         if !report.is_null() {
@@ -449,6 +442,20 @@ pub extern "C" fn igaparam_mesh_relocate(
         }
         Ok(())
     })
+}
+
+/// The relocation's progress as the options' callback sees it.
+pub(super) fn relocation_progress(
+    raw: &igaparam_relocate_options,
+) -> impl FnMut(Stage, usize, usize) -> bool + '_ {
+    |stage: Stage, done: usize, total: usize| {
+        let stage = match stage {
+            Stage::Placement => igaparam_stage::IGAPARAM_STAGE_PLACEMENT,
+            Stage::Optimization => igaparam_stage::IGAPARAM_STAGE_OPTIMIZATION,
+            Stage::Stationarity => igaparam_stage::IGAPARAM_STAGE_STATIONARITY,
+        };
+        call_progress(raw.progress, raw.progress_user, stage, done, total)
+    }
 }
 
 /// The C form of a relocation's report.

@@ -7,11 +7,12 @@
 use std::ffi::{c_int, c_void};
 
 use super::boundary::{check_capacity, non_null, non_null_mut, run, slice, slice_mut, Failure};
-use super::mesh::{call_progress, cell_type, igaparam_relocate_options, igaparam_relocate_report};
-use super::mesh::{igaparam_relocate_options_default, igaparam_stage, relocate_options, report_of};
+use super::mesh::{cell_type, igaparam_relocate_options, igaparam_relocate_report};
+use super::mesh::{
+    igaparam_relocate_options_default, relocate_options, relocation_progress, report_of,
+};
 use super::{igaparam_cell_type, igaparam_status};
 use crate::error::{Error, Result};
-use crate::homesh::Stage;
 use crate::partition::{Exchange, PartInput, Partition, Ranks};
 
 /// A rank's part of a partitioned mesh (opaque). Create with `igaparam_partition_new`, release
@@ -294,14 +295,7 @@ pub extern "C" fn igaparam_partition_relocate(
                 return Err(e.into());
             }
         };
-        let mut progress = |stage: Stage, done: usize, total: usize| {
-            let stage = match stage {
-                Stage::Placement => igaparam_stage::IGAPARAM_STAGE_PLACEMENT,
-                Stage::Optimization => igaparam_stage::IGAPARAM_STAGE_OPTIMIZATION,
-                Stage::Stationarity => igaparam_stage::IGAPARAM_STAGE_STATIONARITY,
-            };
-            call_progress(raw.progress, raw.progress_user, stage, done, total)
-        };
+        let mut progress = relocation_progress(&raw);
         let r = handle.part.relocate(&mut ranks, opts, &mut progress)?;
         if !report.is_null() {
             *non_null_mut(report, "report")? = igaparam_partition_report {

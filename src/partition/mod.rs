@@ -197,19 +197,7 @@ impl Partition {
     /// Sets the constraint mask of every local node, in the order given to
     /// [`Partition::new`] (see `Mesh::set_fixed`). A ghost's mask is taken from its owner.
     pub fn set_fixed(&mut self, mask: &[u8]) -> Result<()> {
-        if mask.len() != self.node_count() {
-            return Err(Error::invalid(format!(
-                "mask has {} entries, expected one per local node ({})",
-                mask.len(),
-                self.node_count()
-            )));
-        }
-        if let Some(i) = mask.iter().position(|&m| m > 7) {
-            return Err(Error::invalid(format!(
-                "mask[{i}] = {} uses bits other than 0, 1, 2",
-                mask[i]
-            )));
-        }
+        crate::homesh::check_mask(mask, self.node_count())?;
         for (i, &m) in mask.iter().enumerate() {
             self.fixed[self.local_of_input[i]] = m;
         }

@@ -7,12 +7,13 @@ use super::exchange::Ranks;
 use super::team::PartTeam;
 use super::Partition;
 use crate::error::{Error, Result};
+use crate::homesh::{problem_of, project, sweep_motion};
 use crate::homesh::{Method, Placement, RelocateOptions, RelocateReport, Stage};
-use crate::optimize::motion::{follow_motion_on, optimize_in_place_on, Ends};
+use crate::optimize::motion::Ends;
 use crate::optimize::small::Vector;
 use crate::optimize::sweep::invalid_count_on;
 use crate::optimize::team::Team;
-use crate::optimize::{laplace::MeshGraph, CellPattern, CellSpec, Problem, QualitySummary};
+use crate::optimize::{laplace::MeshGraph, Problem, QualitySummary};
 
 /// What [`Partition::relocate`] did: the figures of the whole mesh (the same on every rank)
 /// and this rank's time in the host's exchange.
@@ -87,28 +88,6 @@ impl Partition {
         Ok((positions, fixed.iter().map(|&m| m as u8).collect()))
     }
 
-    fn problem<const D: usize>(
-        &self,
-        options: &RelocateOptions,
-        fixed: &[u8],
-    ) -> Result<Problem<D>> {
-        let pattern = CellPattern::<D>::new(self.cell_type.lattice())
-            .ok_or_else(|| Error::mesh("unsupported cell pattern"))?;
-        let specs: Vec<CellSpec<'_>> = self
-            .connectivity
-            .chunks(self.cell_type.node_count())
-            .map(|nodes| CellSpec { pattern: 0, nodes })
-            .collect();
-        let free = fixed.iter().map(|m| !m & ((1u8 << D) - 1)).collect();
-        Problem::new(
-            vec![pattern],
-            &specs,
-            &project(&self.reference),
-            options.target,
-            free,
-        )
-    }
-
     fn relocate_d<const D: usize>(
         &mut self,
         ranks: &mut Ranks<'_>,
@@ -117,7 +96,13 @@ impl Partition {
         progress: &mut dyn FnMut(Stage, usize, usize) -> bool,
     ) -> Result<RelocateReport> {
         let (positions, fixed) = self.owners_state(ranks)?;
-        let problem = self.problem::<D>(options, &fixed);
+        let problem = problem_of::<D>(
+            self.cell_type,
+            &self.connectivity,
+            &fixed,
+            &self.reference,
+            options.target,
+        );
         ranks.agree(problem.as_ref().map(|_| ()).map_err(Clone::clone))?;
         let problem = problem?;
         let per = self.cell_type.node_count();
@@ -201,35 +186,10 @@ impl Partition {
         if !options.optimize {
             return Ok(x);
         }
-        let sweep_options = options.sweep_options();
-        let mut on_sweep = |done: usize| progress(Stage::Optimization, done, 0);
-        let stats = if options.placement == Placement::Current {
-            optimize_in_place_on(team, pool, problem, &mut x, &sweep_options, &mut on_sweep)?
-        } else {
-            let ends = Ends { start: &from, goal };
-            let (moved, stats) = follow_motion_on(
-                team,
-                pool,
-                problem,
-                &graph,
-                ends,
-                &sweep_options,
-                &mut on_sweep,
-            )?;
-            x = moved;
-            stats
-        };
-        report.sweeps = stats.sweeps;
-        report.steps = stats.steps;
-        report.converged = stats.converged;
+        let ends = Ends { start: &from, goal };
+        sweep_motion(
+            team, pool, problem, &graph, ends, &mut x, options, report, progress,
+        )?;
         Ok(x)
     }
-}
-
-/// The first `D` coordinates of each point.
-fn project<const D: usize>(points: &[[f64; 3]]) -> Vec<[f64; D]> {
-    points
-        .iter()
-        .map(|p| std::array::from_fn(|k| p[k]))
-        .collect()
 }
