@@ -169,6 +169,12 @@ typedef struct igaparam_domain igaparam_domain;
 typedef struct igaparam_mesh igaparam_mesh;
 
 /**
+ * A rank's part of a partitioned mesh (opaque). Create with `igaparam_partition_new`, release
+ * with `igaparam_partition_free`.
+ */
+typedef struct igaparam_partition igaparam_partition;
+
+/**
  * A cubic truncated hierarchical B-spline (THB) map `S: [0,1]^d → Ω`, d = 2 or 3 (opaque).
  * Create with `igaparam_spline_fit_domain` or `igaparam_spline_read_gismo`, release with
  * `igaparam_spline_free`. Parametric points are `d` doubles in [0,1]^d, physical points `d`
@@ -620,6 +626,61 @@ typedef int igaparam_vtu_format;
  * `igaparam_cell_type_copy_node_coordinates` gives these tables.
  */
 typedef int igaparam_node_order;
+
+/**
+ * The host's all-to-all exchange of bytes among the ranks of its communicator, as
+ * `MPI_Alltoallv` with `MPI_BYTE`: send `send_counts[r]` bytes to each rank `r` (the blocks of
+ * `send` in rank order) and receive `recv_counts[r]` bytes from each into `recv` (in rank
+ * order; the library knows the counts in advance). `user` is the exchange's `user`. Return 0
+ * on success. Called only on the thread that called the library.
+ */
+typedef int (*igaparam_exchange_fn)(void *user,
+                                    const size_t *send_counts,
+                                    const uint8_t *send,
+                                    const size_t *recv_counts,
+                                    uint8_t *recv);
+
+/**
+ * The ranks a partition lives on: this rank's number in `0..size` and the host's exchange.
+ * The library never starts, ends or calls MPI itself.
+ */
+typedef struct {
+  /**
+   * This rank, in `0..size` (e.g. from `MPI_Comm_rank`).
+   */
+  int rank;
+  /**
+   * Number of ranks (e.g. from `MPI_Comm_size`).
+   */
+  int size;
+  /**
+   * The exchange callback.
+   */
+  igaparam_exchange_fn exchange;
+  /**
+   * Passed to `exchange` as its first argument (e.g. a pointer to the communicator).
+   */
+  void *user;
+} igaparam_exchange;
+
+/**
+ * What `igaparam_partition_relocate` did.
+ */
+typedef struct {
+  /**
+   * The figures of the whole mesh, the same on every rank (`gradient_norm` is not computed
+   * on a partition: infinity; `seconds` is this rank's wall-clock time).
+   */
+  igaparam_relocate_report relocation;
+  /**
+   * Seconds this rank spent in the exchange callback (waiting for the others included).
+   */
+  double exchange_seconds;
+  /**
+   * Calls of the exchange callback on this rank.
+   */
+  size_t exchanges;
+} igaparam_partition_report;
 
 /**
  * Options of `igaparam_spline_check_validity`; get the defaults from
@@ -1619,6 +1680,81 @@ igaparam_status igaparam_cell_type_copy_node_coordinates(igaparam_cell_type cell
                                                          igaparam_node_order order,
                                                          double *xi,
                                                          size_t len);
+
+/**
+ * Creates this rank's part of a partitioned mesh; collective (every rank of `exchange` calls
+ * it). `num_nodes` local nodes: `node_ids` their global ids (non-negative, each node owned by
+ * exactly one rank), `owned` 1 where this rank owns the node else 0, `xyz` 3 coordinates each
+ * (the reference shape). `num_cells` local cells: `cell_ids` their global ids, `connectivity`
+ * their local node indices (`0..num_nodes`, VTK node order, `cell_type` the same on every
+ * rank). The owner of a node must hold every cell around it (a one-cell halo); a cell held on
+ * several ranks must have the same nodes everywhere. Global ids fix the order of the colouring
+ * and of every sum: numbered as in the whole mesh, the result equals the whole mesh's.
+ *
+ * A bad part on any rank (argument, NULL, a node owned twice or by no rank, a missing cell or
+ * node) makes the call fail on every rank with the same message; only a bad `exchange` fails
+ * on its own rank (the others then wait for it in their callback).
+ */
+igaparam_status igaparam_partition_new(const igaparam_exchange *exchange,
+                                       igaparam_cell_type cell_type_code,
+                                       size_t num_nodes,
+                                       const int64_t *node_ids,
+                                       const uint8_t *owned,
+                                       const double *xyz,
+                                       size_t num_cells,
+                                       const int64_t *cell_ids,
+                                       const int64_t *connectivity,
+                                       igaparam_partition **out);
+
+/**
+ * Releases a part. NULL is a no-op. Not collective.
+ */
+void igaparam_partition_free(igaparam_partition *part);
+
+/**
+ * Writes the number of local nodes (owned and ghosts) to `*out`.
+ */
+igaparam_status igaparam_partition_node_count(const igaparam_partition *part, size_t *out);
+
+/**
+ * Sets the constraint mask of every local node (`num_nodes` entries, in the order given to
+ * `igaparam_partition_new`; bits as in `igaparam_mesh_set_fixed`). A ghost copy takes its
+ * owner's mask at the next relocation. Not collective.
+ */
+igaparam_status igaparam_partition_set_fixed(igaparam_partition *part,
+                                             size_t num_nodes,
+                                             const uint8_t *mask);
+
+/**
+ * Sets the current positions of all local nodes (`len` = 3 × num_nodes doubles, in the order
+ * given to `igaparam_partition_new`), e.g. with the boundary moved. A ghost copy takes its
+ * owner's position at the next relocation. Not collective.
+ */
+igaparam_status igaparam_partition_set_positions(igaparam_partition *part,
+                                                 size_t len,
+                                                 const double *xyz);
+
+/**
+ * Copies the current positions of the local nodes into `xyz` (`len` doubles, at least
+ * 3 × num_nodes), in the order given to `igaparam_partition_new`. Not collective.
+ */
+igaparam_status igaparam_partition_copy_positions(const igaparam_partition *part,
+                                                  double *xyz,
+                                                  size_t len);
+
+/**
+ * Relocates the whole partitioned mesh on all ranks together; collective. The result equals,
+ * bit for bit, `igaparam_mesh_relocate` of the whole mesh (numbered by the global ids) with
+ * `IGAPARAM_METHOD_SWEEPS`, whatever the number of ranks. `IGAPARAM_METHOD_AUTO` means the
+ * sweeps here; `IGAPARAM_METHOD_NEWTON` and `stationarity_tolerance > 0` are refused (they
+ * need a factorisation of the whole Hessian). `options` may be NULL for the defaults; its
+ * progress callback runs on every rank, and a cancellation on one cancels all. An error on
+ * any rank fails the call on all with one message; the parts are then unchanged.
+ */
+igaparam_status igaparam_partition_relocate(igaparam_partition *part,
+                                            const igaparam_exchange *exchange,
+                                            const igaparam_relocate_options *options,
+                                            igaparam_partition_report *report);
 
 /**
  * The default validity options.

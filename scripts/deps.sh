@@ -5,8 +5,10 @@ set -euo pipefail
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
 
 # xvfb (with xauth for xvfb-run) and Mesa's OpenGL drivers: VTK renders the pictures through X,
-# on a virtual display when there is no real one.
-packages=(cmake g++ pkg-config libvtk9-dev libopenmesh-dev libeigen3-dev xvfb xauth libgl1-mesa-dri)
+# on a virtual display when there is no real one. OpenMPI (libopenmpi-dev, openmpi-bin): the
+# example igaparam_relocate_mpi and its tests (the library itself links no MPI).
+packages=(cmake g++ pkg-config libvtk9-dev libopenmesh-dev libeigen3-dev xvfb xauth libgl1-mesa-dri
+  libopenmpi-dev openmpi-bin)
 
 if command -v dpkg >/dev/null 2>&1; then
   missing=()

@@ -11,6 +11,7 @@ pub mod error;
 pub mod homesh;
 pub mod io;
 pub mod optimize;
+pub mod partition;
 pub mod sparse;
 pub mod spline;
 pub mod tmesh;

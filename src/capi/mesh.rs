@@ -236,7 +236,7 @@ fn target(code: igaparam_target) -> Result<TargetKind> {
     }
 }
 
-fn relocate_options(o: &igaparam_relocate_options) -> Result<RelocateOptions> {
+pub(super) fn relocate_options(o: &igaparam_relocate_options) -> Result<RelocateOptions> {
     let placement = match o.placement {
         IGAPARAM_PLACEMENT_LAPLACIAN => Placement::Laplacian,
         IGAPARAM_PLACEMENT_CURRENT => Placement::Current,
@@ -440,36 +440,48 @@ pub extern "C" fn igaparam_mesh_relocate(
             *non_null(options, "options")?
         };
         let opts = relocate_options(&raw)?;
-        let mut progress = |stage: Stage, done: usize, total: usize| {
-            let stage = match stage {
-                Stage::Placement => igaparam_stage::IGAPARAM_STAGE_PLACEMENT,
-                Stage::Optimization => igaparam_stage::IGAPARAM_STAGE_OPTIMIZATION,
-                Stage::Stationarity => igaparam_stage::IGAPARAM_STAGE_STATIONARITY,
-            };
-            call_progress(raw.progress, raw.progress_user, stage, done, total)
-        };
+        let mut progress = relocation_progress(&raw);
         // Mesh::relocate changes nothing on error or cancellation.
         let r = handle.mesh.relocate(&opts, &mut progress)?;
         if !report.is_null() {
-            *non_null_mut(report, "report")? = igaparam_relocate_report {
-                cells: r.cells,
-                nodes: r.nodes,
-                free_nodes: r.free_nodes,
-                invalid_before: r.invalid_before,
-                invalid_after_placement: r.invalid_after_placement,
-                invalid_after: r.invalid_after,
-                min_quality: r.min_quality,
-                mean_quality: r.mean_quality,
-                sweeps: r.sweeps,
-                steps: r.steps,
-                converged: r.converged as c_int,
-                gradient_norm: r.gradient_norm,
-                newton_iterations: r.newton_iterations,
-                seconds: r.seconds,
-            };
+            *non_null_mut(report, "report")? = report_of(&r);
         }
         Ok(())
     })
+}
+
+/// The relocation's progress as the options' callback sees it.
+pub(super) fn relocation_progress(
+    raw: &igaparam_relocate_options,
+) -> impl FnMut(Stage, usize, usize) -> bool + '_ {
+    |stage: Stage, done: usize, total: usize| {
+        let stage = match stage {
+            Stage::Placement => igaparam_stage::IGAPARAM_STAGE_PLACEMENT,
+            Stage::Optimization => igaparam_stage::IGAPARAM_STAGE_OPTIMIZATION,
+            Stage::Stationarity => igaparam_stage::IGAPARAM_STAGE_STATIONARITY,
+        };
+        call_progress(raw.progress, raw.progress_user, stage, done, total)
+    }
+}
+
+/// The C form of a relocation's report.
+pub(super) fn report_of(r: &crate::homesh::RelocateReport) -> igaparam_relocate_report {
+    igaparam_relocate_report {
+        cells: r.cells,
+        nodes: r.nodes,
+        free_nodes: r.free_nodes,
+        invalid_before: r.invalid_before,
+        invalid_after_placement: r.invalid_after_placement,
+        invalid_after: r.invalid_after,
+        min_quality: r.min_quality,
+        mean_quality: r.mean_quality,
+        sweeps: r.sweeps,
+        steps: r.steps,
+        converged: r.converged as c_int,
+        gradient_norm: r.gradient_norm,
+        newton_iterations: r.newton_iterations,
+        seconds: r.seconds,
+    }
 }
 
 /// Copies the current node positions into `xyz` (`len` doubles, at least `3 × num_nodes`; x0 y0

@@ -16,6 +16,7 @@ mod domain_update;
 mod mesh;
 mod mesh_io;
 mod node_order;
+mod partition;
 mod spline;
 
 pub use boundary::{igaparam_last_error_message, igaparam_status, igaparam_version};
@@ -25,6 +26,7 @@ pub use domain_update::*;
 pub use mesh::*;
 pub use mesh_io::*;
 pub use node_order::*;
+pub use partition::*;
 pub use spline::*;
 
 /// Major version of the library this header belongs to.

@@ -11,6 +11,7 @@ mod sensitivity;
 
 pub use cell_type::CellType;
 pub use node_order::NodeOrder;
+pub(crate) use relocate::sweep_motion;
 pub use relocate::{
     Method, Placement, RelocateOptions, RelocateReport, Stage, DEFAULT_NEWTON_TOLERANCE,
 };
@@ -168,19 +169,7 @@ impl Mesh {
     /// Sets the constraint mask of every node: bit 0 keeps x, bit 1 keeps y, bit 2 keeps z
     /// (0 free, 3 fixed in 2D, 7 fixed in 3D, 4 sliding in a plane z = const).
     pub fn set_fixed(&mut self, mask: &[u8]) -> Result<()> {
-        if mask.len() != self.node_count() {
-            return Err(Error::invalid(format!(
-                "mask has {} entries, expected one per node ({})",
-                mask.len(),
-                self.node_count()
-            )));
-        }
-        if let Some(i) = mask.iter().position(|&m| m > 7) {
-            return Err(Error::invalid(format!(
-                "mask[{i}] = {} uses bits other than 0, 1, 2",
-                mask[i]
-            )));
-        }
+        check_mask(mask, self.node_count())?;
         if self.fixed != mask {
             self.fixed = mask.to_vec();
             self.setup = None;
@@ -265,20 +254,12 @@ impl Mesh {
 
     /// The optimizer's view of the mesh in dimension `D`.
     fn problem<const D: usize>(&self, target: TargetKind) -> Result<Problem<D>> {
-        let pattern = CellPattern::<D>::new(self.cell_type.lattice())
-            .ok_or_else(|| Error::mesh("unsupported cell pattern"))?;
-        let specs: Vec<CellSpec<'_>> = self
-            .connectivity
-            .chunks(self.cell_type.node_count())
-            .map(|nodes| CellSpec { pattern: 0, nodes })
-            .collect();
-        let free = self.fixed.iter().map(|m| !m & ((1u8 << D) - 1)).collect();
-        Problem::new(
-            vec![pattern],
-            &specs,
-            &project::<D>(&self.reference),
+        problem_of(
+            self.cell_type,
+            &self.connectivity,
+            &self.fixed,
+            &self.reference,
             target,
-            free,
         )
     }
 
@@ -309,11 +290,53 @@ impl Mesh {
     }
 }
 
+/// Checks a constraint mask per node (`count` of them; bits 0, 1, 2 only).
+pub(crate) fn check_mask(mask: &[u8], count: usize) -> Result<()> {
+    if mask.len() != count {
+        return Err(Error::invalid(format!(
+            "mask has {} entries, expected one per node ({count})",
+            mask.len(),
+        )));
+    }
+    match mask.iter().position(|&m| m > 7) {
+        Some(i) => Err(Error::invalid(format!(
+            "mask[{i}] = {} uses bits other than 0, 1, 2",
+            mask[i]
+        ))),
+        None => Ok(()),
+    }
+}
+
+/// The optimizer's view of cells of one type (`connectivity` in node indices) with per-node
+/// constraint masks `fixed` and targets from `reference`.
+pub(crate) fn problem_of<const D: usize>(
+    cell_type: CellType,
+    connectivity: &[u32],
+    fixed: &[u8],
+    reference: &[[f64; 3]],
+    target: TargetKind,
+) -> Result<Problem<D>> {
+    let pattern = CellPattern::<D>::new(cell_type.lattice())
+        .ok_or_else(|| Error::mesh("unsupported cell pattern"))?;
+    let specs: Vec<CellSpec<'_>> = connectivity
+        .chunks(cell_type.node_count())
+        .map(|nodes| CellSpec { pattern: 0, nodes })
+        .collect();
+    let free = fixed.iter().map(|m| !m & ((1u8 << D) - 1)).collect();
+    Problem::new(
+        vec![pattern],
+        &specs,
+        &project::<D>(reference),
+        target,
+        free,
+    )
+}
+
 /// Why a mesh whose nodes were moved has no sensitivities.
 const MOVED: &str = "nodes were moved since the last relocation";
 
 /// The first `D` coordinates of each point.
-fn project<const D: usize>(points: &[[f64; 3]]) -> Vec<[f64; D]> {
+pub(crate) fn project<const D: usize>(points: &[[f64; 3]]) -> Vec<[f64; D]> {
     points
         .iter()
         .map(|p| std::array::from_fn(|k| p[k]))

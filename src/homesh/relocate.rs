@@ -4,9 +4,11 @@ use std::time::Instant;
 
 use super::{project, Mesh};
 use crate::error::{Error, ErrorKind, Result};
+use crate::optimize::motion::{self, Ends};
+use crate::optimize::team::{Alone, Team};
 use crate::optimize::{
-    invalid_cells, laplace::MeshGraph, motion, small::Vector, NodeSolverOptions, Problem,
-    QualitySummary, SweepOptions, TargetKind,
+    invalid_cells, laplace::MeshGraph, small::Vector, NodeSolverOptions, Problem, QualitySummary,
+    SweepOptions, TargetKind,
 };
 
 /// Where the free nodes start before the optimizer runs.
@@ -106,7 +108,8 @@ impl Default for RelocateOptions {
 }
 
 impl RelocateOptions {
-    fn validate(&self) -> Result<()> {
+    /// Checks the values of the options.
+    pub(crate) fn validate(&self) -> Result<()> {
         let values = [
             ("move_tolerance", self.move_tolerance),
             ("gradient_tolerance", self.gradient_tolerance),
@@ -135,6 +138,21 @@ impl RelocateOptions {
             )));
         }
         Ok(())
+    }
+}
+
+impl RelocateOptions {
+    /// The stopping rules of the sweeps.
+    pub(crate) fn sweep_options(&self) -> SweepOptions {
+        SweepOptions {
+            max_sweeps: self.max_sweeps,
+            move_tolerance: self.move_tolerance,
+            node: NodeSolverOptions {
+                gradient_tolerance: self.gradient_tolerance,
+                max_iterations: self.max_newton_iterations,
+                relaxation: self.relaxation,
+            },
+        }
     }
 }
 
@@ -283,34 +301,47 @@ impl Mesh {
         if !options.optimize {
             return Ok(x);
         }
-        let sweep_options = SweepOptions {
-            max_sweeps: options.max_sweeps,
-            move_tolerance: options.move_tolerance,
-            node: NodeSolverOptions {
-                gradient_tolerance: options.gradient_tolerance,
-                max_iterations: options.max_newton_iterations,
-                relaxation: options.relaxation,
-            },
-        };
-        let mut on_sweep = |done: usize| progress(Stage::Optimization, done, 0);
-        let stats = if options.placement == Placement::Current {
-            motion::optimize_in_place(pool, problem, &mut x, &sweep_options, &mut on_sweep)?
-        } else {
-            let (moved, stats) = motion::follow_motion(
-                pool,
-                problem,
-                &graph,
-                &from,
-                goal,
-                &sweep_options,
-                &mut on_sweep,
-            )?;
-            x = moved;
-            stats
-        };
-        report.sweeps = stats.sweeps;
-        report.steps = stats.steps;
-        report.converged = stats.converged;
+        let ends = Ends { start: &from, goal };
+        sweep_motion(
+            &mut Alone, pool, problem, &graph, ends, &mut x, options, report, progress,
+        )?;
         Ok(x)
     }
+}
+
+/// The sweeps after the first placement `x` (in place, or following the motion from
+/// `ends.start` to `ends.goal`), on the ranks of `team`; fills the report's sweep figures.
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn sweep_motion<const D: usize, T: Team>(
+    team: &mut T,
+    pool: &rayon::ThreadPool,
+    problem: &Problem<D>,
+    graph: &MeshGraph,
+    ends: Ends<'_, D>,
+    x: &mut Vec<Vector<D>>,
+    options: &RelocateOptions,
+    report: &mut RelocateReport,
+    progress: &mut dyn FnMut(Stage, usize, usize) -> bool,
+) -> Result<()> {
+    let sweep_options = options.sweep_options();
+    let mut on_sweep = |done: usize| progress(Stage::Optimization, done, 0);
+    let stats = if options.placement == Placement::Current {
+        motion::optimize_in_place_on(team, pool, problem, x, &sweep_options, &mut on_sweep)?
+    } else {
+        let (moved, stats) = motion::follow_motion_on(
+            team,
+            pool,
+            problem,
+            graph,
+            ends,
+            &sweep_options,
+            &mut on_sweep,
+        )?;
+        *x = moved;
+        stats
+    };
+    report.sweeps = stats.sweeps;
+    report.steps = stats.steps;
+    report.converged = stats.converged;
+    Ok(())
 }

@@ -6,10 +6,14 @@
 //! quadratic one).
 
 use rayon::prelude::*;
+use rayon::ThreadPool;
 
+use super::exact::ExactSum;
 use super::lattice;
 use super::problem::Problem;
 use super::small::Vector;
+use super::team::{Alone, Team};
+use crate::error::Result;
 
 /// The mesh graph in compressed rows: neighbours of node `v` are
 /// `neighbours[start[v]..start[v + 1]]`.
@@ -62,54 +66,91 @@ impl MeshGraph {
         reference: &[Vector<D>],
         positions: &mut [Vector<D>],
     ) -> usize {
+        // Runs in the caller's pool (`ThreadPool::install`); a team of one never fails.
+        self.place_on(&mut Alone, None, problem, reference, positions)
+            .unwrap_or(0)
+    }
+
+    /// [`MeshGraph::harmonic_placement`] on the ranks of `team`, the parallel work in `pool`;
+    /// the iterates (and so the result) do not depend on the split, as the dot products are
+    /// exact. Ghost positions are refreshed at the end.
+    pub fn harmonic_placement_on<const D: usize, T: Team>(
+        &self,
+        team: &mut T,
+        pool: &ThreadPool,
+        problem: &Problem<D>,
+        reference: &[Vector<D>],
+        positions: &mut [Vector<D>],
+    ) -> Result<usize> {
+        let iterations = self.place_on(team, Some(pool), problem, reference, positions)?;
+        team.refresh(positions.as_flattened_mut(), D)?;
+        Ok(iterations)
+    }
+
+    fn place_on<const D: usize, T: Team>(
+        &self,
+        team: &mut T,
+        pool: Option<&ThreadPool>,
+        problem: &Problem<D>,
+        reference: &[Vector<D>],
+        positions: &mut [Vector<D>],
+    ) -> Result<usize> {
         let n = problem.node_count();
+        let global_n = team.count((0..n).filter(|&v| team.owns(v)).count())?;
         let degree: Vec<f64> = (0..n).map(|v| self.of(v).len() as f64).collect();
         let mut iterations = 0;
         for k in 0..D {
             let free: Vec<bool> = (0..n)
                 .map(|v| problem.free_mask(v) & (1 << k) != 0 && degree[v] > 0.0)
                 .collect();
+            // The rows of this rank: the free nodes it owns (its ghosts' rows are elsewhere).
+            let row: Vec<bool> = (0..n).map(|v| free[v] && team.owns(v)).collect();
             let displacement: Vec<f64> =
                 (0..n).map(|v| positions[v][k] - reference[v][k]).collect();
             // Every vector of the iteration vanishes at the fixed nodes, so the matrix–vector
             // product needs no test on the neighbours.
-            let apply = |u: &[f64], out: &mut [f64]| {
+            let product = |u: &[f64], out: &mut [f64]| {
                 out.par_iter_mut().enumerate().for_each(|(v, o)| {
-                    *o = if free[v] {
+                    *o = if row[v] {
                         degree[v] * u[v] - self.of(v).iter().map(|&w| u[w as usize]).sum::<f64>()
                     } else {
                         0.0
                     };
                 });
             };
+            let apply = |u: &[f64], out: &mut [f64]| match pool {
+                Some(pool) => pool.install(|| product(u, out)),
+                None => product(u, out),
+            };
             let rhs: Vec<f64> = (0..n)
-                .map(|v| {
-                    let fixed_sum = || {
-                        self.of(v)
-                            .iter()
-                            .filter(|&&w| !free[w as usize])
-                            .map(|&w| displacement[w as usize])
-                            .sum()
-                    };
-                    if free[v] {
-                        fixed_sum()
-                    } else {
-                        0.0
-                    }
+                .map(|v| match row[v] {
+                    true => self
+                        .of(v)
+                        .iter()
+                        .filter(|&&w| !free[w as usize])
+                        .map(|&w| displacement[w as usize])
+                        .sum(),
+                    false => 0.0,
                 })
                 .collect();
             let mut u: Vec<f64> = (0..n)
                 .map(|v| if free[v] { displacement[v] } else { 0.0 })
                 .collect();
             let diagonal: Vec<f64> = degree.iter().map(|&d| d.max(1.0)).collect();
-            iterations += conjugate_gradients(&apply, &diagonal, &rhs, &mut u, 1e-10, 4 * n + 100);
+            let system = System {
+                apply: &apply,
+                diagonal: &diagonal,
+                rows: &row,
+            };
+            iterations +=
+                conjugate_gradients(team, &system, &rhs, &mut u, 1e-10, 4 * global_n + 100)?;
             for v in 0..n {
                 if free[v] {
                     positions[v][k] = reference[v][k] + u[v];
                 }
             }
         }
-        iterations
+        Ok(iterations)
     }
 }
 
@@ -127,42 +168,55 @@ fn adjacent_on_lattice_line<const D: usize>(coords: &[[usize; D]], a: usize, b: 
         .any(|c| c[k] > lo && c[k] < hi && (0..D).all(|l| l == k || c[l] == coords[a][l]))
 }
 
-fn dot(a: &[f64], b: &[f64]) -> f64 {
-    a.iter().zip(b).map(|(x, y)| x * y).sum()
+/// A symmetric positive semi-definite system over the nodes of a rank: the product (rows of
+/// this rank only), the Jacobi preconditioner, and the rows of this rank.
+struct System<'a> {
+    apply: &'a dyn Fn(&[f64], &mut [f64]),
+    diagonal: &'a [f64],
+    rows: &'a [bool],
 }
 
-/// Solves `A u = b` for a symmetric positive semi-definite `A` given by `apply`, with the
-/// Jacobi preconditioner `diagonal`; stops at `‖r‖ ≤ tolerance·max(‖b‖, 1)`. Returns the
-/// iterations.
-fn conjugate_gradients(
-    apply: &dyn Fn(&[f64], &mut [f64]),
-    diagonal: &[f64],
+/// The dot product over the rows of this rank, summed exactly over the team.
+fn dot<T: Team>(team: &mut T, rows: &[bool], a: &[f64], b: &[f64]) -> Result<f64> {
+    let products = (0..a.len()).filter(|&i| rows[i]).map(|i| a[i] * b[i]);
+    team.sum(&ExactSum::of(products))
+}
+
+/// Solves `A u = b` by conjugate gradients with the Jacobi preconditioner; stops at
+/// `‖r‖ ≤ tolerance·max(‖b‖, 1)`. The search direction's ghost values are refreshed before
+/// every product. Returns the iterations.
+fn conjugate_gradients<T: Team>(
+    team: &mut T,
+    system: &System<'_>,
     b: &[f64],
     u: &mut [f64],
     tolerance: f64,
     max_iterations: usize,
-) -> usize {
+) -> Result<usize> {
     let n = b.len();
+    let rows = system.rows;
     let mut r = vec![0.0; n];
-    apply(u, &mut r);
+    team.refresh(u, 1)?;
+    (system.apply)(u, &mut r);
     for (ri, bi) in r.iter_mut().zip(b) {
         *ri = bi - *ri;
     }
-    let stop = tolerance * dot(b, b).sqrt().max(1.0);
+    let stop = tolerance * dot(team, rows, b, b)?.sqrt().max(1.0);
     let precondition =
-        |r: &[f64]| -> Vec<f64> { r.iter().zip(diagonal).map(|(x, d)| x / d).collect() };
+        |r: &[f64]| -> Vec<f64> { r.iter().zip(system.diagonal).map(|(x, d)| x / d).collect() };
     let mut z = precondition(&r);
     let mut p = z.clone();
     let mut ap = vec![0.0; n];
-    let mut rz = dot(&r, &z);
+    let mut rz = dot(team, rows, &r, &z)?;
     for it in 0..max_iterations {
-        if dot(&r, &r).sqrt() <= stop {
-            return it;
+        if dot(team, rows, &r, &r)?.sqrt() <= stop {
+            return Ok(it);
         }
-        apply(&p, &mut ap);
-        let pap = dot(&p, &ap);
+        team.refresh(&mut p, 1)?;
+        (system.apply)(&p, &mut ap);
+        let pap = dot(team, rows, &p, &ap)?;
         if pap <= 0.0 {
-            return it;
+            return Ok(it);
         }
         let alpha = rz / pap;
         for i in 0..n {
@@ -170,12 +224,12 @@ fn conjugate_gradients(
             r[i] -= alpha * ap[i];
         }
         z = precondition(&r);
-        let rz_new = dot(&r, &z);
+        let rz_new = dot(team, rows, &r, &z)?;
         let beta = rz_new / rz;
         rz = rz_new;
         for i in 0..n {
             p[i] = z[i] + beta * p[i];
         }
     }
-    max_iterations
+    Ok(max_iterations)
 }

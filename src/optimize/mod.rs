@@ -9,6 +9,7 @@ pub mod blocks;
 pub mod colour;
 pub mod csr;
 pub mod distortion;
+pub mod exact;
 pub mod global;
 pub mod implicit;
 pub mod laplace;
@@ -24,6 +25,7 @@ pub mod solver;
 pub mod sparse;
 pub mod stationary;
 pub mod sweep;
+pub mod team;
 
 pub use node::NodeSolverOptions;
 pub use pattern::CellPattern;

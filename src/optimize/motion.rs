@@ -11,7 +11,8 @@ use rayon::ThreadPool;
 use super::laplace::MeshGraph;
 use super::problem::Problem;
 use super::small::Vector;
-use super::sweep::{invalid_cells, optimize, SweepOptions, SweepStats};
+use super::sweep::{invalid_count_on, optimize_on, SweepOptions, SweepStats};
+use super::team::{Alone, Team};
 use crate::error::Result;
 
 /// Smallest fraction of the motion applied in one step.
@@ -46,7 +47,21 @@ pub fn optimize_in_place<const D: usize>(
     options: &SweepOptions,
     progress: &mut dyn FnMut(usize) -> bool,
 ) -> Result<MotionStats> {
-    let stats = optimize(pool, problem, x, options, &mut |done, _| progress(done))?;
+    optimize_in_place_on(&mut Alone, pool, problem, x, options, progress)
+}
+
+/// [`optimize_in_place`] on the ranks of `team`.
+pub fn optimize_in_place_on<const D: usize, T: Team>(
+    team: &mut T,
+    pool: &ThreadPool,
+    problem: &Problem<D>,
+    x: &mut [Vector<D>],
+    options: &SweepOptions,
+    progress: &mut dyn FnMut(usize) -> bool,
+) -> Result<MotionStats> {
+    let stats = optimize_on(team, pool, problem, x, options, &mut |done, _| {
+        progress(done)
+    })?;
     Ok(MotionStats {
         sweeps: stats.sweeps,
         steps: 1,
@@ -66,30 +81,56 @@ pub fn follow_motion<const D: usize>(
     options: &SweepOptions,
     progress: &mut dyn FnMut(usize) -> bool,
 ) -> Result<(Vec<Vector<D>>, MotionStats)> {
+    let ends = Ends { start, goal };
+    follow_motion_on(&mut Alone, pool, problem, graph, ends, options, progress)
+}
+
+/// The two ends of a motion: a valid state and the goal of its constrained components.
+#[derive(Clone, Copy)]
+pub struct Ends<'a, const D: usize> {
+    /// The valid state the motion starts from.
+    pub start: &'a [Vector<D>],
+    /// The goal (its free components are ignored).
+    pub goal: &'a [Vector<D>],
+}
+
+/// [`follow_motion`] on the ranks of `team`.
+pub fn follow_motion_on<const D: usize, T: Team>(
+    team: &mut T,
+    pool: &ThreadPool,
+    problem: &Problem<D>,
+    graph: &MeshGraph,
+    Ends { start, goal }: Ends<'_, D>,
+    options: &SweepOptions,
+    progress: &mut dyn FnMut(usize) -> bool,
+) -> Result<(Vec<Vector<D>>, MotionStats)> {
     let mut stats = MotionStats::default();
-    let mut run =
-        |x: &mut Vec<Vector<D>>, sweeps_done: u32, last: bool| -> Result<(SweepStats, bool)> {
-            let mut step_options = *options;
-            if !last {
-                step_options.move_tolerance *= INTERMEDIATE_TOLERANCE_FACTOR;
-            }
-            let s = optimize(pool, problem, x, &step_options, &mut |done, _| {
-                progress(sweeps_done as usize + done)
-            })?;
-            Ok((s, invalid_cells(pool, problem, x).is_empty()))
-        };
+    let mut run = |team: &mut T,
+                   x: &mut Vec<Vector<D>>,
+                   sweeps_done: u32,
+                   last: bool|
+     -> Result<(SweepStats, bool)> {
+        let mut step_options = *options;
+        if !last {
+            step_options.move_tolerance *= INTERMEDIATE_TOLERANCE_FACTOR;
+        }
+        let s = optimize_on(team, pool, problem, x, &step_options, &mut |done, _| {
+            progress(sweeps_done as usize + done)
+        })?;
+        Ok((s, invalid_count_on(team, pool, problem, x)? == 0))
+    };
     // Bounds the work when steps keep failing: the remaining motion then comes in one step.
     let budget = options.max_sweeps.saturating_mul(SWEEP_BUDGET_FACTOR);
     let mut done_t = 0.0;
     let mut state = start.to_vec();
-    let first_dt = 1.0 / initial_steps(problem, start, goal) as f64;
+    let first_dt = 1.0 / initial_steps(team, problem, start, goal)? as f64;
     let mut dt = first_dt;
     while done_t < 1.0 {
         let t = (done_t + dt).min(1.0);
         let mut trial = state.clone();
         set_fixed_at(problem, start, goal, t, &mut trial);
-        pool.install(|| graph.harmonic_placement(problem, &state, &mut trial));
-        let (sweep, valid) = run(&mut trial, stats.sweeps, t >= 1.0)?;
+        graph.harmonic_placement_on(team, pool, problem, &state, &mut trial)?;
+        let (sweep, valid) = run(team, &mut trial, stats.sweeps, t >= 1.0)?;
         stats.sweeps += sweep.sweeps;
         if !valid && dt > MIN_STEP && stats.sweeps < budget {
             dt *= 0.5;
@@ -112,14 +153,15 @@ pub fn follow_motion<const D: usize>(
 
 /// Number of steps so that no constrained node moves more than [`CELLS_PER_STEP`] times the size
 /// of its cells in one step.
-fn initial_steps<const D: usize>(
+fn initial_steps<const D: usize, T: Team>(
+    team: &mut T,
     problem: &Problem<D>,
     start: &[Vector<D>],
     goal: &[Vector<D>],
-) -> usize {
+) -> Result<usize> {
     let mut ratio = 0.0f64;
     for v in 0..start.len() {
-        if problem.free_mask(v) == (1 << D) - 1 {
+        if problem.free_mask(v) == (1 << D) - 1 || !team.owns(v) {
             continue;
         }
         let moved = (0..D)
@@ -134,7 +176,8 @@ fn initial_steps<const D: usize>(
             ratio = ratio.max(moved / (2.0 * length));
         }
     }
-    ((ratio / CELLS_PER_STEP).ceil() as usize).clamp(1, (1.0 / MIN_STEP) as usize)
+    let ratio = team.max(ratio)?;
+    Ok(((ratio / CELLS_PER_STEP).ceil() as usize).clamp(1, (1.0 / MIN_STEP) as usize))
 }
 
 /// Puts the constrained components at `start + t·(goal − start)`.

@@ -3,10 +3,11 @@
 use rayon::prelude::*;
 use rayon::ThreadPool;
 
-use super::colour::colour_nodes;
+use super::exact::ExactSum;
 use super::node::{minimise, NodeSolverOptions};
 use super::problem::Problem;
 use super::small::Vector;
+use super::team::{Alone, Team};
 use crate::error::{Error, Result};
 
 /// When the sweeps stop.
@@ -54,18 +55,35 @@ pub fn optimize<const D: usize>(
     options: &SweepOptions,
     progress: &mut dyn FnMut(usize, usize) -> bool,
 ) -> Result<SweepStats> {
+    optimize_on(&mut Alone, pool, problem, positions, options, progress)
+}
+
+/// [`optimize`] on the ranks of `team`: each rank updates the nodes it owns, ghost copies are
+/// refreshed after every colour class, and the stopping rules use global figures, so that the
+/// result is the one of the whole mesh in one process. A cancellation on any rank cancels all.
+pub fn optimize_on<const D: usize, T: Team>(
+    team: &mut T,
+    pool: &ThreadPool,
+    problem: &Problem<D>,
+    positions: &mut [Vector<D>],
+    options: &SweepOptions,
+    progress: &mut dyn FnMut(usize, usize) -> bool,
+) -> Result<SweepStats> {
     let n = problem.node_count();
     let free_nodes: Vec<usize> = (0..n)
+        .filter(|&v| team.owns(v))
         .filter(|&v| problem.free_mask(v) != 0 && !problem.incident_cells(v).is_empty())
         .collect();
-    let colours = colour_nodes(problem, &free_nodes);
+    let colours = team.colour_classes(problem, &free_nodes)?;
     let mut active = vec![true; n];
     let mut stats = SweepStats::default();
     let mut history: Vec<(f64, f64)> = Vec::new();
 
     let total = options.max_sweeps as usize;
     for sweep in 1..=options.max_sweeps {
-        let mut next_active = vec![false; n];
+        // Per node: 1 when it moved more than the tolerance or lies in an invalid cell; the
+        // nodes sharing a cell with such a node are optimized in the next sweep.
+        let mut marks = vec![0.0; n];
         let mut max_move = 0.0f64;
         for class in &colours {
             let todo: Vec<usize> = class.iter().copied().filter(|&v| active[v]).collect();
@@ -88,31 +106,38 @@ pub fn optimize<const D: usize>(
                 max_move = max_move.max(relative);
                 positions[v] = x;
                 if relative > options.move_tolerance {
-                    mark_neighbours(problem, v, &mut next_active);
+                    marks[v] = 1.0;
                 }
             }
+            team.refresh(positions.as_flattened_mut(), D)?;
         }
+        let max_move = team.max(max_move)?;
         stats.sweeps = sweep;
         stats.last_max_move = max_move;
-        if !progress(sweep as usize, total) {
+        if team.any(!progress(sweep as usize, total))? {
             return Err(Error::cancelled());
         }
-        let quality = QualitySummary::of(pool, problem, positions);
+        let quality = QualitySummary::on(team, pool, problem, positions)?;
         let stalled = history
             .len()
             .checked_sub(STALL_WINDOW)
             .is_some_and(|i| quality.stalled_since(history[i]));
         history.push((quality.min, quality.mean));
-        if quality.invalid.is_empty() && (max_move < options.move_tolerance || stalled) {
+        if quality.invalid_count == 0 && (max_move < options.move_tolerance || stalled) {
             stats.converged = true;
             break;
         }
         for &c in &quality.invalid {
             for &v in problem.cell_nodes(c) {
-                mark_neighbours(problem, v as usize, &mut next_active);
+                marks[v as usize] = 1.0;
             }
         }
-        if !next_active.iter().any(|&a| a) {
+        team.refresh(&mut marks, 1)?;
+        let mut next_active = vec![false; n];
+        for v in (0..n).filter(|&v| marks[v] != 0.0) {
+            mark_neighbours(problem, v, &mut next_active);
+        }
+        if !team.any((0..n).any(|v| next_active[v] && team.owns(v)))? {
             break;
         }
         active = next_active;
@@ -126,14 +151,16 @@ const STALL_WINDOW: usize = 10;
 /// Quality of every cell of a mesh and its summary.
 #[derive(Clone, Debug)]
 pub struct QualitySummary {
-    /// Quality of every cell (see [`Problem::cell_quality`]).
+    /// Quality of every (local) cell (see [`Problem::cell_quality`]).
     pub quality: Vec<f64>,
-    /// Smallest cell quality.
+    /// Smallest cell quality (over all ranks).
     pub min: f64,
-    /// Mean cell quality.
+    /// Mean cell quality (over all ranks), from the exact sum of the qualities.
     pub mean: f64,
-    /// Cells of quality 0 (inverted somewhere).
+    /// Local cells of quality 0 (inverted somewhere).
     pub invalid: Vec<usize>,
+    /// Cells of quality 0 over all ranks.
+    pub invalid_count: usize,
 }
 
 impl QualitySummary {
@@ -143,19 +170,53 @@ impl QualitySummary {
         problem: &Problem<D>,
         positions: &[Vector<D>],
     ) -> Self {
+        let (quality, invalid) = Self::cells(pool, problem, positions);
+        QualitySummary {
+            min: quality.iter().copied().fold(f64::INFINITY, f64::min),
+            mean: ExactSum::of(quality.iter().copied()).value() / quality.len().max(1) as f64,
+            invalid_count: invalid.len(),
+            invalid,
+            quality,
+        }
+    }
+
+    /// [`QualitySummary::of`] over the ranks of `team` (each cell counted once).
+    pub fn on<const D: usize, T: Team>(
+        team: &mut T,
+        pool: &ThreadPool,
+        problem: &Problem<D>,
+        positions: &[Vector<D>],
+    ) -> Result<Self> {
+        let (quality, invalid) = Self::cells(pool, problem, positions);
+        let counted = || (0..quality.len()).filter(|&c| team.counts(c));
+        let min = counted().map(|c| quality[c]).fold(f64::INFINITY, f64::min);
+        let sum = ExactSum::of(counted().map(|c| quality[c]));
+        let cells = counted().count();
+        let invalid_here = invalid.iter().filter(|&&c| team.counts(c)).count();
+        let cells = team.count(cells)?;
+        Ok(QualitySummary {
+            min: team.min(min)?,
+            mean: team.sum(&sum)? / cells.max(1) as f64,
+            invalid_count: team.count(invalid_here)?,
+            invalid,
+            quality,
+        })
+    }
+
+    /// The quality of every cell and the invalid ones.
+    fn cells<const D: usize>(
+        pool: &ThreadPool,
+        problem: &Problem<D>,
+        positions: &[Vector<D>],
+    ) -> (Vec<f64>, Vec<usize>) {
         let quality: Vec<f64> = pool.install(|| {
             (0..problem.cell_count())
                 .into_par_iter()
                 .map(|c| problem.cell_quality(c, positions))
                 .collect()
         });
-        // Sequential sums keep the result independent of the thread count.
-        QualitySummary {
-            min: quality.iter().copied().fold(f64::INFINITY, f64::min),
-            mean: quality.iter().sum::<f64>() / quality.len().max(1) as f64,
-            invalid: (0..quality.len()).filter(|&c| quality[c] <= 0.0).collect(),
-            quality,
-        }
+        let invalid = (0..quality.len()).filter(|&c| quality[c] <= 0.0).collect();
+        (quality, invalid)
     }
 
     /// Whether neither the smallest nor the mean quality improved noticeably since the
@@ -163,6 +224,17 @@ impl QualitySummary {
     fn stalled_since(&self, (old_min, old_mean): (f64, f64)) -> bool {
         self.min - old_min < 1e-2 && self.mean - old_mean < 1e-4
     }
+}
+
+/// The number of invalid cells over the ranks of `team`.
+pub fn invalid_count_on<const D: usize, T: Team>(
+    team: &mut T,
+    pool: &ThreadPool,
+    problem: &Problem<D>,
+    positions: &[Vector<D>],
+) -> Result<usize> {
+    let invalid = invalid_cells(pool, problem, positions);
+    team.count(invalid.iter().filter(|&&c| team.counts(c)).count())
 }
 
 fn mark_neighbours<const D: usize>(problem: &Problem<D>, v: usize, active: &mut [bool]) {
