@@ -109,11 +109,7 @@ impl MeshFace {
 
     /// The triangle among `cands` whose smallest barycentric coordinate of `q` is largest; a
     /// triangle with `q` as a vertex wins at once, with that vertex's unit coordinates.
-    fn best(
-        &self,
-        cands: impl Iterator<Item = usize>,
-        q: [f64; 2],
-    ) -> Option<(usize, [f64; 3])> {
+    fn best(&self, cands: impl Iterator<Item = usize>, q: [f64; 2]) -> Option<(usize, [f64; 3])> {
         let mut best: Option<(usize, [f64; 3], f64)> = None;
         for k in cands {
             if let Some(v) = self.triangles[k].iter().position(|&i| self.uv[i] == q) {
