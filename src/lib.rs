@@ -13,6 +13,7 @@ pub mod io;
 pub mod optimize;
 pub mod sparse;
 pub mod spline;
+pub mod threads;
 pub mod tmesh;
 
 pub use error::{Error, ErrorKind, Result};
