@@ -45,10 +45,11 @@
 #define IGAPARAM_HISTOGRAM_BINS 10
 
 /**
- * The default of [`DomainOptions::max_cells`]: a million cells, a planar T-mesh of level 10
- * everywhere (minutes of optimization and about a gigabyte; a solid's cells cost more).
+ * The default cell budget of a domain build (`max_cells` of its options): a million cells, a
+ * planar T-mesh of level 10 everywhere (minutes of optimization and about a gigabyte; a
+ * solid's cells cost more).
  */
-#define DEFAULT_MAX_CELLS 1000000
+#define IGAPARAM_DEFAULT_MAX_CELLS 1000000
 
 /**
  * Where the Newton method stops when no stationarity tolerance is asked for.
@@ -60,7 +61,7 @@
 /**
  * The largest thread count an option accepts (larger ones are refused as invalid).
  */
-#define MAX_THREADS 4096
+#define IGAPARAM_MAX_THREADS 4096
 
 /**
  * A stage of long work, passed to the progress callback.

@@ -53,8 +53,9 @@ pub struct DomainOptions {
     pub max_cells: usize,
 }
 
-/// The default of [`DomainOptions::max_cells`]: a million cells, a planar T-mesh of level 10
-/// everywhere (minutes of optimization and about a gigabyte; a solid's cells cost more).
+/// The default cell budget of a domain build (`max_cells` of its options): a million cells, a
+/// planar T-mesh of level 10 everywhere (minutes of optimization and about a gigabyte; a
+/// solid's cells cost more).
 pub const DEFAULT_MAX_CELLS: usize = 1_000_000;
 
 impl DomainOptions {
