@@ -3,8 +3,8 @@
 
 mod common;
 
-use common::{boundary_mask, grid, MappedCube};
-use igaparam::boundary::{BoundaryLoop2, Curve2};
+use common::{boundary_mask, grid, mapped_square, MappedCube};
+use igaparam::boundary::BoundaryLoop2;
 use igaparam::domain::{Domain, DomainOptions, PlanarDomain, DEFAULT_MAX_CELLS};
 use igaparam::threads::{cores, effective_threads, MAX_THREADS};
 use igaparam::{CellType, ErrorKind, Mesh, RelocateOptions};
@@ -53,14 +53,7 @@ fn the_largest_thread_count_gives_the_one_thread_result() {
 }
 
 fn unit_square() -> BoundaryLoop2 {
-    let side = |a: [f64; 2], b: [f64; 2]| Curve2::polyline(vec![a, b]).unwrap();
-    BoundaryLoop2::from_curves(vec![
-        side([0.0, 0.0], [0.0, 1.0]),
-        side([1.0, 0.0], [1.0, 1.0]),
-        side([0.0, 0.0], [1.0, 0.0]),
-        side([0.0, 1.0], [1.0, 1.0]),
-    ])
-    .unwrap()
+    mapped_square(|p| p, 1)
 }
 
 #[test]
@@ -102,22 +95,7 @@ fn a_uniform_level_beyond_the_budget_is_refused_before_any_work() {
 fn an_adaptation_beyond_the_budget_stops_and_can_be_cancelled() {
     // A curved side no tolerance of 1e-300 is met on: the adaptation would go to level 16.
     let wavy = |p: [f64; 2]| [p[0], p[1] * (1.0 + 0.2 * (3.0 * p[0]).sin())];
-    let side = |a: [f64; 2], b: [f64; 2]| {
-        let points = (0..=32)
-            .map(|i| {
-                let t = i as f64 / 32.0;
-                wavy([a[0] + t * (b[0] - a[0]), a[1] + t * (b[1] - a[1])])
-            })
-            .collect();
-        Curve2::polyline(points).unwrap()
-    };
-    let boundary = BoundaryLoop2::from_curves(vec![
-        side([0.0, 0.0], [0.0, 1.0]),
-        side([1.0, 0.0], [1.0, 1.0]),
-        side([0.0, 0.0], [1.0, 0.0]),
-        side([0.0, 1.0], [1.0, 1.0]),
-    ])
-    .unwrap();
+    let boundary = mapped_square(wavy, 32);
     let options = DomainOptions {
         tolerance: 1e-300,
         max_level: 16,
