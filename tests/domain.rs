@@ -3,7 +3,7 @@
 mod common;
 
 use common::{boundary_data, curved_box, mapped_square, MappedCube};
-use igaparam::boundary::{BoundaryLoop2, Coastline, Curve2};
+use igaparam::boundary::{BoundaryLoop2, Coastline};
 use igaparam::domain::{PlanarDomain, PlanarOptions, PlanarReport};
 
 fn build(boundary: BoundaryLoop2, options: &PlanarOptions) -> (PlanarDomain, PlanarReport) {
