@@ -86,6 +86,18 @@ typedef enum {
    * `total` 0.
    */
   IGAPARAM_STAGE_STATIONARITY = 3,
+  /**
+   * The fits and certifications of `igaparam_spline_fit_domain_with`: `done` of `total`.
+   */
+  IGAPARAM_STAGE_FIT = 4,
+  /**
+   * Untangling rounds of a fitted map that is not certified: `done` of at most `total`.
+   */
+  IGAPARAM_STAGE_UNTANGLING = 5,
+  /**
+   * Smoothing sweeps of a certified map: `done` of at most `total`.
+   */
+  IGAPARAM_STAGE_SMOOTHING = 6,
 } igaparam_stage;
 
 /**
@@ -712,6 +724,12 @@ typedef struct {
    * Wall-clock seconds.
    */
   double seconds;
+  /**
+   * Inner control points the smoothing stage moved (on the spline's own mean ratio, kept
+   * only when the map stays certified and its smallest sampled mean ratio rises); 0 when
+   * the map was kept as it was.
+   */
+  size_t smoothed;
 } igaparam_fit_report;
 
 /**
@@ -824,6 +842,66 @@ typedef struct {
    */
   size_t histogram[IGAPARAM_HISTOGRAM_BINS];
 } igaparam_validity_report;
+
+/**
+ * Which fit rule `igaparam_spline_fit_domain_with` uses: one of the `IGAPARAM_FIT_CHOICE_*`
+ * values.
+ */
+typedef int igaparam_fit_choice;
+
+/**
+ * Options of `igaparam_spline_fit_domain_with`; get the defaults (those of
+ * `igaparam_spline_fit_domain`) from `igaparam_fit_options_default`.
+ */
+typedef struct {
+  /**
+   * The fit rule (default `IGAPARAM_FIT_CHOICE_BEST`).
+   */
+  igaparam_fit_choice choice;
+  /**
+   * The certification of the fitted, untangled and smoothed maps (default: the defaults of
+   * `igaparam_validity_options_default`); the spline keeps its result for
+   * `igaparam_spline_check_validity` with equal options.
+   */
+  igaparam_validity_options validity;
+  /**
+   * Largest number of untangling rounds per stage for a map that is not certified (default
+   * 4); 0 turns the untangling off: such a map is returned as fitted, with its uncertified
+   * elements in the report of `igaparam_spline_check_validity`.
+   */
+  uint32_t untangle_rounds;
+  /**
+   * Sweeps over the free control points per untangling round (default 20).
+   */
+  uint32_t untangle_sweeps;
+  /**
+   * Largest move of a boundary control point by the untangling, relative to the bounding
+   * box; negative (default) uses the `boundary_offset` the domain was built with, 0 keeps
+   * the boundary.
+   */
+  double boundary_offset;
+  /**
+   * Largest number of smoothing sweeps over the inner control points of a certified map
+   * (default 8); 0 turns the smoothing off.
+   */
+  uint32_t smoothing_sweeps;
+  /**
+   * Worker threads, at most 4096, capped to the machine's cores; 0 (default) uses one per
+   * core. The result does not depend on it.
+   */
+  uint32_t threads;
+  /**
+   * Progress callback, or NULL (default): called on the calling thread with
+   * `IGAPARAM_STAGE_FIT` (`done` of `total` fits and certifications),
+   * `IGAPARAM_STAGE_UNTANGLING` (rounds) and `IGAPARAM_STAGE_SMOOTHING` (sweeps); returning
+   * non-zero cancels (`IGAPARAM_STATUS_CANCELLED`, nothing written).
+   */
+  igaparam_progress_fn progress;
+  /**
+   * Passed to `progress` as its first argument.
+   */
+  void *progress_user;
+} igaparam_fit_options;
 
 /**
  * What `igaparam_spline_refit` did.
@@ -982,6 +1060,23 @@ typedef struct {
  * Gmsh's node order (`.msh` files, the Gmsh API).
  */
 #define IGAPARAM_ORDER_GMSH 1
+
+/**
+ * Interpolation at the Greville points (least squares when that system is singular or badly
+ * conditioned) and, unless that map is certified valid, the local quasi-interpolant too; the
+ * better of the two is kept (what `igaparam_spline_fit_domain` does).
+ */
+#define IGAPARAM_FIT_CHOICE_BEST 0
+
+/**
+ * Interpolation at the Greville points only (least squares when singular).
+ */
+#define IGAPARAM_FIT_CHOICE_INTERPOLATION 1
+
+/**
+ * The local quasi-interpolant only.
+ */
+#define IGAPARAM_FIT_CHOICE_QUASI_INTERPOLATION 2
 
 
 
@@ -1821,6 +1916,24 @@ igaparam_status igaparam_spline_write_vtu(const igaparam_spline *spline,
  * `THBSplineBasis2`/`3`, readable by G+Smo's `gsReadFile` and by `igaparam_spline_read_gismo`).
  */
 igaparam_status igaparam_spline_write_gismo(const igaparam_spline *spline, const char *path);
+
+/**
+ * The default fit options: those of `igaparam_spline_fit_domain`.
+ */
+igaparam_fit_options igaparam_fit_options_default(void);
+
+/**
+ * Fits the cubic THB spline space of a built domain's T-mesh to its optimized map as
+ * `igaparam_spline_fit_domain` does, with `options` (NULL for the defaults, which make the
+ * two calls equal): the fit rule, the certification, the untangling and smoothing, the threads
+ * and a progress callback that can cancel. `report` may be NULL. Errors:
+ * `IGAPARAM_STATUS_INVALID_ARGUMENT` for an unbuilt domain or an option out of range,
+ * `IGAPARAM_STATUS_CANCELLED` when the callback cancels; `*out` is written only on success.
+ */
+igaparam_status igaparam_spline_fit_domain_with(const igaparam_domain *domain,
+                                                const igaparam_fit_options *options,
+                                                igaparam_spline **out,
+                                                igaparam_fit_report *report);
 
 /**
  * Recomputes the control points of `spline` from the domain's current T-mesh (after

@@ -44,6 +44,34 @@ class Spline {
     return fit(domain.get(), report);
   }
 
+  /// Fits the spline map of a built domain with `options` (igaparam_spline_fit_domain_with:
+  /// fit rule, certification, untangling, smoothing, threads; `options.progress`, a C callback,
+  /// is used as given); `report` may be NULL.
+  static Spline fit(const Domain& domain, const igaparam_fit_options& options,
+                    igaparam_fit_report* report = nullptr) {
+    igaparam_spline* handle = nullptr;
+    detail::check(igaparam_spline_fit_domain_with(domain.get(), &options, &handle, report));
+    return Spline(handle);
+  }
+
+  /// Fits as above, calling `progress` (instead of options.progress) with IGAPARAM_STAGE_FIT,
+  /// _UNTANGLING and _SMOOTHING; returning false cancels. If `progress` throws, the fit is
+  /// cancelled and the exception is rethrown.
+  static Spline fit(const Domain& domain, igaparam_fit_options options, const Progress& progress,
+                    igaparam_fit_report* report = nullptr) {
+    detail::ProgressTrampoline trampoline{&progress, nullptr};
+    options.progress = &detail::ProgressTrampoline::call;
+    options.progress_user = &trampoline;
+    igaparam_spline* handle = nullptr;
+    const igaparam_status status =
+        igaparam_spline_fit_domain_with(domain.get(), &options, &handle, report);
+    if (trampoline.exception) {
+      std::rethrow_exception(trampoline.exception);
+    }
+    detail::check(status);
+    return Spline(handle);
+  }
+
   /// The adaptive loop: fits the map of a built domain, refines its T-mesh where the map is of
   /// poor quality, optimizes and refits (igaparam_domain_fit_adaptive); the domain keeps the
   /// refined T-mesh. `report` may be NULL.

@@ -5,6 +5,7 @@
 pub mod bspline;
 mod crossing;
 pub mod curve;
+mod face;
 pub mod gismo_xml;
 pub mod loop2d;
 mod solid;

@@ -15,7 +15,7 @@ use crate::boundary::{BoundaryLoop2, SolidBoundary};
 use crate::domain::{DomainReport, PlanarDomain, PlanarOptions, SolidDomain, SolidOptions};
 use crate::error::{Error, Result};
 use crate::io::vtu::UnstructuredGrid;
-use crate::spline::{FitRecord, SplineMap, UntangleOptions, ValidityOptions, ValidityReport};
+use crate::spline::{FitRecord, UntangleOptions};
 
 /// A planar domain bounded by four curves or a solid bounded by six surfaces, and once built
 /// its T-mesh parameterization (opaque). Create a planar one with
@@ -444,52 +444,6 @@ pub(super) fn untangle_options<const D: usize, B: crate::domain::CubeMap<D>>(
         boundary_offset: domain.options().boundary_offset,
         ..Default::default()
     }
-}
-
-/// A fitted map with its fit report, the validity the fit computed (with its options) and the
-/// record of the fit for refits.
-pub(super) type Fitted = (
-    AnyMap,
-    crate::spline::FitReport,
-    (ValidityOptions, ValidityReport),
-    FitRecord,
-);
-
-/// The checked fit of a built domain's map, untangled with [`untangle_options`], and its
-/// record.
-fn fit_tmesh<const D: usize, B: crate::domain::CubeMap<D>>(
-    domain: &crate::domain::Domain<D, B>,
-    options: &ValidityOptions,
-) -> Result<(
-    SplineMap<D>,
-    crate::spline::FitReport,
-    ValidityReport,
-    FitRecord,
-)> {
-    let untangle = untangle_options(domain);
-    let (map, report, validity) =
-        SplineMap::fit_tmesh_checked(domain.mesh(), domain.positions(), options, &untangle)?;
-    let record = map.fit_record(domain.mesh(), domain.positions(), &report)?;
-    Ok((map, report, validity, record))
-}
-
-/// Fits the spline map of the built domain (see `igaparam_spline_fit_domain`); returns it with
-/// its fit report, the validity the fit computed, with the (default) options of that, and the
-/// record of the fit.
-pub(super) fn fit_domain(domain: *const igaparam_domain) -> std::result::Result<Fitted, Failure> {
-    let options = ValidityOptions::default();
-    let (map, report, validity, record) = match &*current(domain)? {
-        DomainData::Planar(_, Some(d)) => {
-            let (map, report, validity, record) = fit_tmesh(d, &options)?;
-            (AnyMap::Two(map), report, validity, record)
-        }
-        DomainData::Solid(_, Some(d)) => {
-            let (map, report, validity, record) = fit_tmesh(d, &options)?;
-            (AnyMap::Three(map), report, validity, record)
-        }
-        _ => return Err(Error::invalid("the domain has not been built").into()),
-    };
-    Ok((map, report, (options, validity), record))
 }
 
 /// Adapts a T-mesh to the boundary (refining boundary cells until `options.tolerance` or

@@ -79,6 +79,12 @@ pub enum igaparam_stage {
     /// Newton iterations on the global objective (`stationarity_tolerance`): `done` so far,
     /// `total` 0.
     IGAPARAM_STAGE_STATIONARITY = 3,
+    /// The fits and certifications of `igaparam_spline_fit_domain_with`: `done` of `total`.
+    IGAPARAM_STAGE_FIT = 4,
+    /// Untangling rounds of a fitted map that is not certified: `done` of at most `total`.
+    IGAPARAM_STAGE_UNTANGLING = 5,
+    /// Smoothing sweeps of a certified map: `done` of at most `total`.
+    IGAPARAM_STAGE_SMOOTHING = 6,
 }
 
 /// Progress callback: `user` is the options' `progress_user`; `done` of `total` steps of `stage`

@@ -8,7 +8,7 @@ use std::ffi::{c_char, c_void};
 use super::boundary::{
     check_capacity, non_null, non_null_mut, optional_out, run, slice, slice_mut, Failure,
 };
-use super::domain::{adapt_domain, c_path, fit_domain, igaparam_domain};
+use super::domain::{adapt_domain, c_path, igaparam_domain};
 use super::handle::{acquire, handle_type, into_raw, release, Guarded, Held};
 use super::igaparam_status;
 use super::mesh::call_progress;
@@ -19,7 +19,9 @@ use crate::spline::{
     HISTOGRAM_BINS,
 };
 
+mod fit_with;
 mod refit;
+pub use fit_with::*;
 pub use refit::*;
 
 /// The spline map of a 2D or 3D domain.
@@ -97,6 +99,10 @@ pub struct igaparam_fit_report {
     pub boundary_offset: f64,
     /// Wall-clock seconds.
     pub seconds: f64,
+    /// Inner control points the smoothing stage moved (on the spline's own mean ratio, kept
+    /// only when the map stays certified and its smallest sampled mean ratio rises); 0 when
+    /// the map was kept as it was.
+    pub smoothed: usize,
 }
 
 /// Options of `igaparam_spline_check_validity`; get the defaults from
@@ -155,6 +161,7 @@ fn fit_report(r: &FitReport) -> igaparam_fit_report {
         untangled: r.untangled,
         boundary_offset: r.boundary_offset,
         seconds: r.seconds,
+        smoothed: r.smoothed,
     }
 }
 
@@ -273,12 +280,7 @@ pub extern "C" fn igaparam_spline_fit_domain(
     report: *mut igaparam_fit_report,
 ) -> igaparam_status {
     run("igaparam_spline_fit_domain", || {
-        non_null_mut(out, "out")?;
-        let (map, r, validity, record) = fit_domain(domain)?;
-        if !report.is_null() {
-            *non_null_mut(report, "report")? = fit_report(&r);
-        }
-        new_recorded_handle(map, Some(validity), Some(record), out)
+        fit_into(domain, &igaparam_fit_options_default(), out, report)
     })
 }
 

@@ -189,13 +189,19 @@ fn line_search<const D: usize>(
         }
     }
     let round_off = 16.0 * f64::EPSILON * eval.value.abs();
-    for _ in 0..40 {
+    for tries in 0..40 {
         let trial: Vec<Vector<D>> = x
             .iter()
             .zip(&step)
             .map(|(x, p)| std::array::from_fn(|k| x[k] + alpha * p[k]))
             .collect();
-        let value = objective.value(pool, &trial);
+        // The first trial, which a Newton step near the optimum passes, is evaluated with its
+        // derivatives at once; the backtracking ones by value only, their derivatives when kept.
+        let mut full = (tries == 0).then(|| objective.evaluate(pool, &trial, true));
+        let value = match &full {
+            Some(e) => e.value,
+            None => objective.value(pool, &trial),
+        };
         if std::env::var_os("IGAPARAM_DEBUG").is_some() {
             eprintln!(
                 "  alpha {alpha:e} value {value} (F {} slope {slope:e})",
@@ -203,12 +209,16 @@ fn line_search<const D: usize>(
             );
         }
         if value.is_finite() {
+            let mut derivatives = || {
+                full.take()
+                    .unwrap_or_else(|| objective.evaluate(pool, &trial, true))
+            };
             if value <= eval.value + 1e-4 * alpha * slope {
-                let next = objective.evaluate(pool, &trial, true);
+                let next = derivatives();
                 return Some((trial, next));
             }
             if value - eval.value <= round_off {
-                let next = objective.evaluate(pool, &trial, true);
+                let next = derivatives();
                 if scaled_gradient_norm(objective, free, &next.gradient) < gradient_norm {
                     return Some((trial, next));
                 }

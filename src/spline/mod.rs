@@ -13,6 +13,7 @@ pub mod bernstein;
 mod checked;
 mod control;
 mod fit;
+mod fit_options;
 mod gismo;
 mod map;
 mod piece;
@@ -28,6 +29,7 @@ mod vtu;
 
 pub use adapt::{adapt, AdaptOptions, AdaptReport, AdaptRound};
 pub use fit::{FitReport, FitStages};
+pub use fit_options::{FitChoice, FitOptions, FitProgress, FitStage};
 pub use gismo::{read_gismo_thb, write_gismo_thb};
 pub use map::{InverseMap, SplineMap};
 pub use quadratic::QuadraticMap;

@@ -26,6 +26,9 @@ pub struct SmoothReport {
     pub min_quality_before: f64,
     /// Smallest sampled mean ratio of the map kept.
     pub min_quality_after: f64,
+    /// Whether the progress callback of [`SplineMap::smooth_with`] stopped it (the map is then
+    /// left as it was).
+    pub cancelled: bool,
 }
 
 impl<const D: usize> SplineMap<D, ThbSpace<D>> {
@@ -40,6 +43,20 @@ impl<const D: usize> SplineMap<D, ThbSpace<D>> {
         certify: &ValidityOptions,
         sweeps: u32,
         samples: usize,
+    ) -> (ValidityReport, SmoothReport) {
+        self.smooth_with(validity, certify, sweeps, samples, &mut |_, _| true)
+    }
+
+    /// [`SplineMap::smooth`], calling `progress(done, sweeps)` before each sweep; when it
+    /// returns false the smoothing stops, the map is left as it was and the report says
+    /// `cancelled`.
+    pub fn smooth_with(
+        &mut self,
+        validity: ValidityReport,
+        certify: &ValidityOptions,
+        sweeps: u32,
+        samples: usize,
+        progress: &mut dyn FnMut(usize, usize) -> bool,
     ) -> (ValidityReport, SmoothReport) {
         let mut report = SmoothReport {
             min_quality_before: validity.min_quality,
@@ -73,7 +90,11 @@ impl<const D: usize> SplineMap<D, ThbSpace<D>> {
         let mut moved = BTreeSet::new();
         let mut best = region.quality();
         let mut states: Vec<(Vec<Vector<D>>, BTreeSet<usize>)> = Vec::new();
-        for _ in 0..sweeps {
+        for done in 0..sweeps as usize {
+            if !progress(done, sweeps as usize) {
+                report.cancelled = true;
+                return (validity, report);
+            }
             region.sweep(&mut y, &solver, &|_, next| next, &mut moved);
             report.sweeps += 1;
             let now = region.quality();

@@ -72,6 +72,9 @@ pub struct UntangleReport {
     /// Largest move of a control point of a boundary function, in the unit-box coordinates of
     /// [`UntangleOptions::boundary_offset`].
     pub boundary_offset: f64,
+    /// Whether the progress callback of [`SplineMap::untangle_with`] stopped it (the map is
+    /// then left as it was).
+    pub cancelled: bool,
 }
 
 impl<const D: usize> SplineMap<D, ThbSpace<D>> {
@@ -86,6 +89,19 @@ impl<const D: usize> SplineMap<D, ThbSpace<D>> {
         validity: ValidityReport,
         certify: &ValidityOptions,
         options: &UntangleOptions,
+    ) -> (ValidityReport, UntangleReport) {
+        self.untangle_with(validity, certify, options, &mut |_, _| true)
+    }
+
+    /// [`SplineMap::untangle`], calling `progress(done, total)` before each round (`total`:
+    /// the rounds of every stage); when it returns false the untangling stops, the map is left
+    /// as it was and the report says `cancelled`.
+    pub fn untangle_with(
+        &mut self,
+        validity: ValidityReport,
+        certify: &ValidityOptions,
+        options: &UntangleOptions,
+        progress: &mut dyn FnMut(usize, usize) -> bool,
     ) -> (ValidityReport, UntangleReport) {
         let mut report = UntangleReport {
             uncertified_before: validity.uncertified,
@@ -102,12 +118,19 @@ impl<const D: usize> SplineMap<D, ThbSpace<D>> {
         } else {
             vec![BTreeSet::new()]
         };
-        for boundary in &stages {
+        let rounds = options.rounds as usize;
+        let total = rounds * stages.len();
+        for (stage, boundary) in stages.iter().enumerate() {
             if validity.certified_positive || options.rounds == 0 {
                 break;
             }
-            let (after, moved, offset) =
-                self.untangle_within(validity, certify, options, cap, boundary);
+            let mut round = |r: usize| progress(stage * rounds + r, total);
+            let Some((after, moved, offset)) =
+                self.untangle_within(validity.clone(), certify, options, boundary, &mut round)
+            else {
+                report.cancelled = true;
+                return (validity, report);
+            };
             validity = after;
             report.moved += moved;
             report.boundary_offset = report.boundary_offset.max(offset);
@@ -169,15 +192,17 @@ impl<const D: usize> SplineMap<D, ThbSpace<D>> {
 
     /// One stage of [`SplineMap::untangle`]: the `boundary` functions (of those of the
     /// boundary) may move too, at most `cap`. Returns the validity of the map kept, the control
-    /// points moved and the largest move of a boundary one.
+    /// points moved and the largest move of a boundary one; `None`, the map unchanged, when
+    /// `round(r)`, called before round `r`, returns false.
     fn untangle_within(
         &mut self,
         validity: ValidityReport,
         certify: &ValidityOptions,
         options: &UntangleOptions,
-        cap: f64,
         boundary: &BTreeSet<usize>,
-    ) -> (ValidityReport, usize, f64) {
+        round: &mut dyn FnMut(usize) -> bool,
+    ) -> Option<(ValidityReport, usize, f64)> {
+        let cap = options.boundary_offset;
         // Unit-box coordinates: each axis scaled by the extent of the control points.
         let (lo, hi) = bounding_box(self.control.iter().copied());
         let scale: [f64; D] = std::array::from_fn(|k| {
@@ -212,7 +237,10 @@ impl<const D: usize> SplineMap<D, ThbSpace<D>> {
                 next
             }
         };
-        for _ in 0..options.rounds {
+        for r in 0..options.rounds as usize {
+            if !round(r) {
+                return None;
+            }
             if uncertified.is_empty() {
                 break;
             }
@@ -263,7 +291,7 @@ impl<const D: usize> SplineMap<D, ThbSpace<D>> {
         };
         let after = trial.validity(certify);
         if !after.is_better_than(&validity) {
-            return (validity, 0, 0.0);
+            return Some((validity, 0, 0.0));
         }
         let offset = moved
             .iter()
@@ -276,7 +304,7 @@ impl<const D: usize> SplineMap<D, ThbSpace<D>> {
             })
             .fold(0.0, f64::max);
         *self = trial;
-        (after, moved.len(), offset)
+        Some((after, moved.len(), offset))
     }
 
     /// How many of the `elements` are not certified for the control points `control` (in

@@ -232,6 +232,33 @@ void test_morph_loop() {
   CHECK(domain.update().boundary_motion == 0);
 }
 
+/// The fit with options through the wrapper: a C++ progress function sees the fit's stages, its
+/// exception cancels the fit and is rethrown, and the result is that of the plain fit.
+void test_fit_with_progress() {
+  igaparam::Domain domain = igaparam::Domain::planar_from_curves(quarter_annulus(2.0));
+  domain.build();
+  const igaparam::Spline plain = igaparam::Spline::fit(domain);
+  int fits = 0, smoothing = 0;
+  const igaparam::Spline with = igaparam::Spline::fit(
+      domain, igaparam_fit_options_default(), [&](igaparam_stage stage, std::size_t, std::size_t) {
+        fits += stage == IGAPARAM_STAGE_FIT;
+        smoothing += stage == IGAPARAM_STAGE_SMOOTHING;
+        return true;
+      });
+  CHECK(fits > 0 && smoothing > 0 && with.control_points() == plain.control_points());
+  bool thrown = false;
+  try {
+    igaparam::Spline::fit(domain, igaparam_fit_options_default(),
+                          [](igaparam_stage, std::size_t, std::size_t) -> bool { throw 7; });
+  } catch (int e) {
+    thrown = e == 7;
+  }
+  CHECK(thrown);
+  igaparam_fit_options options = igaparam_fit_options_default();
+  options.validity.samples = 0;
+  EXPECT_ERROR(IGAPARAM_STATUS_INVALID_ARGUMENT, igaparam::Spline::fit(domain, options));
+}
+
 }  // namespace
 
 int main() {
@@ -294,6 +321,7 @@ int main() {
   test_spline();
   test_scaled_solid();
   test_morph_loop();
+  test_fit_with_progress();
 
   structured_grid_free(&g);
   std::printf("%d passed, %d failed\n", passed, failed);

@@ -518,6 +518,123 @@ static void test_untangled_fit(void) {
   igaparam_spline_free(spline);
 }
 
+/* Progress calls of a fit by stage; cancels at the first call of stage `stop` (-1: never). */
+typedef struct {
+  int calls[7];
+  int stop;
+  size_t last_done[7];
+  int ordered;
+} fit_calls;
+
+static int count_fit(void *user, igaparam_stage stage, size_t done, size_t total) {
+  fit_calls *c = (fit_calls *)user;
+  if ((int)stage < 0 || (int)stage > 6 || done > total) {
+    c->ordered = 0;
+    return 1;
+  }
+  if (c->calls[stage] > 0 && done < c->last_done[stage]) c->ordered = 0;
+  c->calls[stage] += 1;
+  c->last_done[stage] = done;
+  return (int)stage == c->stop;
+}
+
+/* Fits `domain` with `options` and returns its control points (malloc'ed, `*n` of them). */
+static double *fitted_points(const igaparam_domain *domain, const igaparam_fit_options *options,
+                             size_t *n) {
+  igaparam_spline *s = NULL;
+  *n = 0;
+  if (options)
+    EXPECT(igaparam_spline_fit_domain_with(domain, options, &s, NULL), IGAPARAM_STATUS_OK);
+  else
+    EXPECT(igaparam_spline_fit_domain(domain, &s, NULL), IGAPARAM_STATUS_OK);
+  if (!s) return NULL;
+  EXPECT(igaparam_spline_basis_count(s, n), IGAPARAM_STATUS_OK);
+  double *p = malloc(2 * *n * sizeof *p);
+  EXPECT(igaparam_spline_copy_control_points(s, p, 2 * *n), IGAPARAM_STATUS_OK);
+  igaparam_spline_free(s);
+  return p;
+}
+
+static int same_points(const double *a, size_t na, const double *b, size_t nb) {
+  return a && b && na == nb && memcmp(a, b, 2 * na * sizeof *a) == 0;
+}
+
+/* igaparam_spline_fit_domain_with on Gran Canaria (its fit is untangled): the defaults give the
+ * plain fit, threads do not change it, progress sees the fit, untangling and smoothing stages
+ * and cancels at each, options are checked, nothing is written on failure. */
+static void test_fit_with(void) {
+  igaparam_domain *domain = NULL;
+  EXPECT(igaparam_domain_new_from_file(joined(data_dir, "gran_canaria.txt"), &domain),
+         IGAPARAM_STATUS_OK);
+  igaparam_spline *untouched = (igaparam_spline *)(uintptr_t)0x1234, *s = untouched;
+  EXPECT(igaparam_spline_fit_domain_with(domain, NULL, &s, NULL), IGAPARAM_STATUS_INVALID_ARGUMENT);
+  EXPECT(igaparam_domain_build(domain, NULL, NULL), IGAPARAM_STATUS_OK);
+  size_t n0, n1, n2, n3;
+  double *plain = fitted_points(domain, NULL, &n0);
+  igaparam_fit_options options = igaparam_fit_options_default();
+  double *defaults = fitted_points(domain, &options, &n1);
+  options.threads = 1;
+  double *one = fitted_points(domain, &options, &n2);
+  options.threads = 2;
+  fit_calls calls = {{0}, -1, {0}, 1};
+  options.progress = count_fit;
+  options.progress_user = &calls;
+  double *two = fitted_points(domain, &options, &n3);
+  CHECK(same_points(plain, n0, defaults, n1), "the default options change the fit");
+  CHECK(same_points(one, n2, two, n3) && same_points(plain, n0, one, n2),
+        "1 and 2 threads differ");
+  CHECK(calls.calls[IGAPARAM_STAGE_FIT] == 5 && calls.calls[IGAPARAM_STAGE_UNTANGLING] > 0 &&
+            calls.calls[IGAPARAM_STAGE_SMOOTHING] > 0 && calls.ordered,
+        "progress: %d fit, %d untangling, %d smoothing calls, ordered %d",
+        calls.calls[IGAPARAM_STAGE_FIT], calls.calls[IGAPARAM_STAGE_UNTANGLING],
+        calls.calls[IGAPARAM_STAGE_SMOOTHING], calls.ordered);
+  free(plain);
+  free(defaults);
+  free(one);
+  free(two);
+
+  igaparam_stage stops[3] = {IGAPARAM_STAGE_FIT, IGAPARAM_STAGE_UNTANGLING,
+                             IGAPARAM_STAGE_SMOOTHING};
+  for (int i = 0; i < 3; ++i) {
+    fit_calls stop = {{0}, (int)stops[i], {0}, 1};
+    options.progress_user = &stop;
+    igaparam_fit_report report = {0};
+    report.basis_count = 77;
+    EXPECT(igaparam_spline_fit_domain_with(domain, &options, &s, &report),
+           IGAPARAM_STATUS_CANCELLED);
+    CHECK(s == untouched && report.basis_count == 77 && stop.calls[stops[i]] == 1,
+          "cancel at stage %d wrote its outputs", (int)stops[i]);
+  }
+
+  igaparam_fit_options bad = igaparam_fit_options_default();
+  bad.validity.samples = 1;
+  EXPECT(igaparam_spline_fit_domain_with(domain, &bad, &s, NULL), IGAPARAM_STATUS_INVALID_ARGUMENT);
+  bad = igaparam_fit_options_default();
+  bad.choice = 9;
+  EXPECT(igaparam_spline_fit_domain_with(domain, &bad, &s, NULL), IGAPARAM_STATUS_INVALID_ARGUMENT);
+  bad = igaparam_fit_options_default();
+  bad.boundary_offset = NAN;
+  EXPECT(igaparam_spline_fit_domain_with(domain, &bad, &s, NULL), IGAPARAM_STATUS_INVALID_ARGUMENT);
+  bad = igaparam_fit_options_default();
+  bad.threads = 5000;
+  EXPECT(igaparam_spline_fit_domain_with(domain, &bad, &s, NULL), IGAPARAM_STATUS_INVALID_ARGUMENT);
+  EXPECT(igaparam_spline_fit_domain_with(domain, NULL, NULL, NULL), IGAPARAM_STATUS_NULL_ARGUMENT);
+  EXPECT(igaparam_spline_fit_domain_with(NULL, NULL, &s, NULL), IGAPARAM_STATUS_NULL_ARGUMENT);
+  CHECK(s == untouched, "a failed fit wrote the handle");
+
+  /* Untangling off: the folded fit is returned uncertified. */
+  options = igaparam_fit_options_default();
+  options.untangle_rounds = 0;
+  s = NULL;
+  EXPECT(igaparam_spline_fit_domain_with(domain, &options, &s, NULL), IGAPARAM_STATUS_OK);
+  igaparam_validity_report v;
+  EXPECT(igaparam_spline_check_validity(s, NULL, &v, NULL, NULL, 0), IGAPARAM_STATUS_OK);
+  CHECK(!v.certified_positive && v.uncertified > 0, "untangling off: %zu uncertified",
+        v.uncertified);
+  igaparam_spline_free(s);
+  igaparam_domain_free(domain);
+}
+
 int main(int argc, char **argv) {
   if (!read_dirs(argc, argv)) return 2;
   igaparam_spline *s = fit_male();
@@ -534,6 +651,7 @@ int main(int argc, char **argv) {
   }
   test_adapt();
   test_untangled_fit();
+  test_fit_with();
   printf("%d passed, %d failed\n", passed, failed);
   return failed == 0 ? 0 : 1;
 }

@@ -23,7 +23,7 @@ else next to this package, else with ``ctypes.util.find_library("igaparam")``.
 """
 
 from ._boundary import Curve, Surface
-from ._capi import CellType, FitRule, Stage, Status
+from ._capi import CellType, FitChoice, FitRule, Stage, Status
 from ._domain import Domain, DomainReport, UpdateReport
 from ._mesh import IgaparamError, Mesh, RelocateReport, cell_type_code, node_coordinates, nodes_per_cell, version
 from ._refit import RefitReport
@@ -37,6 +37,7 @@ __all__ = [
     "Curve",
     "Domain",
     "DomainReport",
+    "FitChoice",
     "FitReport",
     "FitRule",
     "IgaparamError",

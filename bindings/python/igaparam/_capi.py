@@ -27,6 +27,8 @@ __all__ = [
     "RefitReport",
     "ValidityOptions",
     "FitReport",
+    "FitChoice",
+    "FitOptions",
     "ValidityReport",
     "HISTOGRAM_BINS",
     "PROGRESS_FN",
@@ -58,6 +60,9 @@ class Stage(enum.IntEnum):
     OPTIMIZATION = 1
     ADAPTATION = 2
     STATIONARITY = 3
+    FIT = 4
+    UNTANGLING = 5
+    SMOOTHING = 6
 
 
 class CellType(enum.IntEnum):
@@ -250,6 +255,31 @@ class FitReport(ctypes.Structure):
         ("untangled", ctypes.c_size_t),
         ("boundary_offset", ctypes.c_double),
         ("seconds", ctypes.c_double),
+        ("smoothed", ctypes.c_size_t),
+    ]
+
+
+class FitChoice(enum.IntEnum):
+    """``IGAPARAM_FIT_CHOICE_*``: which fit rule :meth:`Spline.fit` uses."""
+
+    BEST = 0
+    INTERPOLATION = 1
+    QUASI_INTERPOLATION = 2
+
+
+class FitOptions(ctypes.Structure):
+    """``igaparam_fit_options``."""
+
+    _fields_ = [
+        ("choice", ctypes.c_int),  # igaparam_fit_choice
+        ("validity", ValidityOptions),
+        ("untangle_rounds", ctypes.c_uint32),
+        ("untangle_sweeps", ctypes.c_uint32),
+        ("boundary_offset", ctypes.c_double),
+        ("smoothing_sweeps", ctypes.c_uint32),
+        ("threads", ctypes.c_uint32),
+        ("progress", PROGRESS_FN),
+        ("progress_user", ctypes.c_void_p),
     ]
 
 
@@ -424,6 +454,11 @@ _PROTOTYPES = {
     "igaparam_spline_fit_domain": (
         _status,
         [_domain_p, ctypes.POINTER(_spline_p), ctypes.POINTER(FitReport)],
+    ),
+    "igaparam_fit_options_default": (FitOptions, []),
+    "igaparam_spline_fit_domain_with": (
+        _status,
+        [_domain_p, ctypes.POINTER(FitOptions), ctypes.POINTER(_spline_p), ctypes.POINTER(FitReport)],
     ),
     "igaparam_adapt_options_default": (AdaptOptions, []),
     "igaparam_domain_fit_adaptive": (

@@ -14,7 +14,7 @@ import numpy.typing as npt
 from . import _capi
 from ._handle import _Handle
 from ._ints import c_int_value
-from ._capi import Stage
+from ._capi import FitChoice, Stage
 from ._mesh import _attach_progress, _check, _ptr, _set_counts
 from ._refit import _Refit
 
@@ -63,6 +63,8 @@ class FitReport(_StructReport):
         boundary_offset: largest move of a boundary control point by that untangling,
             relative to the bounding box; 0 when the boundary was kept.
         seconds: wall-clock seconds of the call.
+        smoothed: inner control points moved by the smoothing stage (kept only when the map
+            stays certified and its smallest sampled mean ratio rises); 0 when the map was kept.
     """
 
     basis_count: int
@@ -73,6 +75,7 @@ class FitReport(_StructReport):
     untangled: int
     boundary_offset: float
     seconds: float
+    smoothed: int
 
 
 
@@ -185,25 +188,73 @@ class Spline(_Refit, _Handle):
         self.adapt_report: Optional[AdaptReport] = None
 
     @classmethod
-    def fit(cls, domain: Domain) -> "Spline":
-        """Fits the cubic THB spline space of a built domain's T-mesh to its optimized map
-        (interpolation at the Greville points; least squares when that system is singular).
-        The spline does not refer to the domain afterwards.
+    def fit(
+        cls,
+        domain: Domain,
+        choice: Union[FitChoice, int] = FitChoice.BEST,
+        untangle_rounds: Optional[int] = None,
+        untangle_sweeps: Optional[int] = None,
+        boundary_offset: Optional[float] = None,
+        smoothing_sweeps: Optional[int] = None,
+        max_depth: Optional[int] = None,
+        samples: Optional[int] = None,
+        threads: int = 0,
+        progress: Optional[Callable[[Stage, int, int], Optional[bool]]] = None,
+    ) -> "Spline":
+        """Fits the cubic THB spline space of a built domain's T-mesh to its optimized map,
+        certifies it, untangles it where it is not certified and smooths it
+        (``igaparam_spline_fit_domain_with``; every option left out keeps its default). The
+        spline does not refer to the domain afterwards.
 
         Args:
             domain: a :class:`Domain` on which :meth:`Domain.build` succeeded.
+            choice: :class:`FitChoice` ``BEST`` (interpolation at the Greville points, least
+                squares when singular, and the quasi-interpolant when that map is not certified;
+                the better kept), ``INTERPOLATION`` or ``QUASI_INTERPOLATION``.
+            untangle_rounds: untangling rounds per stage (default 4; 0: no untangling).
+            untangle_sweeps: sweeps per untangling round (default 20).
+            boundary_offset: largest move of a boundary control point by the untangling,
+                relative to the bounding box (default: the domain's own; 0 keeps the boundary).
+            smoothing_sweeps: smoothing sweeps of a certified map (default 8; 0: none).
+            max_depth, samples: the certification's subdivision depth (default 5, at most 12)
+                and samples per direction and element (default 5, 2 to 64).
+            threads: worker threads; 0 uses one per core (the result does not depend on it).
+            progress: None, or a callable ``progress(stage, done, total)`` with ``Stage.FIT``,
+                ``Stage.UNTANGLING`` and ``Stage.SMOOTHING``; return False to cancel
+                (``Status.CANCELLED``). An exception raised by it cancels and is re-raised.
 
         Returns:
             Spline, with the fit's :class:`FitReport` in ``fit_report``.
 
         Raises:
-            IgaparamError: ``Status.INVALID_ARGUMENT`` if the domain is not built.
-            ValueError: the domain is closed.
+            IgaparamError: ``Status.INVALID_ARGUMENT`` if the domain is not built or an option
+                is out of range; ``Status.CANCELLED``.
+            ValueError: the domain is closed, a negative count.
         """
+        lib = _capi.library()
+        options = lib.igaparam_fit_options_default()
+        options.choice = int(FitChoice(choice))
+        _set_counts(
+            options,
+            untangle_rounds=untangle_rounds,
+            untangle_sweeps=untangle_sweeps,
+            smoothing_sweeps=smoothing_sweeps,
+            threads=threads,
+        )
+        _set_counts(options.validity, max_depth=max_depth, samples=samples)
+        if boundary_offset is not None:
+            if not float(boundary_offset) >= 0.0:
+                raise ValueError("boundary_offset must be a number >= 0")
+            options.boundary_offset = float(boundary_offset)
+        raised, _callback = _attach_progress(options, progress)
         handle = ctypes.c_void_p()
         report = _capi.FitReport()
-        lib = _capi.library()
-        _check(lib.igaparam_spline_fit_domain(domain._h(), ctypes.byref(handle), ctypes.byref(report)))
+        status = lib.igaparam_spline_fit_domain_with(
+            domain._h(), ctypes.byref(options), ctypes.byref(handle), ctypes.byref(report)
+        )
+        if raised:
+            raise raised[0]
+        _check(status)
         return cls(handle, FitReport._from_c(report))
 
     @classmethod
