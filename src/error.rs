@@ -17,6 +17,8 @@ pub enum ErrorKind {
     Cancelled,
     /// Reading or writing a file failed, or its content is not understood.
     Io,
+    /// The work asked for exceeds a resource limit (cells, memory) the caller can raise.
+    LimitExceeded,
 }
 
 /// An error with its kind and a readable message.

@@ -14,6 +14,7 @@ pub mod optimize;
 pub mod partition;
 pub mod sparse;
 pub mod spline;
+pub mod threads;
 pub mod tmesh;
 
 pub use error::{Error, ErrorKind, Result};

@@ -2,32 +2,12 @@
 
 mod common;
 
-use common::{boundary_data, curved_box, MappedCube};
-use igaparam::boundary::{BoundaryLoop2, Coastline, Curve2};
+use common::{boundary_data, curved_box, mapped_square, MappedCube};
+use igaparam::boundary::{BoundaryLoop2, Coastline};
 use igaparam::domain::{PlanarDomain, PlanarOptions, PlanarReport};
 
 fn build(boundary: BoundaryLoop2, options: &PlanarOptions) -> (PlanarDomain, PlanarReport) {
     PlanarDomain::build(boundary, options, &mut |_, _| true).expect("domain")
-}
-
-/// The boundary of `[0,1]²` mapped by `f`, as four polylines of `n` segments.
-fn mapped_square(f: impl Fn([f64; 2]) -> [f64; 2], n: usize) -> BoundaryLoop2 {
-    let side = |a: [f64; 2], b: [f64; 2]| {
-        let points = (0..=n)
-            .map(|i| {
-                let t = i as f64 / n as f64;
-                f([a[0] + t * (b[0] - a[0]), a[1] + t * (b[1] - a[1])])
-            })
-            .collect();
-        Curve2::polyline(points).unwrap()
-    };
-    BoundaryLoop2::from_curves(vec![
-        side([0.0, 0.0], [0.0, 1.0]),
-        side([1.0, 0.0], [1.0, 1.0]),
-        side([0.0, 0.0], [1.0, 0.0]),
-        side([0.0, 1.0], [1.0, 1.0]),
-    ])
-    .unwrap()
 }
 
 /// Largest coordinate difference between the physical and the parametric vertices.

@@ -31,6 +31,13 @@ pub enum igaparam_status {
     IGAPARAM_STATUS_IO = 7,
     /// An internal error (a bug): the message says what; please report it.
     IGAPARAM_STATUS_INTERNAL = 8,
+    /// A handle argument is in use by another call: one made from the progress callback of a
+    /// running call on it, or from another thread. A handle takes one call at a time; the call
+    /// was refused and changed nothing.
+    IGAPARAM_STATUS_BUSY = 9,
+    /// The work asked for exceeds a resource limit (e.g. the cells of a domain build beyond
+    /// `max_cells`); the message gives the estimate and the option that raises the limit.
+    IGAPARAM_STATUS_LIMIT_EXCEEDED = 10,
 }
 
 thread_local! {
@@ -50,16 +57,19 @@ fn status_of(kind: ErrorKind) -> igaparam_status {
         ErrorKind::BufferTooSmall => IGAPARAM_STATUS_BUFFER_TOO_SMALL,
         ErrorKind::Cancelled => IGAPARAM_STATUS_CANCELLED,
         ErrorKind::Io => IGAPARAM_STATUS_IO,
+        ErrorKind::LimitExceeded => IGAPARAM_STATUS_LIMIT_EXCEEDED,
     }
 }
 
 /// A NULL pointer error for argument `name` of `function`.
 pub(crate) struct NullArgument(pub &'static str);
 
-/// What a body may fail with: a library error or a NULL argument.
+/// What a body may fail with: a library error, a NULL argument, or a handle argument (name,
+/// kind) in use by another call.
 pub(crate) enum Failure {
     Library(Error),
     Null(&'static str),
+    Busy(&'static str, &'static str),
 }
 
 impl From<Error> for Failure {
@@ -89,6 +99,14 @@ pub(crate) fn run(
         Ok(Err(Failure::Null(name))) => {
             set_last_error(format!("{function}: argument `{name}` is NULL"));
             igaparam_status::IGAPARAM_STATUS_NULL_ARGUMENT
+        }
+        Ok(Err(Failure::Busy(name, kind))) => {
+            set_last_error(format!(
+                "{function}: the {kind} `{name}` is in use by another call (one from the \
+                 progress callback of a running call on it, or from another thread); a handle \
+                 takes one call at a time"
+            ));
+            igaparam_status::IGAPARAM_STATUS_BUSY
         }
         Err(panic) => {
             let what = panic

@@ -7,6 +7,7 @@ use std::path::Path;
 use super::boundary::{
     check_capacity, non_null, non_null_mut, optional_out, run, slice_mut, Failure,
 };
+use super::handle::{acquire, handle_type, release, Guarded, Held, ReleaseWatch};
 use super::mesh::call_progress;
 use super::spline::AnyMap;
 use super::{igaparam_progress_fn, igaparam_stage, igaparam_status};
@@ -16,14 +17,19 @@ use crate::error::{Error, Result};
 use crate::io::vtu::UnstructuredGrid;
 use crate::spline::{FitRecord, UntangleOptions};
 
-/// A planar domain bounded by four curves or a solid bounded by six surfaces, and once built its
-/// T-mesh parameterization (opaque). Create a planar one with `igaparam_domain_new_from_file` or
-/// `igaparam_domain_new_from_polylines`, a solid with `igaparam_domain_new_solid_from_file`,
-/// `igaparam_domain_new_solid_from_file_scaled` or `igaparam_domain_new_solid_from_triangulations`;
-/// build with `igaparam_domain_build`, release with `igaparam_domain_free`.
+/// A planar domain bounded by four curves or a solid bounded by six surfaces, and once built
+/// its T-mesh parameterization (opaque). Create a planar one with
+/// `igaparam_domain_new_from_file` or `igaparam_domain_new_from_polylines`, a solid with
+/// `igaparam_domain_new_solid_from_file`, `igaparam_domain_new_solid_from_file_scaled` or
+/// `igaparam_domain_new_solid_from_triangulations`; build with `igaparam_domain_build`,
+/// release with `igaparam_domain_free`. One call at a time (see `IGAPARAM_STATUS_BUSY`).
+pub struct igaparam_domain(Guarded<DomainData>);
+handle_type!(igaparam_domain, DomainData, "domain");
+
+/// What a domain handle holds: its boundary and, once built, its T-mesh parameterization.
 // The handle itself lives on the heap behind the C pointer; the variants' sizes do not matter.
 #[allow(clippy::large_enum_variant)]
-pub enum igaparam_domain {
+pub(crate) enum DomainData {
     /// Bounded by four curves.
     Planar(BoundaryLoop2, Option<PlanarDomain>),
     /// Bounded by six surfaces.
@@ -41,18 +47,18 @@ struct BuiltView {
     corners: Vec<usize>,
 }
 
-impl igaparam_domain {
+impl DomainData {
     pub(super) fn dim(&self) -> usize {
         match self {
-            igaparam_domain::Planar(..) => 2,
-            igaparam_domain::Solid(..) => 3,
+            DomainData::Planar(..) => 2,
+            DomainData::Solid(..) => 3,
         }
     }
 
     fn is_built(&self) -> bool {
         match self {
-            igaparam_domain::Planar(_, b) => b.is_some(),
-            igaparam_domain::Solid(_, b) => b.is_some(),
+            DomainData::Planar(_, b) => b.is_some(),
+            DomainData::Solid(_, b) => b.is_some(),
         }
     }
 
@@ -60,44 +66,44 @@ impl igaparam_domain {
     /// was built or updated.
     fn pending(&self) -> bool {
         match self {
-            igaparam_domain::Planar(boundary, Some(b)) => b.boundary() != boundary,
-            igaparam_domain::Solid(boundary, Some(b)) => b.boundary() != boundary.as_ref(),
+            DomainData::Planar(boundary, Some(b)) => b.boundary() != boundary,
+            DomainData::Solid(boundary, Some(b)) => b.boundary() != boundary.as_ref(),
             _ => false,
         }
     }
 
     fn quality(&self) -> Option<&[f64]> {
         match self {
-            igaparam_domain::Planar(_, b) => b.as_ref().map(|d| d.quality()),
-            igaparam_domain::Solid(_, b) => b.as_ref().map(|d| d.quality()),
+            DomainData::Planar(_, b) => b.as_ref().map(|d| d.quality()),
+            DomainData::Solid(_, b) => b.as_ref().map(|d| d.quality()),
         }
     }
 
     fn grid(&self) -> Option<UnstructuredGrid> {
         match self {
-            igaparam_domain::Planar(_, b) => b.as_ref().map(|d| d.to_grid()),
-            igaparam_domain::Solid(_, b) => b.as_ref().map(|d| d.to_grid()),
+            DomainData::Planar(_, b) => b.as_ref().map(|d| d.to_grid()),
+            DomainData::Solid(_, b) => b.as_ref().map(|d| d.to_grid()),
         }
     }
 
     fn cell_count(&self) -> Option<usize> {
         match self {
-            igaparam_domain::Planar(_, b) => b.as_ref().map(|d| d.mesh().cell_count()),
-            igaparam_domain::Solid(_, b) => b.as_ref().map(|d| d.mesh().cell_count()),
+            DomainData::Planar(_, b) => b.as_ref().map(|d| d.mesh().cell_count()),
+            DomainData::Solid(_, b) => b.as_ref().map(|d| d.mesh().cell_count()),
         }
     }
 
     fn vertex_count(&self) -> Option<usize> {
         match self {
-            igaparam_domain::Planar(_, b) => b.as_ref().map(|d| d.mesh().vertex_count()),
-            igaparam_domain::Solid(_, b) => b.as_ref().map(|d| d.mesh().vertex_count()),
+            DomainData::Planar(_, b) => b.as_ref().map(|d| d.mesh().vertex_count()),
+            DomainData::Solid(_, b) => b.as_ref().map(|d| d.mesh().vertex_count()),
         }
     }
 
     fn view(&self) -> Option<BuiltView> {
         match self {
-            igaparam_domain::Planar(_, b) => b.as_ref().map(view_of),
-            igaparam_domain::Solid(_, b) => b.as_deref().map(view_of),
+            DomainData::Planar(_, b) => b.as_ref().map(view_of),
+            DomainData::Solid(_, b) => b.as_deref().map(view_of),
         }
     }
 }
@@ -157,7 +163,7 @@ pub struct igaparam_domain_options {
     pub max_level: u32,
     /// Largest number of optimization sweeps (default 200).
     pub max_sweeps: u32,
-    /// Worker threads, at most 4096; 0 (default) uses one per core.
+    /// Worker threads, at most 4096, capped to the machine's cores; 0 (default) uses one per core.
     pub threads: u32,
     /// Rounds of repair after the optimization (default 6): while cells stay invalid, they are
     /// refined (past `max_level`, up to level 16) and the mesh optimized again; 0 disables it.
@@ -167,8 +173,16 @@ pub struct igaparam_domain_options {
     /// open a cell that stays folded with every boundary vertex on it (default 1e-2); 0 keeps
     /// every boundary vertex on the boundary.
     pub boundary_offset: f64,
+    /// Largest number of cells of the T-mesh (default 1,000,000): a build whose uniform
+    /// refinement to `min_level` alone exceeds it (4^min_level cells for a planar domain,
+    /// 8^min_level for a solid) is refused before any work, one whose adaptation or repair
+    /// exceeds it stops there; both with `IGAPARAM_STATUS_LIMIT_EXCEEDED`. Raise it for finer
+    /// T-meshes (time and memory grow with the cells: minutes and about a gigabyte at the
+    /// default in 2D, more for a solid).
+    pub max_cells: usize,
     /// Progress callback, or NULL (default). Called with `IGAPARAM_STAGE_OPTIMIZATION`, `done`
-    /// sweeps so far and `total` 0; returning non-zero cancels the build.
+    /// sweeps so far and `total` 0, also between the rounds of the adaptation of the tree (with
+    /// `done` 0); returning non-zero cancels the build.
     pub progress: igaparam_progress_fn,
     /// Passed to `progress` as its first argument.
     pub progress_user: *mut c_void,
@@ -227,6 +241,7 @@ fn c_options(d: &PlanarOptions) -> igaparam_domain_options {
         threads: d.threads as u32,
         repair_rounds: d.repair_rounds,
         boundary_offset: d.boundary_offset,
+        max_cells: d.max_cells,
         progress: None,
         progress_user: std::ptr::null_mut(),
     }
@@ -280,6 +295,7 @@ fn planar_options(o: &igaparam_domain_options) -> Result<PlanarOptions> {
         threads: o.threads as usize,
         repair_rounds: o.repair_rounds,
         boundary_offset: o.boundary_offset,
+        max_cells: o.max_cells,
     })
 }
 
@@ -301,18 +317,28 @@ pub(super) fn c_path<'a>(
     Ok(Path::new(s))
 }
 
-/// Releases a domain. NULL is a no-op.
+/// Releases a domain. NULL is a no-op. Called on a domain in use (from the progress callback of
+/// `igaparam_domain_build`, `igaparam_domain_update` or `igaparam_domain_fit_adaptive`, or from
+/// another thread), the release waits for that call: the call stops at its next progress point
+/// with `IGAPARAM_STATUS_CANCELLED` and the domain is released as it returns; the handle must
+/// not be used after this call in either case.
 #[no_mangle]
 pub extern "C" fn igaparam_domain_free(domain: *mut igaparam_domain) {
-    if !domain.is_null() {
-        // SAFETY: `domain` came from `igaparam_domain_new_*` (Box::into_raw) and is released once.
-        drop(unsafe { Box::from_raw(domain) });
-    }
+    release(domain);
+}
+
+/// The domain of handle `domain`, held for the call.
+pub(super) fn held<'a>(
+    domain: *const igaparam_domain,
+) -> std::result::Result<Held<'a, igaparam_domain>, Failure> {
+    acquire(domain, "domain")
 }
 
 /// The built domain, or an error if `igaparam_domain_build` has not succeeded yet.
-fn built<'a>(domain: *const igaparam_domain) -> std::result::Result<&'a igaparam_domain, Failure> {
-    let d = non_null(domain, "domain")?;
+fn built<'a>(
+    domain: *const igaparam_domain,
+) -> std::result::Result<Held<'a, igaparam_domain>, Failure> {
+    let d = held(domain)?;
     if d.is_built() {
         Ok(d)
     } else {
@@ -327,7 +353,7 @@ fn built<'a>(domain: *const igaparam_domain) -> std::result::Result<&'a igaparam
 /// built or its boundary was replaced since (fits need the T-mesh moved first).
 pub(super) fn current<'a>(
     domain: *const igaparam_domain,
-) -> std::result::Result<&'a igaparam_domain, Failure> {
+) -> std::result::Result<Held<'a, igaparam_domain>, Failure> {
     let d = built(domain)?;
     if d.pending() {
         return Err(Error::invalid(
@@ -340,11 +366,13 @@ pub(super) fn current<'a>(
 }
 
 /// The progress of the optimization of a T-mesh as the C callback `progress` sees it
-/// (`IGAPARAM_STAGE_OPTIMIZATION`, sweeps done, total 0): false when it asks to cancel.
+/// (`IGAPARAM_STAGE_OPTIMIZATION`, sweeps done, total 0): false when it asks to cancel or the
+/// handle's release was requested (`watch`).
 pub(super) fn optimization_progress(
     progress: igaparam_progress_fn,
     user: *mut c_void,
-) -> impl FnMut(usize, usize) -> bool {
+    watch: ReleaseWatch<'_>,
+) -> impl FnMut(usize, usize) -> bool + '_ {
     move |done, total| {
         call_progress(
             progress,
@@ -352,7 +380,7 @@ pub(super) fn optimization_progress(
             igaparam_stage::IGAPARAM_STAGE_OPTIMIZATION,
             done,
             total,
-        )
+        ) && !watch.requested()
     }
 }
 
@@ -382,18 +410,22 @@ pub(super) fn adapt_domain(
     progress: &mut dyn FnMut(usize, usize) -> bool,
 ) -> std::result::Result<(AnyMap, crate::spline::AdaptReport, FitRecord), Failure> {
     use crate::spline::adapt;
-    current(domain)?;
-    match non_null_mut(domain, "domain")? {
-        igaparam_domain::Planar(_, Some(d)) => {
+    let mut held = current(domain)?;
+    let (d, watch) = held.split();
+    let progress = &mut |done, total| progress(done, total) && !watch.requested();
+    match d {
+        DomainData::Planar(_, Some(d)) => {
             let mut copy = d.clone();
-            let (map, report) = adapt(&mut copy, options, progress)?;
+            let (map, report) =
+                adapt(&mut copy, options, progress).map_err(|e| watch.explain(e))?;
             let record = map.fit_record(copy.mesh(), copy.positions(), &report.fit)?;
             *d = copy;
             Ok((AnyMap::Two(map), report, record))
         }
-        igaparam_domain::Solid(_, Some(d)) => {
+        DomainData::Solid(_, Some(d)) => {
             let mut copy = d.clone();
-            let (map, report) = adapt(&mut copy, options, progress)?;
+            let (map, report) =
+                adapt(&mut copy, options, progress).map_err(|e| watch.explain(e))?;
             let record = map.fit_record(copy.mesh(), copy.positions(), &report.fit)?;
             *d = copy;
             Ok((AnyMap::Three(map), report, record))
@@ -427,26 +459,29 @@ pub extern "C" fn igaparam_domain_build(
     report: *mut igaparam_domain_report,
 ) -> igaparam_status {
     run("igaparam_domain_build", || {
-        let d = non_null_mut(domain, "domain")?;
+        let mut held = held(domain)?;
+        let (d, watch) = held.split();
         let raw = if options.is_null() {
             match d {
-                igaparam_domain::Planar(..) => igaparam_domain_options_default(),
-                igaparam_domain::Solid(..) => igaparam_domain_options_default_solid(),
+                DomainData::Planar(..) => igaparam_domain_options_default(),
+                DomainData::Solid(..) => igaparam_domain_options_default_solid(),
             }
         } else {
             *non_null(options, "options")?
         };
         let opts = planar_options(&raw)?;
-        let mut progress = optimization_progress(raw.progress, raw.progress_user);
+        let mut progress = optimization_progress(raw.progress, raw.progress_user, watch);
         let r = match d {
-            igaparam_domain::Planar(boundary, built) => {
-                let (planar, r) = PlanarDomain::build(boundary.clone(), &opts, &mut progress)?;
+            DomainData::Planar(boundary, built) => {
+                let (planar, r) = PlanarDomain::build(boundary.clone(), &opts, &mut progress)
+                    .map_err(|e| watch.explain(e))?;
                 *built = Some(planar);
                 r
             }
-            igaparam_domain::Solid(boundary, built) => {
+            DomainData::Solid(boundary, built) => {
                 let (solid, r) =
-                    SolidDomain::build(boundary.as_ref().clone(), &opts, &mut progress)?;
+                    SolidDomain::build(boundary.as_ref().clone(), &opts, &mut progress)
+                        .map_err(|e| watch.explain(e))?;
                 *built = Some(Box::new(solid));
                 r
             }
@@ -532,7 +567,8 @@ pub extern "C" fn igaparam_domain_copy_cell_quality(
     len: usize,
 ) -> igaparam_status {
     run("igaparam_domain_copy_cell_quality", || {
-        let q = built(domain)?.quality().unwrap_or_default();
+        let d = built(domain)?;
+        let q = d.quality().unwrap_or_default();
         check_capacity("quality", len, q.len())?;
         slice_mut(quality, len, "quality")?[..q.len()].copy_from_slice(q);
         Ok(())
@@ -601,7 +637,7 @@ pub extern "C" fn igaparam_domain_dimension(
     out: *mut usize,
 ) -> igaparam_status {
     run("igaparam_domain_dimension", || {
-        let d = non_null(domain, "domain")?.dim();
+        let d = held(domain)?.dim();
         *non_null_mut(out, "out")? = d;
         Ok(())
     })
@@ -634,7 +670,7 @@ pub extern "C" fn igaparam_domain_is_built(
     out: *mut c_int,
 ) -> igaparam_status {
     run("igaparam_domain_is_built", || {
-        let b = non_null(domain, "domain")?.is_built();
+        let b = held(domain)?.is_built();
         *non_null_mut(out, "out")? = b as c_int;
         Ok(())
     })

@@ -6,7 +6,7 @@ use std::ffi::c_char;
 use std::path::Path;
 
 use super::boundary::{non_null_mut, run, slice, Failure};
-use super::domain::{c_path, igaparam_domain};
+use super::domain::{c_path, igaparam_domain, DomainData};
 use super::igaparam_status;
 use crate::boundary::{
     BSplineCurve, BSplineSurface, BoundaryLoop2, Coastline, CubeFaces, Curve2, Point2,
@@ -318,12 +318,12 @@ pub(super) fn triangulations_boundary(
 fn construct(
     function: &str,
     out: *mut *mut igaparam_domain,
-    body: impl FnOnce() -> std::result::Result<igaparam_domain, Failure>,
+    body: impl FnOnce() -> std::result::Result<DomainData, Failure>,
 ) -> igaparam_status {
     run(function, || {
         let out = non_null_mut(out, "out")?;
         let domain = body()?;
-        *out = Box::into_raw(Box::new(domain));
+        *out = super::handle::into_raw::<igaparam_domain>(domain);
         Ok(())
     })
 }
@@ -344,7 +344,7 @@ pub extern "C" fn igaparam_domain_new_from_file(
 ) -> igaparam_status {
     construct("igaparam_domain_new_from_file", out, || {
         let boundary = planar_file_boundary(c_path(path, "path")?)?;
-        Ok(igaparam_domain::Planar(boundary, None))
+        Ok(DomainData::Planar(boundary, None))
     })
 }
 
@@ -366,7 +366,7 @@ pub extern "C" fn igaparam_domain_new_from_polylines(
     out: *mut *mut igaparam_domain,
 ) -> igaparam_status {
     construct("igaparam_domain_new_from_polylines", out, || {
-        Ok(igaparam_domain::Planar(
+        Ok(DomainData::Planar(
             polylines_boundary(counts, points)?,
             None,
         ))
@@ -397,10 +397,7 @@ pub extern "C" fn igaparam_domain_new_from_curves(
     out: *mut *mut igaparam_domain,
 ) -> igaparam_status {
     construct("igaparam_domain_new_from_curves", out, || {
-        Ok(igaparam_domain::Planar(
-            curves_boundary(count, curves)?,
-            None,
-        ))
+        Ok(DomainData::Planar(curves_boundary(count, curves)?, None))
     })
 }
 
@@ -423,7 +420,7 @@ pub extern "C" fn igaparam_domain_new_solid_from_file(
 ) -> igaparam_status {
     construct("igaparam_domain_new_solid_from_file", out, || {
         let boundary = solid_file_boundary(c_path(path, "path")?, std::ptr::null())?;
-        Ok(igaparam_domain::Solid(Box::new(boundary), None))
+        Ok(DomainData::Solid(Box::new(boundary), None))
     })
 }
 
@@ -447,7 +444,7 @@ pub extern "C" fn igaparam_domain_new_solid_from_file_scaled(
 ) -> igaparam_status {
     construct("igaparam_domain_new_solid_from_file_scaled", out, || {
         let boundary = solid_file_boundary(c_path(path, "path")?, scale)?;
-        Ok(igaparam_domain::Solid(Box::new(boundary), None))
+        Ok(DomainData::Solid(Box::new(boundary), None))
     })
 }
 
@@ -476,7 +473,7 @@ pub extern "C" fn igaparam_domain_new_solid_from_triangulations(
 ) -> igaparam_status {
     construct("igaparam_domain_new_solid_from_triangulations", out, || {
         let boundary = triangulations_boundary(vertex_counts, xyz, triangle_counts, triangles)?;
-        Ok(igaparam_domain::Solid(Box::new(boundary), None))
+        Ok(DomainData::Solid(Box::new(boundary), None))
     })
 }
 
@@ -505,6 +502,6 @@ pub extern "C" fn igaparam_domain_new_solid_from_surfaces(
 ) -> igaparam_status {
     construct("igaparam_domain_new_solid_from_surfaces", out, || {
         let boundary = surfaces_boundary(count, surfaces)?;
-        Ok(igaparam_domain::Solid(Box::new(boundary), None))
+        Ok(DomainData::Solid(Box::new(boundary), None))
     })
 }

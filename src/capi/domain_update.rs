@@ -6,7 +6,8 @@ use std::ffi::{c_char, c_void};
 
 use super::boundary::{non_null, non_null_mut, run, Failure};
 use super::domain::{
-    c_path, c_report, igaparam_domain, igaparam_domain_report, optimization_progress,
+    c_path, c_report, held, igaparam_domain, igaparam_domain_report, optimization_progress,
+    DomainData,
 };
 use super::domain_input::{
     curves_boundary, igaparam_curve, igaparam_surface, planar_file_boundary, polylines_boundary,
@@ -25,7 +26,7 @@ use crate::error::Error;
 pub struct igaparam_domain_update_options {
     /// Largest number of optimization sweeps per step of the motion (default 200).
     pub max_sweeps: u32,
-    /// Worker threads, at most 4096; 0 (default) uses one per core.
+    /// Worker threads, at most 4096, capped to the machine's cores; 0 (default) uses one per core.
     pub threads: u32,
     /// 0 (default): keep the tree, and only report whether its tolerance still holds. 1: refine
     /// the boundary cells whose error exceeds the build's tolerance (below its `max_level`)
@@ -94,7 +95,8 @@ fn set_boundary(
     make: impl FnOnce(usize) -> std::result::Result<NewBoundary, Failure>,
 ) -> igaparam_status {
     run(function, || {
-        let own = non_null(domain, "domain")?.dim();
+        let mut held = held(domain)?;
+        let own = held.dim();
         if let Some(dim) = dim.filter(|&dim| dim != own) {
             let (has, given) = match dim {
                 2 => ("a solid, bounded by six surfaces", "four curves"),
@@ -106,14 +108,14 @@ fn set_boundary(
             .into());
         }
         let new = make(own)?;
-        match (non_null_mut(domain, "domain")?, new) {
-            (igaparam_domain::Planar(boundary, built), NewBoundary::Planar(new)) => {
+        match (&mut *held, new) {
+            (DomainData::Planar(boundary, built), NewBoundary::Planar(new)) => {
                 if let Some(b) = built {
                     b.check_boundary(&new)?;
                 }
                 *boundary = new;
             }
-            (igaparam_domain::Solid(boundary, built), NewBoundary::Solid(new)) => {
+            (DomainData::Solid(boundary, built), NewBoundary::Solid(new)) => {
                 if let Some(b) = built {
                     b.check_boundary(&new)?;
                 }
@@ -282,7 +284,8 @@ pub extern "C" fn igaparam_domain_update(
     report: *mut igaparam_domain_update_report,
 ) -> igaparam_status {
     run("igaparam_domain_update", || {
-        let d = non_null_mut(domain, "domain")?;
+        let mut held = held(domain)?;
+        let (d, watch) = held.split();
         let raw = if options.is_null() {
             igaparam_domain_update_options_default()
         } else {
@@ -300,14 +303,14 @@ pub extern "C" fn igaparam_domain_update(
             threads: raw.threads as usize,
             refine: raw.refine != 0,
         };
-        let mut progress = optimization_progress(raw.progress, raw.progress_user);
+        let mut progress = optimization_progress(raw.progress, raw.progress_user, watch);
         let r = match d {
-            igaparam_domain::Planar(boundary, Some(built)) => {
-                built.update(boundary.clone(), &opts, &mut progress)?
-            }
-            igaparam_domain::Solid(boundary, Some(built)) => {
-                built.update(boundary.as_ref().clone(), &opts, &mut progress)?
-            }
+            DomainData::Planar(boundary, Some(built)) => built
+                .update(boundary.clone(), &opts, &mut progress)
+                .map_err(|e| watch.explain(e))?,
+            DomainData::Solid(boundary, Some(built)) => built
+                .update(boundary.as_ref().clone(), &opts, &mut progress)
+                .map_err(|e| watch.explain(e))?,
             _ => {
                 return Err(Error::invalid(
                     "the domain has not been built: call igaparam_domain_build before \

@@ -2,19 +2,18 @@
 
 use std::ffi::{c_int, c_void};
 
-use super::boundary::{
-    check_capacity, non_null, non_null_mut, run, slice, slice_mut, NullArgument,
-};
+use super::boundary::{check_capacity, non_null, non_null_mut, run, slice, slice_mut, Failure};
+use super::handle::{acquire, handle_type, release, Guarded, Held};
 use super::igaparam_status;
 use crate::error::{Error, Result};
 use crate::homesh::{CellType, Mesh, Method, Placement, RelocateOptions, Stage};
 use crate::optimize::TargetKind;
 
 /// A quadrilateral or hexahedral finite-element mesh with node constraints (opaque).
-/// Create with `igaparam_mesh_new`, release with `igaparam_mesh_free`.
-pub struct igaparam_mesh {
-    pub(super) mesh: Mesh,
-}
+/// Create with `igaparam_mesh_new`, release with `igaparam_mesh_free`. One call at a time
+/// (see `IGAPARAM_STATUS_BUSY`).
+pub struct igaparam_mesh(Guarded<Mesh>);
+handle_type!(igaparam_mesh, Mesh, "mesh");
 
 /// A cell type: one of the `IGAPARAM_CELL_*` values (VTK's cell type codes). The local order of
 /// each type's nodes, VTK's and Gmsh's, is tabulated at `igaparam_node_order`.
@@ -140,8 +139,8 @@ pub struct igaparam_relocate_options {
     /// Over-relaxation of each node's move, in [1, 2) (default 1.8; 1 disables it). A relaxed
     /// move is kept only if it lowers the node's objective and inverts nothing.
     pub relaxation: f64,
-    /// Worker threads, at most 4096; 0 (default) uses one per core. The result does not depend
-    /// on it.
+    /// Worker threads, at most 4096, capped to the machine's cores; 0 (default) uses one per
+    /// core. The result does not depend on it.
     pub threads: u32,
     /// When positive, the result is a stationary point of the one global objective
     /// F = sum over cells of their mean distortion (regularisation 0, so F is infinite at a
@@ -304,23 +303,26 @@ pub extern "C" fn igaparam_mesh_new(
     )
 }
 
-/// Releases a mesh. NULL is a no-op.
+/// Releases a mesh. NULL is a no-op. Called on a mesh in use (from the progress callback of
+/// `igaparam_mesh_relocate`, or from another thread), the release waits for that call: the call
+/// stops at its next progress point with `IGAPARAM_STATUS_CANCELLED` and the mesh is released
+/// as it returns; the handle must not be used after this call in either case.
 #[no_mangle]
 pub extern "C" fn igaparam_mesh_free(mesh: *mut igaparam_mesh) {
-    if !mesh.is_null() {
-        // SAFETY: `mesh` came from `igaparam_mesh_new` (Box::into_raw) and is released once.
-        drop(unsafe { Box::from_raw(mesh) });
-    }
+    release(mesh);
 }
 
+/// The mesh of handle `mesh`, held for the call.
 pub(super) fn with_mesh<'a>(
     mesh: *const igaparam_mesh,
-) -> std::result::Result<&'a Mesh, NullArgument> {
-    non_null(mesh, "mesh").map(|m| &m.mesh)
+) -> std::result::Result<Held<'a, igaparam_mesh>, Failure> {
+    acquire(mesh, "mesh")
 }
 
-fn with_mesh_mut<'a>(mesh: *mut igaparam_mesh) -> std::result::Result<&'a mut Mesh, NullArgument> {
-    non_null_mut(mesh, "mesh").map(|m| &mut m.mesh)
+fn with_mesh_mut<'a>(
+    mesh: *mut igaparam_mesh,
+) -> std::result::Result<Held<'a, igaparam_mesh>, Failure> {
+    acquire(mesh, "mesh")
 }
 
 /// Writes the number of nodes to `*out`.
@@ -369,7 +371,7 @@ pub extern "C" fn igaparam_mesh_set_fixed(
     mask: *const u8,
 ) -> igaparam_status {
     run("igaparam_mesh_set_fixed", || {
-        let m = with_mesh_mut(mesh)?;
+        let mut m = with_mesh_mut(mesh)?;
         m.set_fixed(slice(mask, num_nodes, "mask")?)?;
         Ok(())
     })
@@ -386,7 +388,7 @@ pub extern "C" fn igaparam_mesh_move_nodes(
     xyz: *const f64,
 ) -> igaparam_status {
     run("igaparam_mesh_move_nodes", || {
-        let m = with_mesh_mut(mesh)?;
+        let mut m = with_mesh_mut(mesh)?;
         let xyz = slice(
             xyz,
             count
@@ -433,16 +435,22 @@ pub extern "C" fn igaparam_mesh_relocate(
     report: *mut igaparam_relocate_report,
 ) -> igaparam_status {
     run("igaparam_mesh_relocate", || {
-        let handle = non_null_mut(mesh, "mesh")?;
+        let mut handle = with_mesh_mut(mesh)?;
         let raw = if options.is_null() {
             igaparam_relocate_options_default()
         } else {
             *non_null(options, "options")?
         };
         let opts = relocate_options(&raw)?;
-        let mut progress = relocation_progress(&raw);
+        let (handle, watch) = handle.split();
+        let mut relocation = relocation_progress(&raw);
+        let mut progress = |stage: Stage, done: usize, total: usize| {
+            relocation(stage, done, total) && !watch.requested()
+        };
         // Mesh::relocate changes nothing on error or cancellation.
-        let r = handle.mesh.relocate(&opts, &mut progress)?;
+        let r = handle
+            .relocate(&opts, &mut progress)
+            .map_err(|e| watch.explain(e))?;
         if !report.is_null() {
             *non_null_mut(report, "report")? = report_of(&r);
         }
@@ -614,10 +622,10 @@ pub extern "C" fn igaparam_mesh_adjoint(
     dj_dprescribed: *mut f64,
 ) -> igaparam_status {
     run("igaparam_mesh_adjoint", || {
-        let handle = non_null(mesh, "mesh")?;
+        let handle = with_mesh(mesh)?;
         // The input is read before the output is written, so the two may be one array.
-        let threads = handle.mesh.last_threads();
-        let result = handle.mesh.adjoint(threads, slice(dj_dx, size, "dj_dx")?)?;
+        let threads = handle.last_threads();
+        let result = handle.adjoint(threads, slice(dj_dx, size, "dj_dx")?)?;
         slice_mut(dj_dprescribed, size, "dj_dprescribed")?.copy_from_slice(&result);
         Ok(())
     })
@@ -636,12 +644,10 @@ pub extern "C" fn igaparam_mesh_tangent(
     dx: *mut f64,
 ) -> igaparam_status {
     run("igaparam_mesh_tangent", || {
-        let handle = non_null(mesh, "mesh")?;
+        let handle = with_mesh(mesh)?;
         // The input is read before the output is written, so the two may be one array.
-        let threads = handle.mesh.last_threads();
-        let result = handle
-            .mesh
-            .tangent(threads, slice(dx_prescribed, size, "dx_prescribed")?)?;
+        let threads = handle.last_threads();
+        let result = handle.tangent(threads, slice(dx_prescribed, size, "dx_prescribed")?)?;
         slice_mut(dx, size, "dx")?.copy_from_slice(&result);
         Ok(())
     })

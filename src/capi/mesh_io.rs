@@ -66,7 +66,7 @@ pub extern "C" fn igaparam_mesh_read_vtu(
     run("igaparam_mesh_read_vtu", || {
         let out = non_null_mut(out, "out")?;
         let mesh = Mesh::read_vtu(c_path(path, "path")?)?;
-        *out = Box::into_raw(Box::new(igaparam_mesh { mesh }));
+        *out = super::handle::into_raw::<igaparam_mesh>(mesh);
         Ok(())
     })
 }

@@ -13,6 +13,7 @@ mod boundary;
 mod domain;
 mod domain_input;
 mod domain_update;
+mod handle;
 mod mesh;
 mod mesh_io;
 mod node_order;

@@ -77,7 +77,7 @@ pub(super) fn new_mesh(
             "connectivity",
         )?;
         let mesh = Mesh::new_ordered(ct, xyz, conn, order)?;
-        *out = Box::into_raw(Box::new(igaparam_mesh { mesh }));
+        *out = super::handle::into_raw::<igaparam_mesh>(mesh);
         Ok(())
     })
 }

@@ -9,6 +9,7 @@ use super::boundary::{
     check_capacity, non_null, non_null_mut, optional_out, run, slice, slice_mut, Failure,
 };
 use super::domain::{adapt_domain, c_path, igaparam_domain};
+use super::handle::{acquire, handle_type, into_raw, release, Guarded, Held};
 use super::igaparam_status;
 use super::mesh::call_progress;
 use super::{igaparam_progress_fn, igaparam_stage};
@@ -35,7 +36,7 @@ pub(crate) enum AnyMap {
 /// Runs `$body` with `$m` bound to the map of either dimension (the body is compiled for both).
 macro_rules! with_map {
     ($map:expr, $m:ident => $body:expr) => {
-        match $map {
+        match &*$map {
             AnyMap::Two($m) => $body,
             AnyMap::Three($m) => $body,
         }
@@ -45,8 +46,14 @@ macro_rules! with_map {
 /// A cubic truncated hierarchical B-spline (THB) map `S: [0,1]^d → Ω`, d = 2 or 3 (opaque).
 /// Create with `igaparam_spline_fit_domain` or `igaparam_spline_read_gismo`, release with
 /// `igaparam_spline_free`. Parametric points are `d` doubles in [0,1]^d, physical points `d`
-/// doubles; arrays of points are flat, `n × d` (x0 y0 x1 y1 ... in 2D).
-pub struct igaparam_spline {
+/// doubles; arrays of points are flat, `n × d` (x0 y0 x1 y1 ... in 2D). One call at a time
+/// (see `IGAPARAM_STATUS_BUSY`).
+pub struct igaparam_spline(Guarded<SplineData>);
+handle_type!(igaparam_spline, SplineData, "spline");
+
+/// What a spline handle holds: the map, its known validity and the record of its fit.
+#[derive(Clone)]
+pub(crate) struct SplineData {
     map: AnyMap,
     /// The validity of `map` computed by the fit that produced it, with the options it was
     /// computed with; `igaparam_spline_check_validity` returns it for equal options. Every change
@@ -57,7 +64,7 @@ pub struct igaparam_spline {
     fit: Option<FitRecord>,
 }
 
-impl igaparam_spline {
+impl SplineData {
     /// Replaces the map, dropping the validity kept for the old one.
     fn set_map(&mut self, map: AnyMap) {
         self.map = map;
@@ -175,12 +182,30 @@ fn new_recorded_handle(
     out: *mut *mut igaparam_spline,
 ) -> std::result::Result<(), Failure> {
     let out = non_null_mut(out, "out")?;
-    *out = Box::into_raw(Box::new(igaparam_spline { map, validity, fit }));
+    *out = into_raw::<igaparam_spline>(SplineData { map, validity, fit });
     Ok(())
 }
 
-fn map<'a>(spline: *const igaparam_spline) -> std::result::Result<&'a AnyMap, Failure> {
-    Ok(&non_null(spline, "spline")?.map)
+/// The spline of handle `spline`, held for the call.
+fn held<'a>(
+    spline: *const igaparam_spline,
+) -> std::result::Result<Held<'a, igaparam_spline>, Failure> {
+    acquire(spline, "spline")
+}
+
+/// The map of handle `spline`, held for the call.
+fn map<'a>(spline: *const igaparam_spline) -> std::result::Result<MapOf<'a>, Failure> {
+    Ok(MapOf(held(spline)?))
+}
+
+/// The map of a held spline handle.
+struct MapOf<'a>(Held<'a, igaparam_spline>);
+
+impl std::ops::Deref for MapOf<'_> {
+    type Target = AnyMap;
+    fn deref(&self) -> &AnyMap {
+        &self.0.map
+    }
 }
 
 fn dim(map: &AnyMap) -> usize {
@@ -273,7 +298,7 @@ pub struct igaparam_adapt_options {
     pub max_level: u32,
     /// Largest number of optimization sweeps after each refinement (default 200).
     pub max_sweeps: u32,
-    /// Worker threads, at most 4096; 0 (default) uses one per core.
+    /// Worker threads, at most 4096, capped to the machine's cores; 0 (default) uses one per core.
     pub threads: u32,
     /// Progress callback, or NULL (default). Called with `IGAPARAM_STAGE_ADAPTATION`, `done`
     /// rounds and `total` = `max_rounds` before each refinement; returning non-zero cancels.
@@ -423,13 +448,12 @@ pub extern "C" fn igaparam_spline_read_gismo(
     })
 }
 
-/// Releases a spline created by this library; NULL is a no-op.
+/// Releases a spline created by this library; NULL is a no-op. Called on a spline in use (from
+/// the progress callback of a call on it, or from another thread), the release waits for that
+/// call and happens as it returns; the handle must not be used after this call in either case.
 #[no_mangle]
 pub extern "C" fn igaparam_spline_free(spline: *mut igaparam_spline) {
-    if !spline.is_null() {
-        // SAFETY: `spline` came from `new_handle` (Box::into_raw) and is released once.
-        drop(unsafe { Box::from_raw(spline) });
-    }
+    release(spline);
 }
 
 /// Writes to `*out` a new, independent copy of `spline` (to refine one while keeping the other).
@@ -439,7 +463,7 @@ pub extern "C" fn igaparam_spline_clone(
     out: *mut *mut igaparam_spline,
 ) -> igaparam_status {
     run("igaparam_spline_clone", || {
-        let s = non_null(spline, "spline")?;
+        let s = held(spline)?;
         new_recorded_handle(s.map.clone(), s.validity.clone(), s.fit.clone(), out)
     })
 }
@@ -451,7 +475,7 @@ pub extern "C" fn igaparam_spline_dimension(
     out: *mut usize,
 ) -> igaparam_status {
     run("igaparam_spline_dimension", || {
-        let d = dim(map(spline)?);
+        let d = dim(&*map(spline)?);
         *non_null_mut(out, "out")? = d;
         Ok(())
     })
@@ -534,7 +558,7 @@ pub extern "C" fn igaparam_spline_copy_elements(
 ) -> igaparam_status {
     run("igaparam_spline_copy_elements", || {
         let m = map(spline)?;
-        let d = dim(m);
+        let d = dim(&m);
         let n = with_map!(m, m => m.element_count());
         check_capacity("levels/bounds (elements)", len, n)?;
         if let Some(out) = optional_out(bounds, 2 * d * n) {
@@ -636,7 +660,7 @@ pub extern "C" fn igaparam_spline_evaluate(
 ) -> igaparam_status {
     run("igaparam_spline_evaluate", || {
         let m = map(spline)?;
-        let d = dim(m);
+        let d = dim(&m);
         let input = points_in(params, n, d, "params")?;
         let values = with_map!(m, m => evaluate(m, input)?);
         if let Some(out) = points_out(points, n, d, "points")? {
@@ -682,7 +706,7 @@ pub extern "C" fn igaparam_spline_mean_ratio(
 ) -> igaparam_status {
     run("igaparam_spline_mean_ratio", || {
         let m = map(spline)?;
-        let d = dim(m);
+        let d = dim(&m);
         let input = points_in(params, n, d, "params")?;
         let q = with_map!(m, m => mean_ratios(m, input)?);
         slice_mut(quality, n, "quality")?.copy_from_slice(&q);
@@ -717,7 +741,7 @@ pub extern "C" fn igaparam_spline_invert(
 ) -> igaparam_status {
     run("igaparam_spline_invert", || {
         let m = map(spline)?;
-        let d = dim(m);
+        let d = dim(&m);
         if !(2..=32).contains(&samples) {
             return Err(Error::invalid(format!("samples = {samples} is not in 2..=32")).into());
         }
@@ -815,7 +839,7 @@ fn basis_at(
     param: *const f64,
 ) -> std::result::Result<BasisAt, Failure> {
     let m = map(spline)?;
-    let d = dim(m);
+    let d = dim(&m);
     let x = points_in(param, 1, d, "param")?;
     Ok(with_map!(m, m => {
         let p = point(x, 0);
@@ -841,7 +865,7 @@ pub extern "C" fn igaparam_spline_refine(
     report: *mut igaparam_fit_report,
 ) -> igaparam_status {
     run("igaparam_spline_refine", || {
-        let handle = non_null_mut(spline, "spline")?;
+        let mut handle = held(spline)?;
         let marked = slice(elements, n, "elements")?;
         let (refined, r) = match &handle.map {
             AnyMap::Two(m) => refine(m, marked).map(|(m, r)| (AnyMap::Two(m), r))?,
@@ -885,7 +909,7 @@ pub extern "C" fn igaparam_spline_check_validity(
     len: usize,
 ) -> igaparam_status {
     run("igaparam_spline_check_validity", || {
-        let s = non_null(spline, "spline")?;
+        let s = held(spline)?;
         let raw = if options.is_null() {
             igaparam_validity_options_default()
         } else {

@@ -5,7 +5,7 @@
 use std::time::Instant;
 
 use super::frame::{signed_measure, Frame, Framed};
-use crate::error::{Error, Result};
+use crate::error::{Error, ErrorKind, Result};
 use crate::io::vtu::{DataArray, UnstructuredGrid};
 use crate::optimize::laplace::MeshGraph;
 use crate::optimize::motion::{follow_motion, optimize_in_place};
@@ -47,7 +47,16 @@ pub struct DomainOptions {
     /// jagged terrain edge of the Jacksboro block needs offsets near it, the jittered duck faces
     /// 1e-3 with a few more levels of refinement.
     pub boundary_offset: f64,
+    /// Largest number of cells of the T-mesh (default [`DEFAULT_MAX_CELLS`]): a build whose
+    /// uniform refinement to `min_level` would exceed it is refused before any work, and one
+    /// whose adaptation or repair exceeds it stops there, with [`ErrorKind::LimitExceeded`].
+    pub max_cells: usize,
 }
+
+/// The default cell budget of a domain build (`max_cells` of its options): a million cells, a
+/// planar T-mesh of level 10 everywhere (minutes of optimization and about a gigabyte; a
+/// solid's cells cost more).
+pub const DEFAULT_MAX_CELLS: usize = 1_000_000;
 
 impl DomainOptions {
     /// The defaults of a solid: [`DomainOptions::default`] with a boundary tolerance of 1e-3
@@ -74,6 +83,7 @@ impl Default for DomainOptions {
             threads: 0,
             repair_rounds: 6,
             boundary_offset: 1e-2,
+            max_cells: DEFAULT_MAX_CELLS,
         }
     }
 }
@@ -268,12 +278,23 @@ impl<const D: usize, B: CubeMap<D>> Domain<D, B> {
             frame,
         };
         let limit = options.tolerance * facet_scale::<D>();
+        check_uniform_cells::<D>(options)?;
         let mut tree = Tree::<D>::new();
         tree.refine_uniformly(options.min_level)?;
-        tree.refine_while(true, |tree, c| {
+        let marked = |tree: &Tree<D>, c: usize| {
             tree.cells()[c].level < options.max_level
                 && cell_boundary_error(tree, c, &framed_boundary) > limit
+        };
+        let within = |cells: usize| cells_within(options, cells, "the adaptation to the boundary");
+        tree.refine_while_bounded(true, marked, &mut |cells| {
+            within(cells)?;
+            // Between rounds: a chance to cancel a long adaptation (0 sweeps so far).
+            match progress(0, 0) {
+                true => Ok(()),
+                false => Err(Error::cancelled()),
+            }
         })?;
+        within(tree.leaves().len())?;
         let mesh = TMesh::new(tree)?;
         let mut stages = StageSeconds {
             adaptation: start.elapsed().as_secs_f64(),
@@ -484,6 +505,37 @@ pub(super) fn facet_scale<const D: usize>() -> f64 {
     (D as f64).powf(D as f64 / 2.0)
 }
 
+/// Refuses a build whose uniform refinement to `min_level` alone exceeds `max_cells`.
+fn check_uniform_cells<const D: usize>(options: &DomainOptions) -> Result<()> {
+    let cells = 1u128 << (D * options.min_level as usize);
+    if cells > options.max_cells as u128 {
+        return Err(Error::new(
+            ErrorKind::LimitExceeded,
+            format!(
+                "min_level = {} refines [0,1]^{D} into {cells} cells, above max_cells = {}: \
+                 lower min_level or raise max_cells",
+                options.min_level, options.max_cells
+            ),
+        ));
+    }
+    Ok(())
+}
+
+/// Refuses a T-mesh of `cells` cells beyond `max_cells`; `stage` names what made them.
+pub(super) fn cells_within(options: &DomainOptions, cells: usize, stage: &str) -> Result<()> {
+    if cells > options.max_cells {
+        return Err(Error::new(
+            ErrorKind::LimitExceeded,
+            format!(
+                "{stage} reached {cells} cells, above max_cells = {}: raise the tolerance or \
+                 max_cells, or lower max_level",
+                options.max_cells
+            ),
+        ));
+    }
+    Ok(())
+}
+
 /// Checks the options shared by [`Domain::build`] and [`Domain::refine_cells`].
 pub(super) fn check_options(options: &DomainOptions) -> Result<()> {
     if !(options.tolerance.is_finite() && options.tolerance > 0.0) {
@@ -508,10 +560,7 @@ pub(super) fn check_options(options: &DomainOptions) -> Result<()> {
 
 /// The worker threads of the options.
 pub(super) fn thread_pool(options: &DomainOptions) -> Result<rayon::ThreadPool> {
-    rayon::ThreadPoolBuilder::new()
-        .num_threads(options.threads)
-        .build()
-        .map_err(|e| Error::invalid(format!("cannot start threads: {e}")))
+    crate::threads::pool(options.threads)
 }
 
 /// The sweep options of a domain's optimization.

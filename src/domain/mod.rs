@@ -12,7 +12,9 @@ mod repair;
 mod solid;
 mod update;
 
-pub use build::{transfinite, CubeMap, Domain, DomainOptions, DomainReport, StageSeconds};
+pub use build::{
+    transfinite, CubeMap, Domain, DomainOptions, DomainReport, StageSeconds, DEFAULT_MAX_CELLS,
+};
 pub use frame::Frame;
 pub use planar::{PlanarDomain, PlanarOptions, PlanarReport};
 pub use solid::{SolidDomain, SolidOptions, SolidReport};

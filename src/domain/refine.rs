@@ -8,8 +8,8 @@ use std::time::Instant;
 use rayon::ThreadPool;
 
 use super::build::{
-    check_options, sweep_options, thread_pool, CubeMap, Domain, DomainOptions, DomainReport,
-    MAX_REPAIR_LEVEL,
+    cells_within, check_options, sweep_options, thread_pool, CubeMap, Domain, DomainOptions,
+    DomainReport, MAX_REPAIR_LEVEL,
 };
 use crate::error::{Error, Result};
 use crate::optimize::motion::optimize_in_place;
@@ -137,10 +137,13 @@ impl<const D: usize, B: CubeMap<D>> Domain<D, B> {
             .collect();
         targets.sort_unstable();
         targets.dedup();
+        let refined = leaves.len() + targets.len() * ((1 << D) - 1);
+        cells_within(options, refined, "the refinement of the T-mesh")?;
         for &c in &targets {
             tree.refine(leaves[c])?;
         }
         tree.balance()?;
+        cells_within(options, tree.leaves().len(), "the refinement of the T-mesh")?;
         let mesh = TMesh::new(tree)?;
         let old_ids: HashMap<[u32; D], usize> = old
             .parametric()

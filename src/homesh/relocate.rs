@@ -131,10 +131,11 @@ impl RelocateOptions {
                 self.relaxation
             )));
         }
-        if self.threads > 4096 {
+        if self.threads > crate::threads::MAX_THREADS {
             return Err(Error::invalid(format!(
-                "threads = {} is more than 4096",
-                self.threads
+                "threads = {} is more than {}",
+                self.threads,
+                crate::threads::MAX_THREADS
             )));
         }
         Ok(())
@@ -202,12 +203,7 @@ impl Mesh {
         progress: &mut dyn FnMut(Stage, usize, usize) -> bool,
     ) -> Result<RelocateReport> {
         options.validate()?;
-        let pool = rayon::ThreadPoolBuilder::new()
-            .num_threads(options.threads)
-            .build()
-            .map_err(|e| {
-                Error::invalid(format!("cannot start {} threads: {e}", options.threads))
-            })?;
+        let pool = crate::threads::pool(options.threads)?;
         match self.dimension() {
             2 => self.relocate_d::<2>(&pool, options, progress),
             _ => self.relocate_d::<3>(&pool, options, progress),

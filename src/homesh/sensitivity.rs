@@ -109,8 +109,5 @@ fn merge<const D: usize>(flat: &[f64], points: &[Vector<D>]) -> Vec<f64> {
 }
 
 fn pool(threads: usize) -> Result<ThreadPool> {
-    rayon::ThreadPoolBuilder::new()
-        .num_threads(threads)
-        .build()
-        .map_err(|e| Error::invalid(format!("cannot start {threads} threads: {e}")))
+    crate::threads::pool(threads)
 }

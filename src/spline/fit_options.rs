@@ -109,11 +109,7 @@ impl FitOptions {
         if self.threads == 0 {
             return Ok(None);
         }
-        rayon::ThreadPoolBuilder::new()
-            .num_threads(self.threads)
-            .build()
-            .map(Some)
-            .map_err(|e| Error::invalid(format!("cannot start threads: {e}")))
+        crate::threads::pool(self.threads).map(Some)
     }
 }
 

@@ -126,7 +126,19 @@ impl<const D: usize> Tree<D> {
     pub fn refine_while(
         &mut self,
         balance: bool,
+        marked: impl FnMut(&Tree<D>, usize) -> bool,
+    ) -> Result<()> {
+        self.refine_while_bounded(balance, marked, &mut |_| Ok(()))
+    }
+
+    /// [`Tree::refine_while`], calling `before_round(leaves)` before every round with the number
+    /// of leaves the round would make: an error it returns (a cell budget exceeded, a
+    /// cancellation) stops the refinement before that round and is returned.
+    pub fn refine_while_bounded(
+        &mut self,
+        balance: bool,
         mut marked: impl FnMut(&Tree<D>, usize) -> bool,
+        before_round: &mut dyn FnMut(usize) -> Result<()>,
     ) -> Result<()> {
         loop {
             let round: Vec<usize> = self
@@ -137,6 +149,12 @@ impl<const D: usize> Tree<D> {
             if round.is_empty() {
                 return Ok(());
             }
+            // Every refined cell holds 2^d children: the others are the leaves.
+            let leaves = self.cells.len() - ((self.cells.len() - 1) >> D);
+            before_round(leaves + round.len() * ((1 << D) - 1))?;
+            self.cells
+                .try_reserve(round.len() << D)
+                .map_err(|e| Error::invalid(format!("cannot refine the tree: {e}")))?;
             for c in round {
                 self.refine(c)?;
             }

@@ -120,3 +120,26 @@ pub fn curved_box([x, y, z]: [f64; 3]) -> [f64; 3] {
         z * (1.0 + 0.4 * (PI * x).sin() * (PI * y).sin()),
     ]
 }
+
+/// The boundary of `[0,1]²` mapped by `f`, as four polylines of `n` segments.
+pub fn mapped_square(
+    f: impl Fn([f64; 2]) -> [f64; 2],
+    n: usize,
+) -> igaparam::boundary::BoundaryLoop2 {
+    let side = |a: [f64; 2], b: [f64; 2]| {
+        let points = (0..=n)
+            .map(|i| {
+                let t = i as f64 / n as f64;
+                f([a[0] + t * (b[0] - a[0]), a[1] + t * (b[1] - a[1])])
+            })
+            .collect();
+        igaparam::boundary::Curve2::polyline(points).unwrap()
+    };
+    igaparam::boundary::BoundaryLoop2::from_curves(vec![
+        side([0.0, 0.0], [0.0, 1.0]),
+        side([1.0, 0.0], [1.0, 1.0]),
+        side([0.0, 0.0], [1.0, 0.0]),
+        side([0.0, 1.0], [1.0, 1.0]),
+    ])
+    .unwrap()
+}

@@ -13,6 +13,7 @@ import numpy as np
 import numpy.typing as npt
 
 from . import _capi
+from ._ints import c_int_value
 from ._mesh import _ptr
 
 __all__ = ["Curve", "Surface"]
@@ -28,10 +29,7 @@ def _floats(values, name, ndim):
 
 
 def _degree(value, name):
-    degree = int(value)
-    if not 0 <= degree < 2**32:
-        raise ValueError(f"{name} must be a non-negative integer, not {value}")
-    return degree
+    return c_int_value(int(value), name, ctypes.c_uint32, 0)
 
 
 @dataclasses.dataclass(frozen=True)

@@ -49,6 +49,8 @@ class Status(enum.IntEnum):
     CANCELLED = 6
     IO = 7
     INTERNAL = 8
+    BUSY = 9
+    LIMIT_EXCEEDED = 10
 
 
 class Stage(enum.IntEnum):
@@ -149,6 +151,7 @@ class DomainOptions(ctypes.Structure):
         ("threads", ctypes.c_uint32),
         ("repair_rounds", ctypes.c_uint32),
         ("boundary_offset", ctypes.c_double),
+        ("max_cells", ctypes.c_size_t),
         ("progress", PROGRESS_FN),
         ("progress_user", ctypes.c_void_p),
     ]

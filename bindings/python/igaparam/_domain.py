@@ -301,6 +301,7 @@ class Domain(_Handle):
         progress: Optional[Callable[[Stage, int, int], Optional[bool]]] = None,
         repair_rounds: Optional[int] = None,
         boundary_offset: Optional[float] = None,
+        max_cells: Optional[int] = None,
     ) -> "DomainReport":
         """Adapts a T-mesh to the boundary, places its vertices and optimizes them. Building
         again replaces the previous T-mesh; on any error the domain keeps its previous state.
@@ -314,9 +315,10 @@ class Domain(_Handle):
             min_level: level of the initial uniform refinement (default 2).
             max_level: deepest level of the adaptation, at most 16 (default 9).
             max_sweeps: largest number of optimization sweeps (default 200).
-            threads: worker threads; 0 uses one per core (the result does not depend on it).
+            threads: worker threads, capped to the cores; 0 uses one per core (the result does not
+                depend on it).
             progress: None, or a callable ``progress(stage, done, total)`` called after
-                optimization sweeps; return False to cancel (``Status.CANCELLED``). An exception
+                optimization sweeps and between the rounds of the adaptation; return False to cancel (``Status.CANCELLED``). An exception
                 raised by it cancels the build and is re-raised.
             repair_rounds: rounds of repair after the optimization (default 6): cells left
                 invalid are refined (past ``max_level``, up to level 16) and the mesh optimized
@@ -325,6 +327,9 @@ class Domain(_Handle):
                 distance, in coordinates that map the bounding box onto the unit box, by which a
                 boundary vertex may leave the boundary to open a cell that stays folded with
                 every boundary vertex on it; 0 keeps every boundary vertex on the boundary.
+            max_cells: largest number of cells of the T-mesh (default 1,000,000): a build
+                beyond it is refused (``Status.LIMIT_EXCEEDED``), before any work when the
+                uniform refinement to ``min_level`` alone exceeds it.
 
         Returns:
             DomainReport; ``invalid_cells == 0`` for a usable parameterization.
@@ -344,7 +349,7 @@ class Domain(_Handle):
         if boundary_offset is not None:
             options.boundary_offset = float(boundary_offset)
         _set_counts(options, min_level=min_level, max_level=max_level, max_sweeps=max_sweeps, threads=threads,
-                    repair_rounds=repair_rounds)
+                    repair_rounds=repair_rounds, max_cells=max_cells)
         report = _call(self._lib.igaparam_domain_build, self._h(), options, progress, _capi.DomainReport())
         return DomainReport._from_c(report)
 
@@ -419,7 +424,8 @@ class Domain(_Handle):
         is unchanged.
 
         Args:
-            threads: worker threads; 0 uses one per core (the result does not depend on it).
+            threads: worker threads, capped to the cores; 0 uses one per core (the result does not
+                depend on it).
             max_sweeps: largest number of optimization sweeps per step (default 200).
             refine: refine the boundary cells whose error exceeds the build's tolerance and
                 repair folded cells as the build does (the tree, and the spline space, change);

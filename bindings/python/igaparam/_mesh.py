@@ -12,6 +12,7 @@ import numpy.typing as npt
 
 from . import _capi
 from ._handle import _Handle
+from ._ints import c_int_value, set_int_fields
 from ._capi import CellType, Stage, Status
 
 __all__ = [
@@ -91,7 +92,7 @@ def cell_type_code(cell_type: Union[int, str]) -> int:
         raise ValueError(f"unknown cell type {cell_type!r}: expected one of {names}")
     if isinstance(cell_type, (bool, np.bool_)) or not isinstance(cell_type, (int, np.integer)):
         raise TypeError(f"cell_type must be an int (VTK code) or a name, not {type(cell_type).__name__}")
-    return int(cell_type)
+    return c_int_value(cell_type, "cell_type", ctypes.c_int)
 
 
 def nodes_per_cell(cell_type: Union[int, str]) -> int:
@@ -158,12 +159,9 @@ def _as_int64(values, name, ndim):
 
 
 def _set_counts(options, **counts):
-    """Sets the integer fields of a C options struct given (not None), refusing negative ones."""
-    for name, value in counts.items():
-        if value is not None:
-            if int(value) < 0:
-                raise ValueError(f"{name} must be >= 0")
-            setattr(options, name, int(value))
+    """Sets the integer fields of a C options struct given (not None), refusing negative ones
+    and ones that do not fit their C type."""
+    set_int_fields(options, **counts)
 
 
 def _attach_progress(options, progress):
@@ -516,7 +514,8 @@ class Mesh(_Handle):
         its target shape. On any error the mesh is unchanged.
 
         Args:
-            threads: worker threads; 0 uses one per core (the result does not depend on it).
+            threads: worker threads, capped to the cores; 0 uses one per core (the result does not
+                depend on it).
             target: 'initial' (the cells' reference shapes) or 'master' (square/cube).
             laplacian_only: stop after the first placement (no optimization).
             max_sweeps: largest number of Gauss–Seidel sweeps (library default: 100 per step).

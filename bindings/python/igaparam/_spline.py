@@ -5,7 +5,6 @@ from __future__ import annotations
 
 import ctypes
 import dataclasses
-import operator
 import os
 from typing import TYPE_CHECKING, Callable, Optional, Tuple, Union
 
@@ -14,6 +13,7 @@ import numpy.typing as npt
 
 from . import _capi
 from ._handle import _Handle
+from ._ints import c_int_value
 from ._capi import FitChoice, Stage
 from ._mesh import _attach_progress, _check, _ptr, _set_counts
 from ._refit import _Refit
@@ -145,17 +145,11 @@ class ValidityReport:
 
 def _uint32(value, name):
     """``value`` as an int that fits a uint32 (the library checks its range)."""
-    value = operator.index(value)
-    if not 0 <= value < 2**32:
-        raise ValueError(f"{name} must be a non-negative 32-bit integer, not {value}")
-    return value
+    return c_int_value(value, name, ctypes.c_uint32, 0)
 
 
 def _index(value, name):
-    value = operator.index(value)
-    if value < 0:
-        raise ValueError(f"{name} must be >= 0, not {value}")
-    return value
+    return c_int_value(value, name, ctypes.c_size_t, 0)
 
 
 class Spline(_Refit, _Handle):
@@ -286,7 +280,8 @@ class Spline(_Refit, _Handle):
             max_rounds: largest number of refinement rounds (default 4).
             max_level: cells at this level are not refined further, at most 16 (default 10).
             max_sweeps: optimization sweeps after each refinement (default 200).
-            threads: worker threads; 0 uses one per core (the result does not depend on it).
+            threads: worker threads, capped to the cores; 0 uses one per core (the result does not
+                depend on it).
             progress: None, or a callable ``progress(stage, done, total)`` called before each
                 refinement; return False to cancel (``Status.CANCELLED``). An exception raised
                 by it cancels the loop and is re-raised.

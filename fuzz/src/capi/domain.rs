@@ -299,17 +299,14 @@ impl Domains {
         if c.one_in(2) {
             o.tolerance = c.pick(&[1e-3, 1e-2, 1e-7, 0.0, -1.0, f64::NAN, f64::INFINITY]);
         }
-        // Levels up to 5 (2 for a solid), or values the API must refuse (higher legal levels
-        // are a matter of resource limits: 4^16 cells).
-        let top = if solid { 2 } else { 5 };
-        o.min_level =
-            c.pick(&[0, 1, 2, 17, u32::MAX])
-                .min(if c.one_in(6) { u32::MAX } else { top });
-        o.max_level = c
-            .pick(&[0, 1, 2, 3, 4, 5, 17, u32::MAX])
-            .min(if c.one_in(6) { u32::MAX } else { top });
+        // Any legal level (up to 16), or values the API must refuse; a small cell budget keeps
+        // deep builds short: they are refused (IGAPARAM_STATUS_LIMIT_EXCEEDED) before they
+        // grow past it.
+        o.min_level = c.pick(&[0, 1, 2, 5, 16, 17, u32::MAX]);
+        o.max_level = c.pick(&[0, 1, 2, 3, 4, 5, 16, 17, u32::MAX]);
+        o.max_cells = c.pick(&[if solid { 600 } else { 4000 }, 400, 16, 0]);
         o.max_sweeps = c.pick(&[0, 1, 10, 50]);
-        o.threads = c.pick(&[0, 1, 2, 4097, u32::MAX]);
+        o.threads = c.pick(&[0, 1, 2, 4096, 4097, u32::MAX]);
         o.repair_rounds = c.pick(&[0, 1, 2]);
         if c.one_in(3) {
             o.boundary_offset = c.pick(&[0.0, 0.5, -1.0, f64::NAN, 1e300]);

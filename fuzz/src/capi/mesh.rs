@@ -361,8 +361,8 @@ impl Meshes {
         if c.one_in(3) {
             o.relaxation = c.pick(&[1.0, 1.99, 2.0, 0.5, f64::NAN]);
         }
-        // Up to 2 threads, or a count the API refuses (issue 17 item 5: thousands are slow).
-        o.threads = c.pick(&[0, 1, 2, 4097, u32::MAX]);
+        // Any legal count (capped to the cores), or one the API refuses.
+        o.threads = c.pick(&[0, 1, 2, 4096, 4097, u32::MAX]);
         if c.one_in(3) {
             o.progress = Some(super::progress);
             set_cancel_after(c.pick(&[0, 1, 3, 1000]));

@@ -136,7 +136,7 @@ impl Splines {
             // Level 6 at most, or one the API must refuse (higher legal levels cost 4^level elements).
             o.max_level = c.pick(&[3, 5, 6, 17]);
             o.max_sweeps = c.pick(&[0, 10, 50]);
-            o.threads = c.pick(&[0, 1, 2, 4097]);
+            o.threads = c.pick(&[0, 1, 2, 4096, 4097]);
             if c.one_in(3) {
                 o.progress = Some(super::progress);
                 set_cancel_after(c.pick(&[0, 1, 1000]));

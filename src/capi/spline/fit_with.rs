@@ -6,7 +6,7 @@ use std::ffi::{c_int, c_void};
 use super::{fit_report, igaparam_fit_report, igaparam_spline, igaparam_validity_options};
 use super::{new_recorded_handle, AnyMap};
 use crate::capi::boundary::{non_null, non_null_mut, run, Failure};
-use crate::capi::domain::{current, igaparam_domain};
+use crate::capi::domain::{current, igaparam_domain, DomainData};
 use crate::capi::mesh::call_progress;
 use crate::capi::{igaparam_progress_fn, igaparam_stage, igaparam_status};
 use crate::domain::{CubeMap, Domain};
@@ -52,8 +52,8 @@ pub struct igaparam_fit_options {
     /// Largest number of smoothing sweeps over the inner control points of a certified map
     /// (default 8); 0 turns the smoothing off.
     pub smoothing_sweeps: u32,
-    /// Worker threads, at most 4096; 0 (default) uses one per core. The result does not depend
-    /// on it.
+    /// Worker threads, at most 4096, capped to the machine's cores; 0 (default) uses one per
+    /// core. The result does not depend on it.
     pub threads: u32,
     /// Progress callback, or NULL (default): called on the calling thread with
     /// `IGAPARAM_STAGE_FIT` (`done` of `total` fits and certifications),
@@ -159,21 +159,24 @@ pub(super) fn fit_into(
     report: *mut igaparam_fit_report,
 ) -> std::result::Result<(), Failure> {
     non_null_mut(out, "out")?;
+    let mut held = current(domain)?;
+    let (d, watch) = held.split();
     let mut progress = |stage: FitStage, done: usize, total: usize| {
         let stage = match stage {
             FitStage::Fit => igaparam_stage::IGAPARAM_STAGE_FIT,
             FitStage::Untangling => igaparam_stage::IGAPARAM_STAGE_UNTANGLING,
             FitStage::Smoothing => igaparam_stage::IGAPARAM_STAGE_SMOOTHING,
         };
-        call_progress(raw.progress, raw.progress_user, stage, done, total)
+        call_progress(raw.progress, raw.progress_user, stage, done, total) && !watch.requested()
     };
-    let (map, r, validity, opts, record) = match current(domain)? {
-        igaparam_domain::Planar(_, Some(d)) => {
-            let (m, r, v, o, rec) = fit(d, raw, &mut progress)?;
+    let explain = |e| Failure::from(watch.explain(e));
+    let (map, r, validity, opts, record) = match d {
+        DomainData::Planar(_, Some(d)) => {
+            let (m, r, v, o, rec) = fit(d, raw, &mut progress).map_err(explain)?;
             (AnyMap::Two(m), r, v, o, rec)
         }
-        igaparam_domain::Solid(_, Some(d)) => {
-            let (m, r, v, o, rec) = fit(d, raw, &mut progress)?;
+        DomainData::Solid(_, Some(d)) => {
+            let (m, r, v, o, rec) = fit(d, raw, &mut progress).map_err(explain)?;
             (AnyMap::Three(m), r, v, o, rec)
         }
         _ => return Err(Error::invalid("the domain has not been built").into()),

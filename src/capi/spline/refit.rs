@@ -3,7 +3,7 @@
 
 use super::{dim, fit_report, igaparam_fit_report, igaparam_spline, AnyMap};
 use crate::capi::boundary::{non_null_mut, run, Failure};
-use crate::capi::domain::{current, igaparam_domain, untangle_options};
+use crate::capi::domain::{current, igaparam_domain, untangle_options, DomainData};
 use crate::capi::igaparam_status;
 use crate::domain::{CubeMap, Domain};
 use crate::error::{Error, Result};
@@ -98,14 +98,13 @@ pub extern "C" fn igaparam_spline_refit(
 ) -> igaparam_status {
     run("igaparam_spline_refit", || {
         let d = current(domain)?;
-        let s = non_null_mut(spline, "spline")?;
+        let mut held = super::held(spline)?;
+        let s = &mut *held;
         let options = ValidityOptions::default();
         let record = s.fit.as_ref();
-        let (fit, validity, record) = match (&mut s.map, d) {
-            (AnyMap::Two(m), igaparam_domain::Planar(_, Some(b))) => refit(m, b, record, &options)?,
-            (AnyMap::Three(m), igaparam_domain::Solid(_, Some(b))) => {
-                refit(m, b, record, &options)?
-            }
+        let (fit, validity, record) = match (&mut s.map, &*d) {
+            (AnyMap::Two(m), DomainData::Planar(_, Some(b))) => refit(m, b, record, &options)?,
+            (AnyMap::Three(m), DomainData::Solid(_, Some(b))) => refit(m, b, record, &options)?,
             (map, _) => {
                 let d = dim(map);
                 return Err(Error::invalid(format!(
@@ -150,7 +149,7 @@ pub extern "C" fn igaparam_spline_fit_rule(
     out: *mut igaparam_fit_rule,
 ) -> igaparam_status {
     run("igaparam_spline_fit_rule", || {
-        let s = crate::capi::boundary::non_null(spline, "spline")?;
+        let s = super::held(spline)?;
         let record = s.fit.as_ref().ok_or_else(|| {
             Failure::from(Error::invalid(
                 "the spline was read from a file: its fit rule is unknown until \

@@ -1,0 +1,118 @@
+//! Resource limits: thread counts beyond the cores are capped (same result, bit for bit), and a
+//! domain build beyond its cell budget is refused at once instead of exhausting memory.
+
+mod common;
+
+use common::{boundary_mask, grid, mapped_square, MappedCube};
+use igaparam::boundary::BoundaryLoop2;
+use igaparam::domain::{Domain, DomainOptions, PlanarDomain, DEFAULT_MAX_CELLS};
+use igaparam::threads::{cores, effective_threads, MAX_THREADS};
+use igaparam::{CellType, ErrorKind, Mesh, RelocateOptions};
+
+#[test]
+fn thread_counts_are_capped_to_the_cores() {
+    assert_eq!(effective_threads(0), cores());
+    assert_eq!(effective_threads(MAX_THREADS), cores());
+    assert_eq!(effective_threads(1), 1);
+    assert!(effective_threads(2) <= 2);
+}
+
+/// A Q9 grid whose top is pushed up, relocated with `threads`: the positions.
+fn relocated(threads: usize) -> Vec<f64> {
+    let (xyz, conn) = grid(CellType::Quad9, 6);
+    let mut mesh = Mesh::new(CellType::Quad9, &xyz, &conn).unwrap();
+    mesh.set_fixed(&boundary_mask(&xyz, 2)).unwrap();
+    let moved: Vec<f64> = xyz
+        .chunks(3)
+        .flat_map(|p| {
+            let lift = if p[1] == 1.0 {
+                0.4 * (std::f64::consts::PI * p[0]).sin()
+            } else {
+                0.0
+            };
+            [p[0], p[1] + lift, p[2]]
+        })
+        .collect();
+    mesh.move_nodes(None, &moved).unwrap();
+    let options = RelocateOptions {
+        threads,
+        ..Default::default()
+    };
+    let report = mesh.relocate(&options, &mut |_, _, _| true).unwrap();
+    assert_eq!(report.invalid_after, 0);
+    mesh.positions().iter().flatten().copied().collect()
+}
+
+#[test]
+fn the_largest_thread_count_gives_the_one_thread_result() {
+    let one = relocated(1);
+    assert!(one
+        .iter()
+        .zip(&relocated(MAX_THREADS))
+        .all(|(a, b)| a.to_bits() == b.to_bits()));
+}
+
+fn unit_square() -> BoundaryLoop2 {
+    mapped_square(|p| p, 1)
+}
+
+#[test]
+fn a_uniform_level_beyond_the_budget_is_refused_before_any_work() {
+    let planar = DomainOptions {
+        min_level: 16,
+        max_level: 16,
+        ..Default::default()
+    };
+    let e = PlanarDomain::build(unit_square(), &planar, &mut |_, _| true).unwrap_err();
+    assert_eq!(e.kind, ErrorKind::LimitExceeded, "{}", e.message);
+    assert!(
+        e.message.contains("4294967296") && e.message.contains("max_cells"),
+        "{}",
+        e.message
+    );
+    let solid = DomainOptions {
+        min_level: 12,
+        max_level: 12,
+        ..DomainOptions::solid()
+    };
+    let Err(e) = Domain::build(MappedCube(|p: [f64; 3]| p), &solid, &mut |_, _| true) else {
+        panic!("a solid of 8^12 cells was built");
+    };
+    assert_eq!(e.kind, ErrorKind::LimitExceeded, "{}", e.message);
+    // Raised to what it needs, a budget lets the same uniform level through.
+    let within = DomainOptions {
+        min_level: 3,
+        max_level: 3,
+        max_cells: 64,
+        ..Default::default()
+    };
+    let (_, report) = PlanarDomain::build(unit_square(), &within, &mut |_, _| true).unwrap();
+    assert_eq!(report.cells, 64);
+    assert_eq!(DomainOptions::default().max_cells, DEFAULT_MAX_CELLS);
+}
+
+#[test]
+fn an_adaptation_beyond_the_budget_stops_and_can_be_cancelled() {
+    // A curved side no tolerance of 1e-300 is met on: the adaptation would go to level 16.
+    let wavy = |p: [f64; 2]| [p[0], p[1] * (1.0 + 0.2 * (3.0 * p[0]).sin())];
+    let boundary = mapped_square(wavy, 32);
+    let options = DomainOptions {
+        tolerance: 1e-300,
+        max_level: 16,
+        max_cells: 500,
+        ..Default::default()
+    };
+    let e = PlanarDomain::build(boundary.clone(), &options, &mut |_, _| true).unwrap_err();
+    assert_eq!(e.kind, ErrorKind::LimitExceeded, "{}", e.message);
+    let mut calls = 0;
+    let generous = DomainOptions {
+        max_cells: usize::MAX,
+        ..options
+    };
+    let e = PlanarDomain::build(boundary, &generous, &mut |_, _| {
+        calls += 1;
+        calls < 3
+    })
+    .unwrap_err();
+    assert_eq!((e.kind, calls), (ErrorKind::Cancelled, 3), "{}", e.message);
+}
