@@ -203,7 +203,7 @@ typedef struct igaparam_mesh igaparam_mesh;
 
 /**
  * A rank's part of a partitioned mesh (opaque). Create with `igaparam_partition_new`, release
- * with `igaparam_partition_free`.
+ * with `igaparam_partition_free`. One call at a time (see `IGAPARAM_STATUS_BUSY`).
  */
 typedef struct igaparam_partition igaparam_partition;
 
@@ -1758,7 +1758,9 @@ igaparam_status igaparam_partition_new(const igaparam_exchange *exchange,
                                        igaparam_partition **out);
 
 /**
- * Releases a part. NULL is a no-op. Not collective.
+ * Releases a part. NULL is a no-op. Not collective. Called on a part in use (from the
+ * progress callback of `igaparam_partition_relocate`, or from another thread), the release
+ * waits for that call, which cancels on every rank at its next progress point.
  */
 void igaparam_partition_free(igaparam_partition *part);
 

@@ -19,6 +19,8 @@ pub enum ErrorKind {
     Io,
     /// The work asked for exceeds a resource limit (cells, memory) the caller can raise.
     LimitExceeded,
+    /// A handle is in use by another call (agreed among the ranks of a partitioned call).
+    Busy,
 }
 
 /// An error with its kind and a readable message.

@@ -58,6 +58,7 @@ fn status_of(kind: ErrorKind) -> igaparam_status {
         ErrorKind::Cancelled => IGAPARAM_STATUS_CANCELLED,
         ErrorKind::Io => IGAPARAM_STATUS_IO,
         ErrorKind::LimitExceeded => IGAPARAM_STATUS_LIMIT_EXCEEDED,
+        ErrorKind::Busy => IGAPARAM_STATUS_BUSY,
     }
 }
 

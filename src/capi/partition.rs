@@ -7,6 +7,7 @@
 use std::ffi::{c_int, c_void};
 
 use super::boundary::{check_capacity, non_null, non_null_mut, run, slice, slice_mut, Failure};
+use super::handle::{acquire, handle_type, into_raw, release, Guarded};
 use super::mesh::{cell_type, igaparam_relocate_options, igaparam_relocate_report};
 use super::mesh::{
     igaparam_relocate_options_default, relocate_options, relocation_progress, report_of,
@@ -16,10 +17,9 @@ use crate::error::{Error, Result};
 use crate::partition::{Exchange, PartInput, Partition, Ranks};
 
 /// A rank's part of a partitioned mesh (opaque). Create with `igaparam_partition_new`, release
-/// with `igaparam_partition_free`.
-pub struct igaparam_partition {
-    part: Partition,
-}
+/// with `igaparam_partition_free`. One call at a time (see `IGAPARAM_STATUS_BUSY`).
+pub struct igaparam_partition(Guarded<Partition>);
+handle_type!(igaparam_partition, Partition, "partition");
 
 /// The host's all-to-all exchange of bytes among the ranks of its communicator, as
 /// `MPI_Alltoallv` with `MPI_BYTE`: send `send_counts[r]` bytes to each rank `r` (the blocks of
@@ -124,6 +124,10 @@ fn failed(f: Failure) -> Error {
     match f {
         Failure::Library(e) => e,
         Failure::Null(name) => Error::invalid(format!("argument `{name}` is NULL")),
+        Failure::Busy(name, kind) => Error::new(
+            crate::error::ErrorKind::Busy,
+            format!("the {kind} `{name}` is in use by another call"),
+        ),
     }
 }
 
@@ -190,18 +194,17 @@ pub extern "C" fn igaparam_partition_new(
             })
         })();
         let part = Partition::new(&mut ranks, input.as_ref().map_err(Clone::clone))?;
-        *non_null_mut(out, "out")? = Box::into_raw(Box::new(igaparam_partition { part }));
+        *non_null_mut(out, "out")? = into_raw::<igaparam_partition>(part);
         Ok(())
     })
 }
 
-/// Releases a part. NULL is a no-op. Not collective.
+/// Releases a part. NULL is a no-op. Not collective. Called on a part in use (from the
+/// progress callback of `igaparam_partition_relocate`, or from another thread), the release
+/// waits for that call, which cancels on every rank at its next progress point.
 #[no_mangle]
 pub extern "C" fn igaparam_partition_free(part: *mut igaparam_partition) {
-    if !part.is_null() {
-        // SAFETY: `part` came from `igaparam_partition_new` (Box::into_raw), released once.
-        drop(unsafe { Box::from_raw(part) });
-    }
+    release(part);
 }
 
 /// Writes the number of local nodes (owned and ghosts) to `*out`.
@@ -211,7 +214,7 @@ pub extern "C" fn igaparam_partition_node_count(
     out: *mut usize,
 ) -> igaparam_status {
     run("igaparam_partition_node_count", || {
-        *non_null_mut(out, "out")? = non_null(part, "part")?.part.node_count();
+        *non_null_mut(out, "out")? = acquire(part, "part")?.node_count();
         Ok(())
     })
 }
@@ -226,8 +229,8 @@ pub extern "C" fn igaparam_partition_set_fixed(
     mask: *const u8,
 ) -> igaparam_status {
     run("igaparam_partition_set_fixed", || {
-        let p = non_null_mut(part, "part")?;
-        p.part.set_fixed(slice(mask, num_nodes, "mask")?)?;
+        let mut p = acquire(part, "part")?;
+        p.set_fixed(slice(mask, num_nodes, "mask")?)?;
         Ok(())
     })
 }
@@ -242,8 +245,8 @@ pub extern "C" fn igaparam_partition_set_positions(
     xyz: *const f64,
 ) -> igaparam_status {
     run("igaparam_partition_set_positions", || {
-        let p = non_null_mut(part, "part")?;
-        p.part.set_positions(slice(xyz, len, "xyz")?)?;
+        let mut p = acquire(part, "part")?;
+        p.set_positions(slice(xyz, len, "xyz")?)?;
         Ok(())
     })
 }
@@ -257,8 +260,8 @@ pub extern "C" fn igaparam_partition_copy_positions(
     len: usize,
 ) -> igaparam_status {
     run("igaparam_partition_copy_positions", || {
-        let p = non_null(part, "part")?;
-        let positions = p.part.positions();
+        let p = acquire(part, "part")?;
+        let positions = p.positions();
         check_capacity("xyz", len, positions.len())?;
         slice_mut(xyz, len, "xyz")?[..positions.len()].copy_from_slice(&positions);
         Ok(())
@@ -287,16 +290,21 @@ pub extern "C" fn igaparam_partition_relocate(
             false => *non_null(options, "options")?,
         };
         let opts = relocate_options(&raw);
-        let handle = match non_null_mut(part, "part") {
-            Ok(handle) => handle,
-            Err(null) => {
-                let e = failed(null.into());
+        let mut held = match acquire(part, "part") {
+            Ok(held) => held,
+            Err(f) => {
+                let e = failed(f);
                 ranks.agree(Err(e.clone()))?;
                 return Err(e.into());
             }
         };
-        let mut progress = relocation_progress(&raw);
-        let r = handle.part.relocate(&mut ranks, opts, &mut progress)?;
+        let (handle, watch) = held.split();
+        let mut relocation = relocation_progress(&raw);
+        let mut progress =
+            |stage, done, total| relocation(stage, done, total) && !watch.requested();
+        let r = handle
+            .relocate(&mut ranks, opts, &mut progress)
+            .map_err(|e| watch.explain(e))?;
         if !report.is_null() {
             *non_null_mut(report, "report")? = igaparam_partition_report {
                 relocation: report_of(&r.relocation),
