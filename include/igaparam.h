@@ -727,22 +727,6 @@ typedef struct {
 } igaparam_partition_report;
 
 /**
- * Options of `igaparam_spline_check_validity`; get the defaults from
- * `igaparam_validity_options_default`.
- */
-typedef struct {
-  /**
-   * Largest number of subdivisions of an element's Jacobian determinant polynomial when its
-   * Bernstein coefficients are inconclusive (default 5, at most 12).
-   */
-  uint32_t max_depth;
-  /**
-   * Sample points per direction and element for the mean ratio (default 5, from 2 to 64).
-   */
-  uint32_t samples;
-} igaparam_validity_options;
-
-/**
  * What a fit (`igaparam_spline_fit_domain`, `igaparam_spline_refine`) did.
  */
 typedef struct {
@@ -873,42 +857,26 @@ typedef struct {
 } igaparam_adapt_report;
 
 /**
- * Certified validity and quality of a spline map.
- */
-typedef struct {
-  /**
-   * 1 when `det J_S > 0` is proven on every element (Bernstein coefficients of the
-   * determinant, with subdivision), else 0.
-   */
-  int32_t certified_positive;
-  /**
-   * Elements where positivity is not proven.
-   */
-  size_t uncertified;
-  /**
-   * Smallest lower bound of `det J_S` over the elements (Jacobian with respect to the
-   * parametric coordinates).
-   */
-  double det_lower_bound;
-  /**
-   * Smallest mean ratio `q_S = d·det(J)^(2/d)/‖J‖²` at the samples (0 where det ≤ 0).
-   */
-  double min_quality;
-  /**
-   * Mean of the element means of `q_S` at the samples.
-   */
-  double mean_quality;
-  /**
-   * Samples per quality bin `[i/10, (i+1)/10)` (the last bin includes 1).
-   */
-  size_t histogram[IGAPARAM_HISTOGRAM_BINS];
-} igaparam_validity_report;
-
-/**
  * Which fit rule `igaparam_spline_fit_domain_with` uses: one of the `IGAPARAM_FIT_CHOICE_*`
  * values.
  */
 typedef int igaparam_fit_choice;
+
+/**
+ * Options of `igaparam_spline_check_validity`; get the defaults from
+ * `igaparam_validity_options_default`.
+ */
+typedef struct {
+  /**
+   * Largest number of subdivisions of an element's Jacobian determinant polynomial when its
+   * Bernstein coefficients are inconclusive (default 5, at most 12).
+   */
+  uint32_t max_depth;
+  /**
+   * Sample points per direction and element for the mean ratio (default 5, from 2 to 64).
+   */
+  uint32_t samples;
+} igaparam_validity_options;
 
 /**
  * Options of `igaparam_spline_fit_domain_with`; get the defaults (those of
@@ -1003,6 +971,38 @@ typedef struct {
    */
   double mean_quality;
 } igaparam_refit_report;
+
+/**
+ * Certified validity and quality of a spline map.
+ */
+typedef struct {
+  /**
+   * 1 when `det J_S > 0` is proven on every element (Bernstein coefficients of the
+   * determinant, with subdivision), else 0.
+   */
+  int32_t certified_positive;
+  /**
+   * Elements where positivity is not proven.
+   */
+  size_t uncertified;
+  /**
+   * Smallest lower bound of `det J_S` over the elements (Jacobian with respect to the
+   * parametric coordinates).
+   */
+  double det_lower_bound;
+  /**
+   * Smallest mean ratio `q_S = d·det(J)^(2/d)/‖J‖²` at the samples (0 where det ≤ 0).
+   */
+  double min_quality;
+  /**
+   * Mean of the element means of `q_S` at the samples.
+   */
+  double mean_quality;
+  /**
+   * Samples per quality bin `[i/10, (i+1)/10)` (the last bin includes 1).
+   */
+  size_t histogram[IGAPARAM_HISTOGRAM_BINS];
+} igaparam_validity_report;
 
 /**
  * Bilinear quadrilateral, 4 nodes (VTK_QUAD).
@@ -1810,11 +1810,6 @@ igaparam_status igaparam_partition_relocate(igaparam_partition *part,
                                             igaparam_partition_report *report);
 
 /**
- * The default validity options.
- */
-igaparam_validity_options igaparam_validity_options_default(void);
-
-/**
  * Fits the cubic THB spline space of a built domain's T-mesh to its optimized piecewise
  * quadratic map (interpolation at the Greville points, sparse LU; a least-squares fit when that
  * system is singular) and writes the new handle to `*out`. `report` may be NULL. Fails with
@@ -1831,28 +1826,6 @@ igaparam_validity_options igaparam_validity_options_default(void);
 igaparam_status igaparam_spline_fit_domain(const igaparam_domain *domain,
                                            igaparam_spline **out,
                                            igaparam_fit_report *report);
-
-/**
- * The default adaptation options.
- */
-igaparam_adapt_options igaparam_adapt_options_default(void);
-
-/**
- * The adaptive loop of the method: fits the spline map of the built domain, refines the T-mesh
- * cells whose spline element is not certified valid or has a sampled mean ratio under
- * `options->target_quality`, optimizes the T-mesh again and refits, for at most
- * `options->max_rounds` rounds. On success the domain keeps its refined T-mesh and `*out`
- * receives the spline of that T-mesh (`report` may be NULL; `options` may be NULL for the
- * defaults). Each fit untangles, and each refinement optimizes, by the rules the domain was
- * built with (its `boundary_offset`, relief and repair rounds: a domain built with
- * `boundary_offset = 0` keeps its boundary); `options` gives the threads and sweep limit. On
- * failure or cancellation (`IGAPARAM_STATUS_CANCELLED`) the domain is unchanged and `*out` is
- * not written.
- */
-igaparam_status igaparam_domain_fit_adaptive(igaparam_domain *domain,
-                                             const igaparam_adapt_options *options,
-                                             igaparam_spline **out,
-                                             igaparam_adapt_report *report);
 
 /**
  * Reads a THB-spline map written by `igaparam_spline_write_gismo` (G+Smo XML, a
@@ -1944,6 +1917,75 @@ igaparam_status igaparam_spline_copy_element_extraction(const igaparam_spline *s
                                                         size_t len_operator);
 
 /**
+ * h-refines the spline space, the map staying the same (the refined space contains the old
+ * one; the new control points reproduce the map to round-off, see `report->residual`): the
+ * elements listed in `elements` (`n` indices) are split into 2^d, and more where the mesh's
+ * 2:1 balance requires it; `n = 0` (with `elements` NULL) refines every element once. An
+ * element already at the deepest level, 20 (side 2^-20; see `igaparam_spline_copy_elements`),
+ * is left as it is. Element and function indices change. `report` may be NULL. On failure the
+ * spline is unchanged.
+ */
+igaparam_status igaparam_spline_refine(igaparam_spline *spline,
+                                       size_t n,
+                                       const size_t *elements,
+                                       igaparam_fit_report *report);
+
+/**
+ * Writes the map sampled on `samples^d` sub-cells per element (`samples` from 1 to 32) to a VTK
+ * XML unstructured grid (`.vtu`) at `path`: quads (2D) or hexahedra (3D) at the physical
+ * positions, point data `quality` (q_S) and `det` (det J_S), cell data `level` and `element`.
+ */
+igaparam_status igaparam_spline_write_vtu(const igaparam_spline *spline,
+                                          const char *path,
+                                          uint32_t samples);
+
+/**
+ * Writes the map to G+Smo XML at `path` (a `THBSpline2`/`THBSpline3` geometry over a
+ * `THBSplineBasis2`/`3`, readable by G+Smo's `gsReadFile` and by `igaparam_spline_read_gismo`).
+ */
+igaparam_status igaparam_spline_write_gismo(const igaparam_spline *spline, const char *path);
+
+/**
+ * The default adaptation options.
+ */
+igaparam_adapt_options igaparam_adapt_options_default(void);
+
+/**
+ * The adaptive loop of the method: fits the spline map of the built domain, refines the T-mesh
+ * cells whose spline element is not certified valid or has a sampled mean ratio under
+ * `options->target_quality`, optimizes the T-mesh again and refits, for at most
+ * `options->max_rounds` rounds. On success the domain keeps its refined T-mesh and `*out`
+ * receives the spline of that T-mesh (`report` may be NULL; `options` may be NULL for the
+ * defaults). Each fit untangles, and each refinement optimizes, by the rules the domain was
+ * built with (its `boundary_offset`, relief and repair rounds: a domain built with
+ * `boundary_offset = 0` keeps its boundary); `options` gives the threads and sweep limit. On
+ * failure or cancellation (`IGAPARAM_STATUS_CANCELLED`) the domain is unchanged and `*out` is
+ * not written.
+ */
+igaparam_status igaparam_domain_fit_adaptive(igaparam_domain *domain,
+                                             const igaparam_adapt_options *options,
+                                             igaparam_spline **out,
+                                             igaparam_adapt_report *report);
+
+/**
+ * The default fit options: those of `igaparam_spline_fit_domain`.
+ */
+igaparam_fit_options igaparam_fit_options_default(void);
+
+/**
+ * Fits the cubic THB spline space of a built domain's T-mesh to its optimized map as
+ * `igaparam_spline_fit_domain` does, with `options` (NULL for the defaults, which make the
+ * two calls equal): the fit rule, the certification, the untangling and smoothing, the threads
+ * and a progress callback that can cancel. `report` may be NULL. Errors:
+ * `IGAPARAM_STATUS_INVALID_ARGUMENT` for an unbuilt domain or an option out of range,
+ * `IGAPARAM_STATUS_CANCELLED` when the callback cancels; `*out` is written only on success.
+ */
+igaparam_status igaparam_spline_fit_domain_with(const igaparam_domain *domain,
+                                                const igaparam_fit_options *options,
+                                                igaparam_spline **out,
+                                                igaparam_fit_report *report);
+
+/**
  * Evaluates the map at `n` parametric points `params` (`n × d` doubles in [0,1]^d): `points`
  * receives `S(params)` (`n × d` doubles) and `jacobians` the Jacobian matrices `dS/du`
  * (`n × d × d` doubles, row-major: entry (i, j) = ∂S_i/∂u_j). Either may be NULL to skip it.
@@ -2008,72 +2050,6 @@ igaparam_status igaparam_spline_basis_at(const igaparam_spline *spline,
                                          size_t len);
 
 /**
- * h-refines the spline space, the map staying the same (the refined space contains the old
- * one; the new control points reproduce the map to round-off, see `report->residual`): the
- * elements listed in `elements` (`n` indices) are split into 2^d, and more where the mesh's
- * 2:1 balance requires it; `n = 0` (with `elements` NULL) refines every element once. An
- * element already at the deepest level, 20 (side 2^-20; see `igaparam_spline_copy_elements`),
- * is left as it is. Element and function indices change. `report` may be NULL. On failure the
- * spline is unchanged.
- */
-igaparam_status igaparam_spline_refine(igaparam_spline *spline,
-                                       size_t n,
-                                       const size_t *elements,
-                                       igaparam_fit_report *report);
-
-/**
- * Certifies the sign of the Jacobian determinant on every element (lower bounds from the
- * Bernstein coefficients of det J_S, a polynomial of degree 5×5 in 2D and 8×8×8 in 3D per
- * element, subdividing when inconclusive) and samples the mean ratio; writes the summary to
- * `*report`. `options` may be NULL for the defaults. `element_bounds` (may be NULL) receives
- * each element's lower bound of det J_S and `element_quality` (may be NULL) each element's
- * smallest sampled mean ratio, `len` doubles each, at least `num_elements`: what an adaptive
- * loop marks elements by. A spline from `igaparam_spline_fit_domain` or
- * `igaparam_domain_fit_adaptive` (and its clones) keeps the validity its fit computed with the
- * default options, returned without recomputing for equal options until the map changes
- * (`igaparam_spline_refine`); the result is the same either way.
- */
-igaparam_status igaparam_spline_check_validity(const igaparam_spline *spline,
-                                               const igaparam_validity_options *options,
-                                               igaparam_validity_report *report,
-                                               double *element_bounds,
-                                               double *element_quality,
-                                               size_t len);
-
-/**
- * Writes the map sampled on `samples^d` sub-cells per element (`samples` from 1 to 32) to a VTK
- * XML unstructured grid (`.vtu`) at `path`: quads (2D) or hexahedra (3D) at the physical
- * positions, point data `quality` (q_S) and `det` (det J_S), cell data `level` and `element`.
- */
-igaparam_status igaparam_spline_write_vtu(const igaparam_spline *spline,
-                                          const char *path,
-                                          uint32_t samples);
-
-/**
- * Writes the map to G+Smo XML at `path` (a `THBSpline2`/`THBSpline3` geometry over a
- * `THBSplineBasis2`/`3`, readable by G+Smo's `gsReadFile` and by `igaparam_spline_read_gismo`).
- */
-igaparam_status igaparam_spline_write_gismo(const igaparam_spline *spline, const char *path);
-
-/**
- * The default fit options: those of `igaparam_spline_fit_domain`.
- */
-igaparam_fit_options igaparam_fit_options_default(void);
-
-/**
- * Fits the cubic THB spline space of a built domain's T-mesh to its optimized map as
- * `igaparam_spline_fit_domain` does, with `options` (NULL for the defaults, which make the
- * two calls equal): the fit rule, the certification, the untangling and smoothing, the threads
- * and a progress callback that can cancel. `report` may be NULL. Errors:
- * `IGAPARAM_STATUS_INVALID_ARGUMENT` for an unbuilt domain or an option out of range,
- * `IGAPARAM_STATUS_CANCELLED` when the callback cancels; `*out` is written only on success.
- */
-igaparam_status igaparam_spline_fit_domain_with(const igaparam_domain *domain,
-                                                const igaparam_fit_options *options,
-                                                igaparam_spline **out,
-                                                igaparam_fit_report *report);
-
-/**
  * Recomputes the control points of `spline` from the domain's current T-mesh (after
  * `igaparam_domain_update`), in the spline's own space: the same basis functions, elements,
  * Bézier extraction and Greville points, so the basis count and element list never change.
@@ -2101,6 +2077,30 @@ igaparam_status igaparam_spline_refit(igaparam_spline *spline,
  * spline read from a file and never refitted (its fit is unknown).
  */
 igaparam_status igaparam_spline_fit_rule(const igaparam_spline *spline, igaparam_fit_rule *out);
+
+/**
+ * The default validity options.
+ */
+igaparam_validity_options igaparam_validity_options_default(void);
+
+/**
+ * Certifies the sign of the Jacobian determinant on every element (lower bounds from the
+ * Bernstein coefficients of det J_S, a polynomial of degree 5×5 in 2D and 8×8×8 in 3D per
+ * element, subdividing when inconclusive) and samples the mean ratio; writes the summary to
+ * `*report`. `options` may be NULL for the defaults. `element_bounds` (may be NULL) receives
+ * each element's lower bound of det J_S and `element_quality` (may be NULL) each element's
+ * smallest sampled mean ratio, `len` doubles each, at least `num_elements`: what an adaptive
+ * loop marks elements by. A spline from `igaparam_spline_fit_domain` or
+ * `igaparam_domain_fit_adaptive` (and its clones) keeps the validity its fit computed with the
+ * default options, returned without recomputing for equal options until the map changes
+ * (`igaparam_spline_refine`); the result is the same either way.
+ */
+igaparam_status igaparam_spline_check_validity(const igaparam_spline *spline,
+                                               const igaparam_validity_options *options,
+                                               igaparam_validity_report *report,
+                                               double *element_bounds,
+                                               double *element_quality,
+                                               size_t len);
 
 #ifdef __cplusplus
 }  // extern "C"

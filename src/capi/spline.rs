@@ -3,26 +3,16 @@
 //! inverse, basis functions at a point, Bézier extraction, control points), h-refinement,
 //! certified validity and output.
 
-use std::ffi::{c_char, c_void};
+use std::ffi::c_char;
 
-use super::boundary::{
-    check_capacity, non_null, non_null_mut, optional_out, run, slice, slice_mut, Failure,
-};
-use super::domain::{adapt_domain, c_path, igaparam_domain};
+use super::boundary::{check_capacity, non_null_mut, optional_out, run, slice, slice_mut, Failure};
+use super::domain::{c_path, igaparam_domain};
 use super::handle::{acquire, handle_type, into_raw, release, Guarded, Held};
 use super::igaparam_status;
-use super::mesh::call_progress;
-use super::{igaparam_progress_fn, igaparam_stage};
-use crate::error::{check_finite, Error, Result};
+use crate::error::{Error, Result};
 use crate::spline::{
-    AdaptOptions, FitRecord, FitReport, SplineMap, SplineSpace, ValidityOptions, ValidityReport,
-    HISTOGRAM_BINS,
+    FitRecord, FitReport, SplineMap, SplineSpace, ValidityOptions, ValidityReport,
 };
-
-mod fit_with;
-mod refit;
-pub use fit_with::*;
-pub use refit::*;
 
 /// The spline map of a 2D or 3D domain.
 #[derive(Clone, Debug)]
@@ -37,11 +27,23 @@ pub(crate) enum AnyMap {
 macro_rules! with_map {
     ($map:expr, $m:ident => $body:expr) => {
         match &*$map {
-            AnyMap::Two($m) => $body,
-            AnyMap::Three($m) => $body,
+            $crate::capi::spline::AnyMap::Two($m) => $body,
+            $crate::capi::spline::AnyMap::Three($m) => $body,
         }
     };
 }
+
+// After `with_map`, which the per-query files use.
+mod adapt;
+mod fit_with;
+mod query;
+mod refit;
+mod validity;
+pub use adapt::*;
+pub use fit_with::*;
+pub use query::*;
+pub use refit::*;
+pub use validity::*;
 
 /// A cubic truncated hierarchical B-spline (THB) map `S: [0,1]^d → Ω`, d = 2 or 3 (opaque).
 /// Create with `igaparam_spline_fit_domain` or `igaparam_spline_read_gismo`, release with
@@ -103,52 +105,6 @@ pub struct igaparam_fit_report {
     /// only when the map stays certified and its smallest sampled mean ratio rises); 0 when
     /// the map was kept as it was.
     pub smoothed: usize,
-}
-
-/// Options of `igaparam_spline_check_validity`; get the defaults from
-/// `igaparam_validity_options_default`.
-#[repr(C)]
-#[derive(Clone, Copy, Debug)]
-pub struct igaparam_validity_options {
-    /// Largest number of subdivisions of an element's Jacobian determinant polynomial when its
-    /// Bernstein coefficients are inconclusive (default 5, at most 12).
-    pub max_depth: u32,
-    /// Sample points per direction and element for the mean ratio (default 5, from 2 to 64).
-    pub samples: u32,
-}
-
-/// Number of bins of the quality histogram of `igaparam_validity_report`.
-pub const IGAPARAM_HISTOGRAM_BINS: usize = 10;
-const _: () = assert!(IGAPARAM_HISTOGRAM_BINS == HISTOGRAM_BINS);
-
-/// Certified validity and quality of a spline map.
-#[repr(C)]
-#[derive(Clone, Copy, Debug, Default)]
-pub struct igaparam_validity_report {
-    /// 1 when `det J_S > 0` is proven on every element (Bernstein coefficients of the
-    /// determinant, with subdivision), else 0.
-    pub certified_positive: i32,
-    /// Elements where positivity is not proven.
-    pub uncertified: usize,
-    /// Smallest lower bound of `det J_S` over the elements (Jacobian with respect to the
-    /// parametric coordinates).
-    pub det_lower_bound: f64,
-    /// Smallest mean ratio `q_S = d·det(J)^(2/d)/‖J‖²` at the samples (0 where det ≤ 0).
-    pub min_quality: f64,
-    /// Mean of the element means of `q_S` at the samples.
-    pub mean_quality: f64,
-    /// Samples per quality bin `[i/10, (i+1)/10)` (the last bin includes 1).
-    pub histogram: [usize; IGAPARAM_HISTOGRAM_BINS],
-}
-
-/// The default validity options.
-#[no_mangle]
-pub extern "C" fn igaparam_validity_options_default() -> igaparam_validity_options {
-    let d = ValidityOptions::default();
-    igaparam_validity_options {
-        max_depth: d.max_depth,
-        samples: d.samples as u32,
-    }
 }
 
 fn fit_report(r: &FitReport) -> igaparam_fit_report {
@@ -215,52 +171,6 @@ fn dim(map: &AnyMap) -> usize {
     }
 }
 
-/// `n × width` doubles at `ptr`, with an overflow check.
-fn points_in<'a>(
-    ptr: *const f64,
-    n: usize,
-    width: usize,
-    name: &'static str,
-) -> std::result::Result<&'a [f64], Failure> {
-    let len = n
-        .checked_mul(width)
-        .ok_or_else(|| Error::invalid(format!("`{name}`: count {n} is too large")))?;
-    let values = slice(ptr, len, name)?;
-    check_finite(name, values)?;
-    Ok(values)
-}
-
-/// A writable buffer of `n × width` doubles, or `None` when `ptr` is NULL.
-fn points_out<'a>(
-    ptr: *mut f64,
-    n: usize,
-    width: usize,
-    name: &'static str,
-) -> std::result::Result<Option<&'a mut [f64]>, Failure> {
-    if ptr.is_null() {
-        return Ok(None);
-    }
-    let len = n
-        .checked_mul(width)
-        .ok_or_else(|| Error::invalid(format!("`{name}`: count {n} is too large")))?;
-    Ok(Some(slice_mut(ptr, len, name)?))
-}
-
-/// Checks that `x` lies in the parametric domain [0,1]^d.
-fn check_parameter<const D: usize>(x: [f64; D], i: usize) -> Result<()> {
-    if x.iter().all(|v| (0.0..=1.0).contains(v)) {
-        Ok(())
-    } else {
-        Err(Error::invalid(format!(
-            "parametric point {i} {x:?} is outside [0,1]^{D}"
-        )))
-    }
-}
-
-fn point<const D: usize>(values: &[f64], i: usize) -> [f64; D] {
-    std::array::from_fn(|k| values[D * i + k])
-}
-
 /// Fits the cubic THB spline space of a built domain's T-mesh to its optimized piecewise
 /// quadratic map (interpolation at the Greville points, sparse LU; a least-squares fit when that
 /// system is singular) and writes the new handle to `*out`. `report` may be NULL. Fails with
@@ -281,147 +191,6 @@ pub extern "C" fn igaparam_spline_fit_domain(
 ) -> igaparam_status {
     run("igaparam_spline_fit_domain", || {
         fit_into(domain, &igaparam_fit_options_default(), out, report)
-    })
-}
-
-/// Options of `igaparam_domain_fit_adaptive`; get the defaults from
-/// `igaparam_adapt_options_default`.
-#[repr(C)]
-#[derive(Clone, Copy, Debug)]
-pub struct igaparam_adapt_options {
-    /// Target: every element certified valid with a smallest sampled mean ratio of at least
-    /// this, in [0, 1) (default 0.1). Elements below it or not certified are refined.
-    pub target_quality: f64,
-    /// Largest number of refinement rounds (default 4).
-    pub max_rounds: u32,
-    /// Cells at this level are not refined further, at most 16 (default 10).
-    pub max_level: u32,
-    /// Largest number of optimization sweeps after each refinement (default 200).
-    pub max_sweeps: u32,
-    /// Worker threads, at most 4096, capped to the machine's cores; 0 (default) uses one per core.
-    pub threads: u32,
-    /// Progress callback, or NULL (default). Called with `IGAPARAM_STAGE_ADAPTATION`, `done`
-    /// rounds and `total` = `max_rounds` before each refinement; returning non-zero cancels.
-    pub progress: igaparam_progress_fn,
-    /// Passed to `progress` as its first argument.
-    pub progress_user: *mut c_void,
-}
-
-/// What `igaparam_domain_fit_adaptive` did.
-#[repr(C)]
-#[derive(Clone, Copy, Debug, Default)]
-pub struct igaparam_adapt_report {
-    /// Refinement rounds done (0 when the first fit met the target).
-    pub rounds: u32,
-    /// 1 when the map returned meets the target, else 0 (the round or level limit stopped it).
-    pub reached: i32,
-    /// T-mesh cells refined over all rounds.
-    pub refined_cells: usize,
-    /// Elements of the map returned (= cells of the domain's final T-mesh).
-    pub elements: usize,
-    /// Basis functions of the map returned.
-    pub basis: usize,
-    /// 1 when every element of the map returned is certified valid.
-    pub certified_positive: i32,
-    /// Smallest sampled mean ratio of the map returned.
-    pub min_quality: f64,
-    /// Mean sampled mean ratio of the map returned.
-    pub mean_quality: f64,
-    /// Wall-clock seconds.
-    pub seconds: f64,
-}
-
-/// The default adaptation options.
-#[no_mangle]
-pub extern "C" fn igaparam_adapt_options_default() -> igaparam_adapt_options {
-    let d = AdaptOptions::default();
-    igaparam_adapt_options {
-        target_quality: d.target_quality,
-        max_rounds: d.max_rounds,
-        max_level: d.max_level as u32,
-        max_sweeps: d.domain.max_sweeps,
-        threads: d.domain.threads as u32,
-        progress: None,
-        progress_user: std::ptr::null_mut(),
-    }
-}
-
-/// The adaptive loop of the method: fits the spline map of the built domain, refines the T-mesh
-/// cells whose spline element is not certified valid or has a sampled mean ratio under
-/// `options->target_quality`, optimizes the T-mesh again and refits, for at most
-/// `options->max_rounds` rounds. On success the domain keeps its refined T-mesh and `*out`
-/// receives the spline of that T-mesh (`report` may be NULL; `options` may be NULL for the
-/// defaults). Each fit untangles, and each refinement optimizes, by the rules the domain was
-/// built with (its `boundary_offset`, relief and repair rounds: a domain built with
-/// `boundary_offset = 0` keeps its boundary); `options` gives the threads and sweep limit. On
-/// failure or cancellation (`IGAPARAM_STATUS_CANCELLED`) the domain is unchanged and `*out` is
-/// not written.
-#[no_mangle]
-pub extern "C" fn igaparam_domain_fit_adaptive(
-    domain: *mut igaparam_domain,
-    options: *const igaparam_adapt_options,
-    out: *mut *mut igaparam_spline,
-    report: *mut igaparam_adapt_report,
-) -> igaparam_status {
-    run("igaparam_domain_fit_adaptive", || {
-        non_null_mut(out, "out")?;
-        let raw = if options.is_null() {
-            igaparam_adapt_options_default()
-        } else {
-            *non_null(options, "options")?
-        };
-        if !raw.target_quality.is_finite() {
-            return Err(Error::new(
-                crate::error::ErrorKind::NotFinite,
-                format!("target_quality is {}", raw.target_quality),
-            )
-            .into());
-        }
-        if raw.max_level > 16 || raw.threads > 4096 {
-            return Err(Error::invalid(format!(
-                "max_level = {} (at most 16), threads = {} (at most 4096)",
-                raw.max_level, raw.threads
-            ))
-            .into());
-        }
-        let defaults = AdaptOptions::default();
-        let opts = AdaptOptions {
-            target_quality: raw.target_quality,
-            max_rounds: raw.max_rounds,
-            max_level: raw.max_level as u8,
-            domain: crate::domain::DomainOptions {
-                max_sweeps: raw.max_sweeps,
-                threads: raw.threads as usize,
-                ..defaults.domain
-            },
-            ..defaults
-        };
-        let mut progress = |done: usize, total: usize| {
-            call_progress(
-                raw.progress,
-                raw.progress_user,
-                igaparam_stage::IGAPARAM_STAGE_ADAPTATION,
-                done,
-                total,
-            )
-        };
-        let (map, mut r, record) = adapt_domain(domain, &opts, &mut progress)?;
-        let last = r.rounds.last().copied().unwrap_or_default();
-        if !report.is_null() {
-            *non_null_mut(report, "report")? = igaparam_adapt_report {
-                rounds: r.rounds.len().saturating_sub(1) as u32,
-                reached: r.reached as i32,
-                refined_cells: r.rounds.iter().map(|x| x.refined).sum(),
-                elements: last.elements,
-                basis: last.basis,
-                certified_positive: last.certified_positive as i32,
-                min_quality: last.min_quality,
-                mean_quality: last.mean_quality,
-                seconds: r.seconds,
-            };
-        }
-        let validity = std::mem::take(&mut r.validity);
-        new_recorded_handle(map, Some((opts.validity, validity)), Some(record), out)
     })
 }
 
@@ -646,210 +415,6 @@ pub extern "C" fn igaparam_spline_copy_element_extraction(
     })
 }
 
-/// Evaluates the map at `n` parametric points `params` (`n × d` doubles in [0,1]^d): `points`
-/// receives `S(params)` (`n × d` doubles) and `jacobians` the Jacobian matrices `dS/du`
-/// (`n × d × d` doubles, row-major: entry (i, j) = ∂S_i/∂u_j). Either may be NULL to skip it.
-/// Fails with `IGAPARAM_STATUS_INVALID_ARGUMENT` when a point is outside [0,1]^d.
-#[no_mangle]
-pub extern "C" fn igaparam_spline_evaluate(
-    spline: *const igaparam_spline,
-    n: usize,
-    params: *const f64,
-    points: *mut f64,
-    jacobians: *mut f64,
-) -> igaparam_status {
-    run("igaparam_spline_evaluate", || {
-        let m = map(spline)?;
-        let d = dim(&m);
-        let input = points_in(params, n, d, "params")?;
-        let values = with_map!(m, m => evaluate(m, input)?);
-        if let Some(out) = points_out(points, n, d, "points")? {
-            for (o, (y, _)) in out.chunks_mut(d).zip(&values) {
-                o.copy_from_slice(y);
-            }
-        }
-        if let Some(out) = points_out(jacobians, n, d * d, "jacobians")? {
-            for (o, (_, j)) in out.chunks_mut(d * d).zip(&values) {
-                o.copy_from_slice(j);
-            }
-        }
-        Ok(())
-    })
-}
-
-/// Values and row-major Jacobians of `m` at the flat parametric points `input`.
-fn evaluate<const D: usize>(m: &SplineMap<D>, input: &[f64]) -> Result<Vec<(Vec<f64>, Vec<f64>)>> {
-    let xs: Vec<[f64; D]> = (0..input.len() / D).map(|i| point(input, i)).collect();
-    for (i, &x) in xs.iter().enumerate() {
-        check_parameter(x, i)?;
-    }
-    m.eval_many(&xs)
-        .into_iter()
-        .enumerate()
-        .map(|(i, r)| {
-            let (y, j) =
-                r.ok_or_else(|| Error::invalid(format!("point {i} cannot be evaluated")))?;
-            Ok((y.to_vec(), j.iter().flatten().copied().collect()))
-        })
-        .collect()
-}
-
-/// Writes the mean ratio of the Jacobian, `q_S = d·det(J)^(2/d)/‖J‖²_F` in [0, 1] (1 for a
-/// conformal map, 0 where det J ≤ 0), at `n` parametric points `params` (`n × d` doubles) into
-/// `quality` (`n` doubles).
-#[no_mangle]
-pub extern "C" fn igaparam_spline_mean_ratio(
-    spline: *const igaparam_spline,
-    n: usize,
-    params: *const f64,
-    quality: *mut f64,
-) -> igaparam_status {
-    run("igaparam_spline_mean_ratio", || {
-        let m = map(spline)?;
-        let d = dim(&m);
-        let input = points_in(params, n, d, "params")?;
-        let q = with_map!(m, m => mean_ratios(m, input)?);
-        slice_mut(quality, n, "quality")?.copy_from_slice(&q);
-        Ok(())
-    })
-}
-
-/// Mean ratios of `m` at the flat parametric points `input`.
-fn mean_ratios<const D: usize>(m: &SplineMap<D>, input: &[f64]) -> Result<Vec<f64>> {
-    Ok(evaluate(m, input)?
-        .iter()
-        .map(|(_, j)| {
-            let jacobian: [[f64; D]; D] = std::array::from_fn(|a| point(j, a));
-            crate::optimize::metric::mean_ratio(&jacobian)
-        })
-        .collect())
-}
-
-/// Inverts the map at `n` physical points `points` (`n × d` doubles): `params` receives the
-/// parametric points whose images they are (`n × d` doubles), `found` (`n` ints) 1 where the
-/// point was located and 0 where it is outside the domain (or Newton's method did not converge;
-/// `params` is NaN there). `found` may be NULL. Newton's method starts from the nearest of
-/// `samples^d` samples per element (`samples` from 2 to 32; 4 is a good choice).
-#[no_mangle]
-pub extern "C" fn igaparam_spline_invert(
-    spline: *const igaparam_spline,
-    n: usize,
-    points: *const f64,
-    samples: u32,
-    params: *mut f64,
-    found: *mut i32,
-) -> igaparam_status {
-    run("igaparam_spline_invert", || {
-        let m = map(spline)?;
-        let d = dim(&m);
-        if !(2..=32).contains(&samples) {
-            return Err(Error::invalid(format!("samples = {samples} is not in 2..=32")).into());
-        }
-        let input = points_in(points, n, d, "points")?;
-        let located: Vec<Option<Vec<f64>>> = with_map!(m, m => {
-            let inverse = m.inverse_map(samples as usize);
-            (0..n).map(|i| inverse.locate(point(input, i)).map(|x| x.to_vec())).collect()
-        });
-        let out =
-            points_out(params, n, d, "params")?.ok_or(super::boundary::NullArgument("params"))?;
-        let flags = if found.is_null() {
-            None
-        } else {
-            Some(slice_mut(found, n, "found")?)
-        };
-        for (o, x) in out.chunks_mut(d).zip(&located) {
-            match x {
-                Some(x) => o.copy_from_slice(x),
-                None => o.fill(f64::NAN),
-            }
-        }
-        if let Some(flags) = flags {
-            for (f, x) in flags.iter_mut().zip(&located) {
-                *f = x.is_some() as i32;
-            }
-        }
-        Ok(())
-    })
-}
-
-/// Writes to `*count` the number of basis functions non-zero on the element holding the
-/// parametric point `param` (`d` doubles in [0,1]^d): the size of the buffers of
-/// `igaparam_spline_basis_at`.
-#[no_mangle]
-pub extern "C" fn igaparam_spline_basis_count_at(
-    spline: *const igaparam_spline,
-    param: *const f64,
-    count: *mut usize,
-) -> igaparam_status {
-    run("igaparam_spline_basis_count_at", || {
-        let (f, _, _) = basis_at(spline, param)?;
-        *non_null_mut(count, "count")? = f.len();
-        Ok(())
-    })
-}
-
-/// The basis functions non-zero on the element holding the parametric point `param` (`d`
-/// doubles in [0,1]^d; on an element boundary the element on the upper side): `*count` receives
-/// their number `m`, `functions` their global indices (`m` values), `values` their values (`m`
-/// doubles) and `gradients` their gradients with respect to the parametric coordinates
-/// (`m × d` doubles). The buffers hold `len` functions (`len ≥ m`, see
-/// `igaparam_spline_basis_count_at`); any of them may be NULL to skip it. The values sum to 1,
-/// and `Σ values[i] × control_point[functions[i]]` is the map's value at `param`. When the
-/// buffers are too small (`IGAPARAM_STATUS_BUFFER_TOO_SMALL`) `*count` still receives `m` and
-/// nothing else is written.
-#[no_mangle]
-pub extern "C" fn igaparam_spline_basis_at(
-    spline: *const igaparam_spline,
-    param: *const f64,
-    count: *mut usize,
-    functions: *mut usize,
-    values: *mut f64,
-    gradients: *mut f64,
-    len: usize,
-) -> igaparam_status {
-    run("igaparam_spline_basis_at", || {
-        let (f, v, g) = basis_at(spline, param)?;
-        let count = non_null_mut(count, "count")?;
-        let m = f.len();
-        *count = m;
-        if !functions.is_null() || !values.is_null() || !gradients.is_null() {
-            check_capacity("functions/values/gradients (functions)", len, m)?;
-        }
-        for (out, from) in [
-            (optional_out(values, m), &v),
-            (optional_out(gradients, g.len()), &g),
-        ] {
-            if let Some(out) = out {
-                out.copy_from_slice(from);
-            }
-        }
-        if let Some(out) = optional_out(functions, m) {
-            out.copy_from_slice(&f);
-        }
-        Ok(())
-    })
-}
-
-/// Functions, values and gradients (`d` per function) of the basis at a point.
-type BasisAt = (Vec<usize>, Vec<f64>, Vec<f64>);
-
-/// The functions non-zero at `param`, their values and their gradients.
-fn basis_at(
-    spline: *const igaparam_spline,
-    param: *const f64,
-) -> std::result::Result<BasisAt, Failure> {
-    let m = map(spline)?;
-    let d = dim(&m);
-    let x = points_in(param, 1, d, "param")?;
-    Ok(with_map!(m, m => {
-        let p = point(x, 0);
-        check_parameter(p, 0)?;
-        let b = m.basis_at(p)
-            .ok_or_else(|| Error::invalid("the point is outside the parametric domain"))?;
-        (b.functions, b.values, b.gradients.iter().flatten().copied().collect())
-    }))
-}
-
 /// h-refines the spline space, the map staying the same (the refined space contains the old
 /// one; the new control points reproduce the map to round-off, see `report->residual`): the
 /// elements listed in `elements` (`n` indices) are split into 2^d, and more where the mesh's
@@ -887,84 +452,6 @@ fn refine<const D: usize>(m: &SplineMap<D>, marked: &[usize]) -> Result<(SplineM
         check_element(m.element_count(), e)?;
     }
     m.refine(marked)
-}
-
-/// Certifies the sign of the Jacobian determinant on every element (lower bounds from the
-/// Bernstein coefficients of det J_S, a polynomial of degree 5×5 in 2D and 8×8×8 in 3D per
-/// element, subdividing when inconclusive) and samples the mean ratio; writes the summary to
-/// `*report`. `options` may be NULL for the defaults. `element_bounds` (may be NULL) receives
-/// each element's lower bound of det J_S and `element_quality` (may be NULL) each element's
-/// smallest sampled mean ratio, `len` doubles each, at least `num_elements`: what an adaptive
-/// loop marks elements by. A spline from `igaparam_spline_fit_domain` or
-/// `igaparam_domain_fit_adaptive` (and its clones) keeps the validity its fit computed with the
-/// default options, returned without recomputing for equal options until the map changes
-/// (`igaparam_spline_refine`); the result is the same either way.
-#[no_mangle]
-pub extern "C" fn igaparam_spline_check_validity(
-    spline: *const igaparam_spline,
-    options: *const igaparam_validity_options,
-    report: *mut igaparam_validity_report,
-    element_bounds: *mut f64,
-    element_quality: *mut f64,
-    len: usize,
-) -> igaparam_status {
-    run("igaparam_spline_check_validity", || {
-        let s = held(spline)?;
-        let raw = if options.is_null() {
-            igaparam_validity_options_default()
-        } else {
-            *non_null(options, "options")?
-        };
-        if raw.max_depth > 12 || !(2..=64).contains(&raw.samples) {
-            return Err(Error::invalid(format!(
-                "options: max_depth = {} (at most 12), samples = {} (2 to 64)",
-                raw.max_depth, raw.samples
-            ))
-            .into());
-        }
-        let opts = ValidityOptions {
-            max_depth: raw.max_depth,
-            samples: raw.samples as usize,
-        };
-        let out = non_null_mut(report, "report")?;
-        // The validity the fit computed, when it used the same options; else compute it.
-        let computed;
-        let v = match &s.validity {
-            Some((kept, v)) if *kept == opts => v,
-            _ => {
-                computed = with_map!(&s.map, m => m.validity(&opts));
-                &computed
-            }
-        };
-        let n = v.elements.len();
-        if !element_bounds.is_null() {
-            check_capacity("element_bounds", len, n)?;
-        }
-        if !element_quality.is_null() {
-            check_capacity("element_quality", len, n)?;
-        }
-        if !element_bounds.is_null() {
-            let o = slice_mut(element_bounds, len, "element_bounds")?;
-            for (o, e) in o.iter_mut().zip(&v.elements) {
-                *o = e.det_lower_bound;
-            }
-        }
-        if !element_quality.is_null() {
-            let o = slice_mut(element_quality, len, "element_quality")?;
-            for (o, e) in o.iter_mut().zip(&v.elements) {
-                *o = e.min_quality;
-            }
-        }
-        *out = igaparam_validity_report {
-            certified_positive: v.certified_positive as i32,
-            uncertified: v.uncertified,
-            det_lower_bound: v.det_lower_bound,
-            min_quality: v.min_quality,
-            mean_quality: v.mean_quality,
-            histogram: v.histogram,
-        };
-        Ok(())
-    })
 }
 
 /// Writes the map sampled on `samples^d` sub-cells per element (`samples` from 1 to 32) to a VTK

@@ -1,0 +1,153 @@
+//! The method's adaptive loop from C: `igaparam_domain_fit_adaptive`, its options and report.
+
+use std::ffi::c_void;
+
+use super::{igaparam_spline, new_recorded_handle};
+use crate::capi::boundary::{non_null, non_null_mut, run};
+use crate::capi::domain::{adapt_domain, igaparam_domain};
+use crate::capi::igaparam_status;
+use crate::capi::mesh::call_progress;
+use crate::capi::{igaparam_progress_fn, igaparam_stage};
+use crate::error::Error;
+use crate::spline::AdaptOptions;
+
+/// Options of `igaparam_domain_fit_adaptive`; get the defaults from
+/// `igaparam_adapt_options_default`.
+#[repr(C)]
+#[derive(Clone, Copy, Debug)]
+pub struct igaparam_adapt_options {
+    /// Target: every element certified valid with a smallest sampled mean ratio of at least
+    /// this, in [0, 1) (default 0.1). Elements below it or not certified are refined.
+    pub target_quality: f64,
+    /// Largest number of refinement rounds (default 4).
+    pub max_rounds: u32,
+    /// Cells at this level are not refined further, at most 16 (default 10).
+    pub max_level: u32,
+    /// Largest number of optimization sweeps after each refinement (default 200).
+    pub max_sweeps: u32,
+    /// Worker threads, at most 4096, capped to the machine's cores; 0 (default) uses one per core.
+    pub threads: u32,
+    /// Progress callback, or NULL (default). Called with `IGAPARAM_STAGE_ADAPTATION`, `done`
+    /// rounds and `total` = `max_rounds` before each refinement; returning non-zero cancels.
+    pub progress: igaparam_progress_fn,
+    /// Passed to `progress` as its first argument.
+    pub progress_user: *mut c_void,
+}
+
+/// What `igaparam_domain_fit_adaptive` did.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default)]
+pub struct igaparam_adapt_report {
+    /// Refinement rounds done (0 when the first fit met the target).
+    pub rounds: u32,
+    /// 1 when the map returned meets the target, else 0 (the round or level limit stopped it).
+    pub reached: i32,
+    /// T-mesh cells refined over all rounds.
+    pub refined_cells: usize,
+    /// Elements of the map returned (= cells of the domain's final T-mesh).
+    pub elements: usize,
+    /// Basis functions of the map returned.
+    pub basis: usize,
+    /// 1 when every element of the map returned is certified valid.
+    pub certified_positive: i32,
+    /// Smallest sampled mean ratio of the map returned.
+    pub min_quality: f64,
+    /// Mean sampled mean ratio of the map returned.
+    pub mean_quality: f64,
+    /// Wall-clock seconds.
+    pub seconds: f64,
+}
+
+/// The default adaptation options.
+#[no_mangle]
+pub extern "C" fn igaparam_adapt_options_default() -> igaparam_adapt_options {
+    let d = AdaptOptions::default();
+    igaparam_adapt_options {
+        target_quality: d.target_quality,
+        max_rounds: d.max_rounds,
+        max_level: d.max_level as u32,
+        max_sweeps: d.domain.max_sweeps,
+        threads: d.domain.threads as u32,
+        progress: None,
+        progress_user: std::ptr::null_mut(),
+    }
+}
+
+/// The adaptive loop of the method: fits the spline map of the built domain, refines the T-mesh
+/// cells whose spline element is not certified valid or has a sampled mean ratio under
+/// `options->target_quality`, optimizes the T-mesh again and refits, for at most
+/// `options->max_rounds` rounds. On success the domain keeps its refined T-mesh and `*out`
+/// receives the spline of that T-mesh (`report` may be NULL; `options` may be NULL for the
+/// defaults). Each fit untangles, and each refinement optimizes, by the rules the domain was
+/// built with (its `boundary_offset`, relief and repair rounds: a domain built with
+/// `boundary_offset = 0` keeps its boundary); `options` gives the threads and sweep limit. On
+/// failure or cancellation (`IGAPARAM_STATUS_CANCELLED`) the domain is unchanged and `*out` is
+/// not written.
+#[no_mangle]
+pub extern "C" fn igaparam_domain_fit_adaptive(
+    domain: *mut igaparam_domain,
+    options: *const igaparam_adapt_options,
+    out: *mut *mut igaparam_spline,
+    report: *mut igaparam_adapt_report,
+) -> igaparam_status {
+    run("igaparam_domain_fit_adaptive", || {
+        non_null_mut(out, "out")?;
+        let raw = if options.is_null() {
+            igaparam_adapt_options_default()
+        } else {
+            *non_null(options, "options")?
+        };
+        if !raw.target_quality.is_finite() {
+            return Err(Error::new(
+                crate::error::ErrorKind::NotFinite,
+                format!("target_quality is {}", raw.target_quality),
+            )
+            .into());
+        }
+        if raw.max_level > 16 || raw.threads > 4096 {
+            return Err(Error::invalid(format!(
+                "max_level = {} (at most 16), threads = {} (at most 4096)",
+                raw.max_level, raw.threads
+            ))
+            .into());
+        }
+        let defaults = AdaptOptions::default();
+        let opts = AdaptOptions {
+            target_quality: raw.target_quality,
+            max_rounds: raw.max_rounds,
+            max_level: raw.max_level as u8,
+            domain: crate::domain::DomainOptions {
+                max_sweeps: raw.max_sweeps,
+                threads: raw.threads as usize,
+                ..defaults.domain
+            },
+            ..defaults
+        };
+        let mut progress = |done: usize, total: usize| {
+            call_progress(
+                raw.progress,
+                raw.progress_user,
+                igaparam_stage::IGAPARAM_STAGE_ADAPTATION,
+                done,
+                total,
+            )
+        };
+        let (map, mut r, record) = adapt_domain(domain, &opts, &mut progress)?;
+        let last = r.rounds.last().copied().unwrap_or_default();
+        if !report.is_null() {
+            *non_null_mut(report, "report")? = igaparam_adapt_report {
+                rounds: r.rounds.len().saturating_sub(1) as u32,
+                reached: r.reached as i32,
+                refined_cells: r.rounds.iter().map(|x| x.refined).sum(),
+                elements: last.elements,
+                basis: last.basis,
+                certified_positive: last.certified_positive as i32,
+                min_quality: last.min_quality,
+                mean_quality: last.mean_quality,
+                seconds: r.seconds,
+            };
+        }
+        let validity = std::mem::take(&mut r.validity);
+        new_recorded_handle(map, Some((opts.validity, validity)), Some(record), out)
+    })
+}

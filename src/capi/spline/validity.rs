@@ -1,0 +1,132 @@
+//! Certified validity of a spline map from C: `igaparam_spline_check_validity`, its options and
+//! its report.
+
+use super::{held, igaparam_spline};
+use crate::capi::boundary::{check_capacity, non_null, non_null_mut, run, slice_mut};
+use crate::capi::igaparam_status;
+use crate::error::Error;
+use crate::spline::{ValidityOptions, HISTOGRAM_BINS};
+
+/// Options of `igaparam_spline_check_validity`; get the defaults from
+/// `igaparam_validity_options_default`.
+#[repr(C)]
+#[derive(Clone, Copy, Debug)]
+pub struct igaparam_validity_options {
+    /// Largest number of subdivisions of an element's Jacobian determinant polynomial when its
+    /// Bernstein coefficients are inconclusive (default 5, at most 12).
+    pub max_depth: u32,
+    /// Sample points per direction and element for the mean ratio (default 5, from 2 to 64).
+    pub samples: u32,
+}
+
+/// Number of bins of the quality histogram of `igaparam_validity_report`.
+pub const IGAPARAM_HISTOGRAM_BINS: usize = 10;
+const _: () = assert!(IGAPARAM_HISTOGRAM_BINS == HISTOGRAM_BINS);
+
+/// Certified validity and quality of a spline map.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default)]
+pub struct igaparam_validity_report {
+    /// 1 when `det J_S > 0` is proven on every element (Bernstein coefficients of the
+    /// determinant, with subdivision), else 0.
+    pub certified_positive: i32,
+    /// Elements where positivity is not proven.
+    pub uncertified: usize,
+    /// Smallest lower bound of `det J_S` over the elements (Jacobian with respect to the
+    /// parametric coordinates).
+    pub det_lower_bound: f64,
+    /// Smallest mean ratio `q_S = d·det(J)^(2/d)/‖J‖²` at the samples (0 where det ≤ 0).
+    pub min_quality: f64,
+    /// Mean of the element means of `q_S` at the samples.
+    pub mean_quality: f64,
+    /// Samples per quality bin `[i/10, (i+1)/10)` (the last bin includes 1).
+    pub histogram: [usize; IGAPARAM_HISTOGRAM_BINS],
+}
+
+/// The default validity options.
+#[no_mangle]
+pub extern "C" fn igaparam_validity_options_default() -> igaparam_validity_options {
+    let d = ValidityOptions::default();
+    igaparam_validity_options {
+        max_depth: d.max_depth,
+        samples: d.samples as u32,
+    }
+}
+
+/// Certifies the sign of the Jacobian determinant on every element (lower bounds from the
+/// Bernstein coefficients of det J_S, a polynomial of degree 5×5 in 2D and 8×8×8 in 3D per
+/// element, subdividing when inconclusive) and samples the mean ratio; writes the summary to
+/// `*report`. `options` may be NULL for the defaults. `element_bounds` (may be NULL) receives
+/// each element's lower bound of det J_S and `element_quality` (may be NULL) each element's
+/// smallest sampled mean ratio, `len` doubles each, at least `num_elements`: what an adaptive
+/// loop marks elements by. A spline from `igaparam_spline_fit_domain` or
+/// `igaparam_domain_fit_adaptive` (and its clones) keeps the validity its fit computed with the
+/// default options, returned without recomputing for equal options until the map changes
+/// (`igaparam_spline_refine`); the result is the same either way.
+#[no_mangle]
+pub extern "C" fn igaparam_spline_check_validity(
+    spline: *const igaparam_spline,
+    options: *const igaparam_validity_options,
+    report: *mut igaparam_validity_report,
+    element_bounds: *mut f64,
+    element_quality: *mut f64,
+    len: usize,
+) -> igaparam_status {
+    run("igaparam_spline_check_validity", || {
+        let s = held(spline)?;
+        let raw = if options.is_null() {
+            igaparam_validity_options_default()
+        } else {
+            *non_null(options, "options")?
+        };
+        if raw.max_depth > 12 || !(2..=64).contains(&raw.samples) {
+            return Err(Error::invalid(format!(
+                "options: max_depth = {} (at most 12), samples = {} (2 to 64)",
+                raw.max_depth, raw.samples
+            ))
+            .into());
+        }
+        let opts = ValidityOptions {
+            max_depth: raw.max_depth,
+            samples: raw.samples as usize,
+        };
+        let out = non_null_mut(report, "report")?;
+        // The validity the fit computed, when it used the same options; else compute it.
+        let computed;
+        let v = match &s.validity {
+            Some((kept, v)) if *kept == opts => v,
+            _ => {
+                computed = with_map!(&s.map, m => m.validity(&opts));
+                &computed
+            }
+        };
+        let n = v.elements.len();
+        if !element_bounds.is_null() {
+            check_capacity("element_bounds", len, n)?;
+        }
+        if !element_quality.is_null() {
+            check_capacity("element_quality", len, n)?;
+        }
+        if !element_bounds.is_null() {
+            let o = slice_mut(element_bounds, len, "element_bounds")?;
+            for (o, e) in o.iter_mut().zip(&v.elements) {
+                *o = e.det_lower_bound;
+            }
+        }
+        if !element_quality.is_null() {
+            let o = slice_mut(element_quality, len, "element_quality")?;
+            for (o, e) in o.iter_mut().zip(&v.elements) {
+                *o = e.min_quality;
+            }
+        }
+        *out = igaparam_validity_report {
+            certified_positive: v.certified_positive as i32,
+            uncertified: v.uncertified,
+            det_lower_bound: v.det_lower_bound,
+            min_quality: v.min_quality,
+            mean_quality: v.mean_quality,
+            histogram: v.histogram,
+        };
+        Ok(())
+    })
+}
