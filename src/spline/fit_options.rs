@@ -88,6 +88,13 @@ impl FitOptions {
     /// Checks the ranges of every field.
     pub fn validate(&self) -> Result<()> {
         self.validity.validate()?;
+        if self.threads > crate::threads::MAX_THREADS {
+            return Err(Error::invalid(format!(
+                "threads = {} must be at most {}",
+                self.threads,
+                crate::threads::MAX_THREADS
+            )));
+        }
         let u = &self.untangle;
         if !(2..=MAX_SAMPLES).contains(&u.samples) {
             return Err(Error::invalid(format!(
@@ -160,6 +167,11 @@ mod tests {
         assert!(o.validate().is_err());
         let mut o = FitOptions::default();
         o.untangle.samples = 1;
+        assert!(o.validate().is_err());
+        let o = FitOptions {
+            threads: crate::threads::MAX_THREADS + 1,
+            ..Default::default()
+        };
         assert!(o.validate().is_err());
     }
 

@@ -83,12 +83,6 @@ pub extern "C" fn igaparam_fit_options_default() -> igaparam_fit_options {
 
 /// The core options of `raw` for a domain built with `boundary_offset`.
 fn fit_options(raw: &igaparam_fit_options, boundary_offset: f64) -> Result<FitOptions> {
-    if raw.threads > 4096 || raw.boundary_offset.is_nan() {
-        return Err(Error::invalid(format!(
-            "threads = {} (at most 4096), boundary_offset = {}",
-            raw.threads, raw.boundary_offset
-        )));
-    }
     let options = FitOptions {
         choice: match raw.choice {
             IGAPARAM_FIT_CHOICE_BEST => FitChoice::Best,
