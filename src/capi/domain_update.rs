@@ -291,13 +291,6 @@ pub extern "C" fn igaparam_domain_update(
         } else {
             *non_null(options, "options")?
         };
-        if raw.threads > 4096 {
-            return Err(Error::invalid(format!(
-                "threads = {} is above the limit of 4096",
-                raw.threads
-            ))
-            .into());
-        }
         let opts = UpdateOptions {
             max_sweeps: raw.max_sweeps,
             threads: raw.threads as usize,

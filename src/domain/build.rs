@@ -4,13 +4,16 @@
 
 use std::time::Instant;
 
+use super::budget::Sweeps;
 use super::frame::{signed_measure, Frame, Framed};
 use crate::error::{Error, ErrorKind, Result};
 use crate::io::vtu::{DataArray, UnstructuredGrid};
 use crate::optimize::laplace::MeshGraph;
 use crate::optimize::motion::{follow_motion, optimize_in_place};
 use crate::optimize::small::{bounding_box, det, Matrix};
-use crate::optimize::{invalid_cells, lattice, NodeSolverOptions, QualitySummary, SweepOptions};
+use crate::optimize::{
+    invalid_cells, lattice, NodeSolverOptions, Problem, QualitySummary, SweepOptions,
+};
 use crate::tmesh::{TMesh, Tree, UNIT};
 
 /// A map from the boundary of the unit square (d = 2) or cube (d = 3) onto the boundary of a
@@ -33,8 +36,14 @@ pub struct DomainOptions {
     pub min_level: u8,
     /// Deepest level of the adaptation.
     pub max_level: u8,
-    /// Largest number of optimization sweeps.
+    /// Largest number of optimization sweeps of one stage (the first optimization, each step of
+    /// the growth from the bounding box, each round of the seam relief and of the repair).
     pub max_sweeps: u32,
+    /// Largest number of sweeps of all stages together, at least 1 (default
+    /// [`DEFAULT_MAX_TOTAL_SWEEPS`]): once spent, the running stage stops after its sweep and no
+    /// later stage starts; the T-mesh is what the sweeps so far made of it, and the report says
+    /// so ([`DomainReport::sweep_budget_exhausted`]).
+    pub max_total_sweeps: u32,
     /// Worker threads; 0 uses one per core.
     pub threads: usize,
     /// Rounds of repair after the optimization: while cells stay invalid, they are refined (as
@@ -58,7 +67,18 @@ pub struct DomainOptions {
 /// solid's cells cost more).
 pub const DEFAULT_MAX_CELLS: usize = 1_000_000;
 
+/// The default total sweep budget of a domain build (`max_total_sweeps` of its options): 25
+/// times the default `max_sweeps`. The bundled domains need at most 4,071 (the duck's B-rep at
+/// tolerance 1e-4, level 4, with its growth from the bounding box and its repair); inputs that
+/// fold at every level stop here, after seconds, instead of running for minutes.
+pub const DEFAULT_MAX_TOTAL_SWEEPS: u32 = 5_000;
+
 impl DomainOptions {
+    /// Checks the ranges of every field (what [`Domain::build`] checks before any work).
+    pub fn validate(&self) -> Result<()> {
+        check_options(self)
+    }
+
     /// The defaults of a solid: [`DomainOptions::default`] with a boundary tolerance of 1e-3
     /// instead of 1e-5. A tolerance bounds a volume in 3D (an area in 2D), and at 1e-3 the
     /// shared solids (the duck's B-rep and faces, the Jacksboro block with its axes in km) give
@@ -80,6 +100,7 @@ impl Default for DomainOptions {
             min_level: 2,
             max_level: 9,
             max_sweeps: 200,
+            max_total_sweeps: DEFAULT_MAX_TOTAL_SWEEPS,
             threads: 0,
             repair_rounds: 6,
             boundary_offset: 1e-2,
@@ -113,6 +134,10 @@ pub struct DomainReport {
     /// Optimization sweeps (with those of the fallback growth from the bounding box and of the
     /// repair).
     pub sweeps: u32,
+    /// Whether the optimization stopped because it spent
+    /// [`DomainOptions::max_total_sweeps`]: the T-mesh is the state the sweeps reached, less
+    /// optimized (and possibly with more invalid cells) than a larger budget would give.
+    pub sweep_budget_exhausted: bool,
     /// Repair rounds that refined invalid cells.
     pub repair_rounds: u32,
     /// Wall-clock seconds.
@@ -318,37 +343,9 @@ impl<const D: usize, B: CubeMap<D>> Domain<D, B> {
         let invalid_after_placement = invalid_cells(&pool, &problem, &x).len();
         stages.placement = clock.elapsed().as_secs_f64();
         let clock = Instant::now();
-        let sweep_options = sweep_options(options);
-        let mut stats = optimize_in_place(&pool, &problem, &mut x, &sweep_options, &mut |d| {
-            progress(d, 0)
-        })?;
-        if !invalid_cells(&pool, &problem, &x).is_empty() {
-            // The transfinite start folds too much (deep necks): grow the domain instead from its
-            // bounding box, where the parametric grid is valid, following the boundary in steps.
-            let (lo, hi) = bounding_box(x.iter().copied());
-            let start: Vec<[f64; D]> = mesh
-                .parametric()
-                .into_iter()
-                .map(|p| std::array::from_fn(|k| lo[k] + p[k] * (hi[k] - lo[k])))
-                .collect();
-            let graph = MeshGraph::new(&problem);
-            let done = stats.sweeps as usize;
-            let (grown, grown_stats) = follow_motion(
-                &pool,
-                &problem,
-                &graph,
-                &start,
-                &x,
-                &sweep_options,
-                &mut |d| progress(done + d, 0),
-            )?;
-            stats.sweeps += grown_stats.sweeps;
-            if invalid_cells(&pool, &problem, &grown).len()
-                < invalid_cells(&pool, &problem, &x).len()
-            {
-                x = grown;
-            }
-        }
+        let mut per_sweep = |d: usize| progress(d, 0);
+        let mut sweeps = Sweeps::new(options.max_total_sweeps, &mut per_sweep);
+        optimize_or_grow(&pool, &problem, &mesh, &mut x, options, &mut sweeps)?;
         stages.optimization = clock.elapsed().as_secs_f64();
         let clock = Instant::now();
         let mut domain = Domain {
@@ -361,14 +358,12 @@ impl<const D: usize, B: CubeMap<D>> Domain<D, B> {
             quality: QualitySummary::of(&pool, &problem, &x).quality,
             framed: x,
         };
-        let done = stats.sweeps as usize;
-        let (sweeps, repair_rounds) =
-            domain.relieve_and_repair(options, &pool, &mut |d| progress(done + d, 0))?;
-        let sweeps = stats.sweeps + sweeps;
+        let repair_rounds = domain.relieve_and_repair(options, &pool, &mut sweeps)?;
         stages.repair = clock.elapsed().as_secs_f64();
         let mut report = domain.report(&pool)?;
         report.invalid_after_placement = invalid_after_placement;
-        report.sweeps = sweeps;
+        report.sweeps = sweeps.spent();
+        report.sweep_budget_exhausted = sweeps.exhausted();
         report.repair_rounds = repair_rounds;
         report.stages = stages;
         report.seconds = start.elapsed().as_secs_f64();
@@ -536,22 +531,83 @@ pub(super) fn cells_within(options: &DomainOptions, cells: usize, stage: &str) -
     Ok(())
 }
 
+/// The first optimization of a build's placed vertices `x`; if cells stay folded, the growth of
+/// the domain from its bounding box instead, kept if it leaves fewer folded cells. Stops where
+/// the sweep budget runs out.
+fn optimize_or_grow<const D: usize>(
+    pool: &rayon::ThreadPool,
+    problem: &Problem<D>,
+    mesh: &TMesh<D>,
+    x: &mut Vec<[f64; D]>,
+    options: &DomainOptions,
+    sweeps: &mut Sweeps<'_>,
+) -> Result<()> {
+    let sweep_options = sweep_options(options);
+    let first = optimize_in_place(pool, problem, x, &sweep_options, &mut sweeps.stage());
+    sweeps.absorb(first)?;
+    if sweeps.exhausted() || invalid_cells(pool, problem, x).is_empty() {
+        return Ok(());
+    }
+    // The transfinite start folds too much (deep necks): grow the domain instead from its
+    // bounding box, where the parametric grid is valid, following the boundary in steps.
+    let (lo, hi) = bounding_box(x.iter().copied());
+    let start: Vec<[f64; D]> = mesh
+        .parametric()
+        .into_iter()
+        .map(|p| std::array::from_fn(|k| lo[k] + p[k] * (hi[k] - lo[k])))
+        .collect();
+    let graph = MeshGraph::new(problem);
+    let grown = follow_motion(
+        pool,
+        problem,
+        &graph,
+        &start,
+        x,
+        &sweep_options,
+        &mut sweeps.stage(),
+    );
+    if let Some((grown, _)) = sweeps.absorb(grown)? {
+        if invalid_cells(pool, problem, &grown).len() < invalid_cells(pool, problem, x).len() {
+            *x = grown;
+        }
+    }
+    Ok(())
+}
+
 /// Checks the options shared by [`Domain::build`] and [`Domain::refine_cells`].
 pub(super) fn check_options(options: &DomainOptions) -> Result<()> {
-    if !(options.tolerance.is_finite() && options.tolerance > 0.0) {
+    for (name, value) in [
+        ("tolerance", options.tolerance),
+        ("boundary_offset", options.boundary_offset),
+    ] {
+        if !value.is_finite() {
+            return Err(Error::new(
+                ErrorKind::NotFinite,
+                format!("{name} is {value}, it must be finite"),
+            ));
+        }
+    }
+    crate::threads::check(options.threads)?;
+    if options.tolerance <= 0.0 {
         return Err(Error::invalid(format!(
             "tolerance = {} must be positive",
             options.tolerance
         )));
     }
     if options.min_level > options.max_level || options.max_level > MAX_REPAIR_LEVEL {
+        return Err(Error::invalid(format!(
+            "levels must satisfy min_level <= max_level <= 16, got min_level = {}, max_level = {}",
+            options.min_level, options.max_level
+        )));
+    }
+    if options.max_total_sweeps == 0 {
         return Err(Error::invalid(
-            "levels must satisfy min_level <= max_level <= 16",
+            "max_total_sweeps = 0: the sweep budget of a build must be at least 1",
         ));
     }
-    if !(options.boundary_offset.is_finite() && options.boundary_offset >= 0.0) {
+    if options.boundary_offset < 0.0 {
         return Err(Error::invalid(format!(
-            "boundary_offset = {} must be finite and at least 0",
+            "boundary_offset = {} must be at least 0",
             options.boundary_offset
         )));
     }

@@ -3,6 +3,7 @@
 //! the boundary, inner ones by transfinite interpolation), then untangle and smooth with the
 //! optimizer; move the boundary of a built domain keeping its tree.
 
+mod budget;
 mod build;
 mod frame;
 mod planar;
@@ -14,6 +15,7 @@ mod update;
 
 pub use build::{
     transfinite, CubeMap, Domain, DomainOptions, DomainReport, StageSeconds, DEFAULT_MAX_CELLS,
+    DEFAULT_MAX_TOTAL_SWEEPS,
 };
 pub use frame::Frame;
 pub use planar::{PlanarDomain, PlanarOptions, PlanarReport};
