@@ -94,6 +94,10 @@ class AdaptReport(_StructReport):
         min_quality: smallest sampled mean ratio of the map returned.
         mean_quality: mean sampled mean ratio of the map returned.
         seconds: wall-clock seconds of the call.
+        untangled: control points moved to untangle the fit of the map returned (as
+            :attr:`FitReport.untangled`); 0 when that fit was kept.
+        boundary_offset: largest move of a boundary control point by that untangling,
+            relative to the bounding box; 0 when the boundary was kept.
     """
 
     rounds: int
@@ -105,6 +109,8 @@ class AdaptReport(_StructReport):
     min_quality: float
     mean_quality: float
     seconds: float
+    untangled: int
+    boundary_offset: float
 
 
 
