@@ -226,8 +226,9 @@ class Spline(_Refit, _Handle):
                 and samples per direction and element (default 5, 2 to 64).
             threads: worker threads; 0 uses one per core (the result does not depend on it).
             progress: None, or a callable ``progress(stage, done, total)`` with ``Stage.FIT``,
-                ``Stage.UNTANGLING`` and ``Stage.SMOOTHING``; return False to cancel
-                (``Status.CANCELLED``). An exception raised by it cancels and is re-raised.
+                ``Stage.UNTANGLING`` and ``Stage.SMOOTHING``; return None or True to go on,
+                False to cancel (``Status.CANCELLED``); any other answer (an int included)
+                raises TypeError. An exception raised by it cancels and is re-raised.
 
         Returns:
             Spline, with the fit's :class:`FitReport` in ``fit_report``.
@@ -289,8 +290,9 @@ class Spline(_Refit, _Handle):
             threads: worker threads, capped to the cores; 0 uses one per core (the result does not
                 depend on it).
             progress: None, or a callable ``progress(stage, done, total)`` called before each
-                refinement; return False to cancel (``Status.CANCELLED``). An exception raised
-                by it cancels the loop and is re-raised.
+                refinement; return None or True to go on, False to cancel
+                (``Status.CANCELLED``); any other answer (an int included) raises TypeError. An
+                exception raised by it cancels the loop and is re-raised.
 
         Returns:
             Spline, with the loop's :class:`AdaptReport` in ``adapt_report``.
