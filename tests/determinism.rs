@@ -95,10 +95,23 @@ fn planar_run(n: usize) -> PlanarRun {
 #[test]
 fn planar_build_and_fit_are_the_same_at_1_2_and_4_threads() {
     let runs: Vec<PlanarRun> = THREADS.iter().map(|&n| planar_run(n)).collect();
-    assert!(runs[0].1.sweeps > 0 && runs[0].1.invalid_cells == 0, "{:?}", runs[0].1);
-    all_equal("T-mesh positions", &runs.iter().map(|r| &r.0).collect::<Vec<_>>());
-    all_equal("domain report", &runs.iter().map(|r| r.1).collect::<Vec<_>>());
-    all_equal("control points", &runs.iter().map(|r| &r.2).collect::<Vec<_>>());
+    assert!(
+        runs[0].1.sweeps > 0 && runs[0].1.invalid_cells == 0,
+        "{:?}",
+        runs[0].1
+    );
+    all_equal(
+        "T-mesh positions",
+        &runs.iter().map(|r| &r.0).collect::<Vec<_>>(),
+    );
+    all_equal(
+        "domain report",
+        &runs.iter().map(|r| r.1).collect::<Vec<_>>(),
+    );
+    all_equal(
+        "control points",
+        &runs.iter().map(|r| &r.2).collect::<Vec<_>>(),
+    );
     all_equal("fit report", &runs.iter().map(|r| r.3).collect::<Vec<_>>());
     all_equal("validity", &runs.iter().map(|r| &r.4).collect::<Vec<_>>());
 }
@@ -128,10 +141,22 @@ fn adaptive_loop_is_the_same_at_1_2_and_4_threads() {
         })
     };
     let runs: Vec<_> = THREADS.iter().map(|&n| run(n)).collect();
-    assert!(runs[0].1.rounds.len() > 1 && runs[0].1.reached, "the loop must refine");
-    all_equal("adapted control points", &runs.iter().map(|r| &r.0).collect::<Vec<_>>());
-    all_equal("adapt report", &runs.iter().map(|r| &r.1).collect::<Vec<_>>());
-    all_equal("adapted T-mesh", &runs.iter().map(|r| &r.2).collect::<Vec<_>>());
+    assert!(
+        runs[0].1.rounds.len() > 1 && runs[0].1.reached,
+        "the loop must refine"
+    );
+    all_equal(
+        "adapted control points",
+        &runs.iter().map(|r| &r.0).collect::<Vec<_>>(),
+    );
+    all_equal(
+        "adapt report",
+        &runs.iter().map(|r| &r.1).collect::<Vec<_>>(),
+    );
+    all_equal(
+        "adapted T-mesh",
+        &runs.iter().map(|r| &r.2).collect::<Vec<_>>(),
+    );
 }
 
 #[test]
@@ -145,13 +170,22 @@ fn solid_build_is_the_same_at_1_2_and_4_threads() {
                 ..DomainOptions::solid()
             };
             let (domain, report) =
-                Domain::<3, _>::build(MappedCube(curved_box), &options, &mut |_, _| true)
-                    .unwrap();
+                Domain::<3, _>::build(MappedCube(curved_box), &options, &mut |_, _| true).unwrap();
             (domain.positions().to_vec(), untimed(report))
         })
     };
     let runs: Vec<_> = THREADS.iter().map(|&n| run(n)).collect();
-    assert!(runs[0].1.sweeps > 0 && runs[0].1.max_level > 1, "{:?}", runs[0].1);
-    all_equal("solid positions", &runs.iter().map(|r| &r.0).collect::<Vec<_>>());
-    all_equal("solid report", &runs.iter().map(|r| r.1).collect::<Vec<_>>());
+    assert!(
+        runs[0].1.sweeps > 0 && runs[0].1.max_level > 1,
+        "{:?}",
+        runs[0].1
+    );
+    all_equal(
+        "solid positions",
+        &runs.iter().map(|r| &r.0).collect::<Vec<_>>(),
+    );
+    all_equal(
+        "solid report",
+        &runs.iter().map(|r| r.1).collect::<Vec<_>>(),
+    );
 }
