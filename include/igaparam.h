@@ -1529,8 +1529,10 @@ igaparam_status igaparam_domain_set_boundary_from_file_scaled(igaparam_domain *d
  *
  * `options` may be NULL for the defaults (`igaparam_domain_update_options_default`); `report`
  * may be NULL. Errors: `IGAPARAM_STATUS_INVALID_ARGUMENT` when the domain has not been built
- * (call `igaparam_domain_build` first) or for threads above 4096, `IGAPARAM_STATUS_CANCELLED`.
- * On any error the domain is unchanged and `*report` is not written.
+ * (call `igaparam_domain_build` first) or for threads above 4096, `IGAPARAM_STATUS_CANCELLED`,
+ * `IGAPARAM_STATUS_LIMIT_EXCEEDED` when the build's `max_total_sweeps` runs out while the
+ * vertices follow the boundary (later stages stop there and succeed, setting the report's
+ * `sweep_budget_exhausted`). On any error the domain is unchanged and `*report` is not written.
  */
 igaparam_status igaparam_domain_update(igaparam_domain *domain,
                                        const igaparam_domain_update_options *options,
