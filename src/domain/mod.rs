@@ -6,6 +6,7 @@
 mod budget;
 mod build;
 mod frame;
+mod options;
 mod planar;
 mod refine;
 mod relief;
@@ -13,11 +14,11 @@ mod repair;
 mod solid;
 mod update;
 
-pub use build::{
-    transfinite, CubeMap, Domain, DomainOptions, DomainReport, StageSeconds, DEFAULT_MAX_CELLS,
-    DEFAULT_MAX_TOTAL_SWEEPS,
-};
+pub use build::{transfinite, CubeMap, Domain};
 pub use frame::Frame;
+pub use options::{
+    DomainOptions, DomainReport, StageSeconds, DEFAULT_MAX_CELLS, DEFAULT_MAX_TOTAL_SWEEPS,
+};
 pub use planar::{PlanarDomain, PlanarOptions, PlanarReport};
 pub use solid::{SolidDomain, SolidOptions, SolidReport};
 pub use update::{UpdateOptions, UpdateReport};

@@ -17,7 +17,8 @@
 use rayon::ThreadPool;
 
 use super::budget::Sweeps;
-use super::build::{sweep_options, CubeMap, Domain, DomainOptions};
+use super::build::{CubeMap, Domain};
+use super::options::{sweep_options, DomainOptions};
 use crate::error::Result;
 use crate::optimize::metric::Term;
 use crate::optimize::motion::optimize_in_place;

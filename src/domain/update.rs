@@ -16,11 +16,9 @@ use std::time::Instant;
 use rayon::ThreadPool;
 
 use super::budget::Sweeps;
-use super::build::{
-    cell_boundary_error, check_options, facet_scale, sweep_options, thread_pool, CubeMap, Domain,
-    DomainOptions, DomainReport,
-};
+use super::build::{cell_boundary_error, facet_scale, CubeMap, Domain};
 use super::frame::{signed_measure, Frame, Framed};
+use super::options::{check_options, sweep_options, thread_pool, DomainOptions, DomainReport};
 use crate::error::{Error, ErrorKind, Result};
 use crate::optimize::invalid_cells;
 use crate::optimize::laplace::MeshGraph;
