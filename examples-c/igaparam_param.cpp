@@ -240,8 +240,9 @@ int main(int argc, char** argv) {
                 options.tolerance, r.boundary_offset, options.boundary_offset);
     std::printf("invalid cells %zu after placement, %zu after optimization\n", r.invalid_after_placement,
                 r.invalid_cells);
-    std::printf("quality min %.4f mean %.4f, %u sweeps, %.3f s\n", r.min_quality, r.mean_quality,
-                r.sweeps, r.seconds);
+    std::printf("quality min %.4f mean %.4f, %u sweeps%s, %.3f s\n", r.min_quality, r.mean_quality,
+                r.sweeps, r.sweep_budget_exhausted ? " (the sweep budget max_total_sweeps ran out)" : "",
+                r.seconds);
     std::string spline_json;
     if (spline_wanted) {
       Spline spline;
@@ -302,9 +303,11 @@ int main(int argc, char** argv) {
     std::printf(
         "{\"dim\":%zu,\"cells\":%zu,\"nodes\":%zu,\"max_level\":%u,\"boundary_error\":%.6e,"
         "\"boundary_offset\":%.6e,\"invalid_after_placement\":%zu,\"invalid_cells\":%zu,\"min_quality\":%.6f,"
-        "\"mean_quality\":%.6f,\"sweeps\":%u,\"threads\":%u,\"seconds\":%.4f%s}\n",
+        "\"mean_quality\":%.6f,\"sweeps\":%u,\"sweep_budget_exhausted\":%s,\"threads\":%u,"
+        "\"seconds\":%.4f%s}\n",
         dim, r.cells, r.vertices, r.max_level, r.boundary_error, r.boundary_offset, r.invalid_after_placement,
-        r.invalid_cells, r.min_quality, r.mean_quality, r.sweeps, options.threads, r.seconds,
+        r.invalid_cells, r.min_quality, r.mean_quality, r.sweeps, r.sweep_budget_exhausted ? "true" : "false",
+        options.threads, r.seconds,
         spline_json.c_str());
     return 0;
   } catch (const std::exception& e) {

@@ -52,6 +52,14 @@
 #define IGAPARAM_DEFAULT_MAX_CELLS 1000000
 
 /**
+ * The default total sweep budget of a domain build (`max_total_sweeps` of its options): 25
+ * times the default `max_sweeps`. The bundled domains need at most 4,071 (the duck's B-rep at
+ * tolerance 1e-4, level 4, with its growth from the bounding box and its repair); inputs that
+ * fold at every level stop here, after seconds, instead of running for minutes.
+ */
+#define IGAPARAM_DEFAULT_MAX_TOTAL_SWEEPS 5000
+
+/**
  * Where the Newton method stops when no stationarity tolerance is asked for.
  */
 #define IGAPARAM_DEFAULT_NEWTON_TOLERANCE 1e-8
@@ -246,9 +254,20 @@ typedef struct {
    */
   uint32_t max_level;
   /**
-   * Largest number of optimization sweeps (default 200).
+   * Largest number of optimization sweeps of one stage (default 200): the first
+   * optimization, each step of the growth from the bounding box, each round of the seam
+   * relief and of the repair.
    */
   uint32_t max_sweeps;
+  /**
+   * Largest number of sweeps of all stages together, at least 1 (default 5,000,
+   * `IGAPARAM_DEFAULT_MAX_TOTAL_SWEEPS`): once spent, the running stage stops after its
+   * sweep and no later stage starts; the build succeeds with the T-mesh the sweeps reached,
+   * and the report's `sweep_budget_exhausted` is 1 (check `invalid_cells`). The bundled
+   * domains need at most about 4,100; inputs that fold at every level stop here after
+   * seconds instead of running for minutes.
+   */
+  uint32_t max_total_sweeps;
   /**
    * Worker threads, at most 4096, capped to the machine's cores; 0 (default) uses one per core.
    */
@@ -332,6 +351,11 @@ typedef struct {
    * Optimization sweeps performed.
    */
   uint32_t sweeps;
+  /**
+   * 1 if the optimization stopped because it spent `max_total_sweeps` (the T-mesh is the
+   * state the sweeps reached: less optimized, possibly with invalid cells), else 0.
+   */
+  int sweep_budget_exhausted;
   /**
    * Wall-clock seconds of the call.
    */
@@ -1505,8 +1529,10 @@ igaparam_status igaparam_domain_set_boundary_from_file_scaled(igaparam_domain *d
  *
  * `options` may be NULL for the defaults (`igaparam_domain_update_options_default`); `report`
  * may be NULL. Errors: `IGAPARAM_STATUS_INVALID_ARGUMENT` when the domain has not been built
- * (call `igaparam_domain_build` first) or for threads above 4096, `IGAPARAM_STATUS_CANCELLED`.
- * On any error the domain is unchanged and `*report` is not written.
+ * (call `igaparam_domain_build` first) or for threads above 4096, `IGAPARAM_STATUS_CANCELLED`,
+ * `IGAPARAM_STATUS_LIMIT_EXCEEDED` when the build's `max_total_sweeps` runs out while the
+ * vertices follow the boundary (later stages stop there and succeed, setting the report's
+ * `sweep_budget_exhausted`). On any error the domain is unchanged and `*report` is not written.
  */
 igaparam_status igaparam_domain_update(igaparam_domain *domain,
                                        const igaparam_domain_update_options *options,

@@ -11,6 +11,16 @@ use crate::error::{Error, Result};
 /// The largest thread count an option accepts (larger ones are refused as invalid).
 pub const MAX_THREADS: usize = 4096;
 
+/// Refuses a thread count above [`MAX_THREADS`] (the rule of every option named `threads`).
+pub fn check(threads: usize) -> Result<()> {
+    if threads > MAX_THREADS {
+        return Err(Error::invalid(format!(
+            "threads = {threads} must be at most {MAX_THREADS}"
+        )));
+    }
+    Ok(())
+}
+
 /// The cores of this machine (`std::thread::available_parallelism`, 1 if unknown).
 pub fn cores() -> usize {
     std::thread::available_parallelism().map_or(1, |n| n.get())

@@ -4,8 +4,10 @@
 mod common;
 
 use common::{boundary_mask, grid, mapped_square, MappedCube};
-use igaparam::boundary::BoundaryLoop2;
-use igaparam::domain::{Domain, DomainOptions, PlanarDomain, DEFAULT_MAX_CELLS};
+use igaparam::boundary::{BoundaryLoop2, Coastline};
+use igaparam::domain::{
+    Domain, DomainOptions, PlanarDomain, DEFAULT_MAX_CELLS, DEFAULT_MAX_TOTAL_SWEEPS,
+};
 use igaparam::threads::{cores, effective_threads, MAX_THREADS};
 use igaparam::{CellType, ErrorKind, Mesh, RelocateOptions};
 
@@ -115,4 +117,72 @@ fn an_adaptation_beyond_the_budget_stops_and_can_be_cancelled() {
     })
     .unwrap_err();
     assert_eq!((e.kind, calls), (ErrorKind::Cancelled, 3), "{}", e.message);
+}
+
+/// The Tenerife coastline with line 601 (a point) moved to x = 999999999 (the first of the slow inputs
+/// a fuzzer found): a box a million times the island, a neck that folds at every level. With a
+/// sweep limit of 200 per stage its build ran 19,422 sweeps (20 s) before the total budget.
+fn coast_with_a_far_point() -> BoundaryLoop2 {
+    let text = std::fs::read_to_string(common::boundary_data("tenerife.txt")).unwrap();
+    let mut lines: Vec<String> = text.lines().map(str::to_string).collect();
+    assert_eq!(
+        lines[600], "39.496042 24.630976",
+        "the bundled file changed"
+    );
+    lines[600] = "999999999 24.630976".to_string();
+    let coast = Coastline::parse(&lines.join("\n")).unwrap();
+    BoundaryLoop2::from_coastline(&coast).unwrap()
+}
+
+#[test]
+fn the_sweeps_of_all_stages_stay_within_the_total_budget() {
+    let boundary = coast_with_a_far_point();
+    let options = DomainOptions {
+        max_level: 4,
+        ..Default::default()
+    };
+    // Level 4 needs about 4,200 sweeps over its stages (growth from the bounding box, relief,
+    // repair), more than 20 times `max_sweeps`: within the default budget it is not cut.
+    let mut calls = 0;
+    let (_, full) = PlanarDomain::build(boundary.clone(), &options, &mut |d, _| {
+        // Calls with 0 come between the rounds of the adaptation.
+        calls += usize::from(d > 0);
+        true
+    })
+    .unwrap();
+    assert!(full.sweeps > 10 * options.max_sweeps, "{full:?}");
+    assert!(full.sweeps <= DEFAULT_MAX_TOTAL_SWEEPS, "{full:?}");
+    assert!(!full.sweep_budget_exhausted, "{full:?}");
+    assert_eq!(calls, full.sweeps as usize, "one progress call per sweep");
+    // A budget below it stops the build there, with a consistent T-mesh and report.
+    for budget in [1, 150, 700] {
+        let mut seen = Vec::new();
+        let cut = DomainOptions {
+            max_total_sweeps: budget,
+            ..options
+        };
+        let (domain, report) = PlanarDomain::build(boundary.clone(), &cut, &mut |d, _| {
+            if d > 0 {
+                seen.push(d);
+            }
+            true
+        })
+        .unwrap();
+        assert_eq!(report.sweeps, budget, "{report:?}");
+        assert!(report.sweep_budget_exhausted, "{report:?}");
+        // The caller sees every sweep but the last, numbered across the stages.
+        assert_eq!(seen, (1..budget as usize).collect::<Vec<_>>());
+        let invalid = domain.quality().iter().filter(|&&q| q <= 0.0).count();
+        assert_eq!(report.invalid_cells, invalid, "{report:?}");
+    }
+    let e = PlanarDomain::build(
+        boundary,
+        &DomainOptions {
+            max_total_sweeps: 0,
+            ..options
+        },
+        &mut |_, _| true,
+    )
+    .unwrap_err();
+    assert_eq!(e.kind, ErrorKind::InvalidArgument, "{}", e.message);
 }

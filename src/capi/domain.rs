@@ -161,8 +161,17 @@ pub struct igaparam_domain_options {
     pub min_level: u32,
     /// Deepest level of the adaptation, at least `min_level` and at most 16 (default 9).
     pub max_level: u32,
-    /// Largest number of optimization sweeps (default 200).
+    /// Largest number of optimization sweeps of one stage (default 200): the first
+    /// optimization, each step of the growth from the bounding box, each round of the seam
+    /// relief and of the repair.
     pub max_sweeps: u32,
+    /// Largest number of sweeps of all stages together, at least 1 (default 5,000,
+    /// `IGAPARAM_DEFAULT_MAX_TOTAL_SWEEPS`): once spent, the running stage stops after its
+    /// sweep and no later stage starts; the build succeeds with the T-mesh the sweeps reached,
+    /// and the report's `sweep_budget_exhausted` is 1 (check `invalid_cells`). The bundled
+    /// domains need at most about 4,100; inputs that fold at every level stop here after
+    /// seconds instead of running for minutes.
+    pub max_total_sweeps: u32,
     /// Worker threads, at most 4096, capped to the machine's cores; 0 (default) uses one per core.
     pub threads: u32,
     /// Rounds of repair after the optimization (default 6): while cells stay invalid, they are
@@ -214,6 +223,9 @@ pub struct igaparam_domain_report {
     pub mean_quality: f64,
     /// Optimization sweeps performed.
     pub sweeps: u32,
+    /// 1 if the optimization stopped because it spent `max_total_sweeps` (the T-mesh is the
+    /// state the sweeps reached: less optimized, possibly with invalid cells), else 0.
+    pub sweep_budget_exhausted: c_int,
     /// Wall-clock seconds of the call.
     pub seconds: f64,
 }
@@ -238,6 +250,7 @@ fn c_options(d: &PlanarOptions) -> igaparam_domain_options {
         min_level: d.min_level as u32,
         max_level: d.max_level as u32,
         max_sweeps: d.max_sweeps,
+        max_total_sweeps: d.max_total_sweeps,
         threads: d.threads as u32,
         repair_rounds: d.repair_rounds,
         boundary_offset: d.boundary_offset,
@@ -247,56 +260,23 @@ fn c_options(d: &PlanarOptions) -> igaparam_domain_options {
     }
 }
 
+/// The core's options of C options `o` (a conversion; the core checks the ranges when it builds).
 fn planar_options(o: &igaparam_domain_options) -> Result<PlanarOptions> {
-    if !o.tolerance.is_finite() {
-        return Err(Error::new(
-            crate::error::ErrorKind::NotFinite,
-            format!("tolerance is {}, it must be finite", o.tolerance),
-        ));
-    }
-    if o.tolerance <= 0.0 {
-        return Err(Error::invalid(format!(
-            "tolerance = {} must be positive",
-            o.tolerance
-        )));
-    }
-    if o.min_level > o.max_level || o.max_level > 16 {
-        return Err(Error::invalid(format!(
-            "levels must satisfy min_level <= max_level <= 16, got min_level = {}, max_level = {}",
-            o.min_level, o.max_level
-        )));
-    }
-    if o.threads > 4096 {
-        return Err(Error::invalid(format!(
-            "threads = {} is above the limit of 4096",
-            o.threads
-        )));
-    }
-    if !o.boundary_offset.is_finite() {
-        return Err(Error::new(
-            crate::error::ErrorKind::NotFinite,
-            format!(
-                "boundary_offset is {}, it must be finite",
-                o.boundary_offset
-            ),
-        ));
-    }
-    if o.boundary_offset < 0.0 {
-        return Err(Error::invalid(format!(
-            "boundary_offset = {} must be at least 0",
-            o.boundary_offset
-        )));
-    }
-    Ok(PlanarOptions {
+    // A level above 255 becomes 255, which the core refuses as above 16 with the others.
+    let level = |l: u32| u8::try_from(l).unwrap_or(u8::MAX);
+    let options = PlanarOptions {
         tolerance: o.tolerance,
-        min_level: o.min_level as u8,
-        max_level: o.max_level as u8,
+        min_level: level(o.min_level),
+        max_level: level(o.max_level),
         max_sweeps: o.max_sweeps,
+        max_total_sweeps: o.max_total_sweeps,
         threads: o.threads as usize,
         repair_rounds: o.repair_rounds,
         boundary_offset: o.boundary_offset,
         max_cells: o.max_cells,
-    })
+    };
+    options.validate()?;
+    Ok(options)
 }
 
 /// A path from a NUL-terminated C string that must not be NULL.
@@ -397,6 +377,7 @@ pub(super) fn c_report(r: &DomainReport) -> igaparam_domain_report {
         min_quality: r.min_quality,
         mean_quality: r.mean_quality,
         sweeps: r.sweeps,
+        sweep_budget_exhausted: c_int::from(r.sweep_budget_exhausted),
         seconds: r.seconds,
     }
 }

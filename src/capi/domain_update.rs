@@ -275,8 +275,10 @@ fn c_update_report(r: &UpdateReport) -> igaparam_domain_update_report {
 ///
 /// `options` may be NULL for the defaults (`igaparam_domain_update_options_default`); `report`
 /// may be NULL. Errors: `IGAPARAM_STATUS_INVALID_ARGUMENT` when the domain has not been built
-/// (call `igaparam_domain_build` first) or for threads above 4096, `IGAPARAM_STATUS_CANCELLED`.
-/// On any error the domain is unchanged and `*report` is not written.
+/// (call `igaparam_domain_build` first) or for threads above 4096, `IGAPARAM_STATUS_CANCELLED`,
+/// `IGAPARAM_STATUS_LIMIT_EXCEEDED` when the build's `max_total_sweeps` runs out while the
+/// vertices follow the boundary (later stages stop there and succeed, setting the report's
+/// `sweep_budget_exhausted`). On any error the domain is unchanged and `*report` is not written.
 #[no_mangle]
 pub extern "C" fn igaparam_domain_update(
     domain: *mut igaparam_domain,
@@ -291,13 +293,6 @@ pub extern "C" fn igaparam_domain_update(
         } else {
             *non_null(options, "options")?
         };
-        if raw.threads > 4096 {
-            return Err(Error::invalid(format!(
-                "threads = {} is above the limit of 4096",
-                raw.threads
-            ))
-            .into());
-        }
         let opts = UpdateOptions {
             max_sweeps: raw.max_sweeps,
             threads: raw.threads as usize,

@@ -4,13 +4,18 @@
 
 use std::time::Instant;
 
+use super::budget::Sweeps;
 use super::frame::{signed_measure, Frame, Framed};
-use crate::error::{Error, ErrorKind, Result};
+use super::options::{
+    cells_within, check_options, check_uniform_cells, sweep_options, thread_pool, DomainOptions,
+    DomainReport, StageSeconds,
+};
+use crate::error::{Error, Result};
 use crate::io::vtu::{DataArray, UnstructuredGrid};
 use crate::optimize::laplace::MeshGraph;
 use crate::optimize::motion::{follow_motion, optimize_in_place};
 use crate::optimize::small::{bounding_box, det, Matrix};
-use crate::optimize::{invalid_cells, lattice, NodeSolverOptions, QualitySummary, SweepOptions};
+use crate::optimize::{invalid_cells, lattice, Problem, QualitySummary};
 use crate::tmesh::{TMesh, Tree, UNIT};
 
 /// A map from the boundary of the unit square (d = 2) or cube (d = 3) onto the boundary of a
@@ -18,123 +23,6 @@ use crate::tmesh::{TMesh, Tree, UNIT};
 pub trait CubeMap<const D: usize> {
     /// The image of `p`, a point of the boundary of [0,1]^d (some coordinate is exactly 0 or 1).
     fn boundary_point(&self, p: [f64; D]) -> [f64; D];
-}
-
-/// Options of [`Domain::build`].
-#[derive(Clone, Copy, Debug)]
-pub struct DomainOptions {
-    /// Boundary tolerance, relative to the bounding box: a boundary facet of a cell is refined
-    /// while the triangle (2D: its end images and the image of its midpoint) or the four
-    /// tetrahedra (3D: consecutive corner images and the image of the face centre), measured in
-    /// coordinates that map the bounding box onto a unit box (see [`Frame`]), exceed
-    /// `tolerance × √d^d` (for a square or cube box: `tolerance × diagonal^d`).
-    pub tolerance: f64,
-    /// Level of the initial uniform refinement.
-    pub min_level: u8,
-    /// Deepest level of the adaptation.
-    pub max_level: u8,
-    /// Largest number of optimization sweeps.
-    pub max_sweeps: u32,
-    /// Worker threads; 0 uses one per core.
-    pub threads: usize,
-    /// Rounds of repair after the optimization: while cells stay invalid, they are refined (as
-    /// by [`Domain::refine_cells`], past `max_level` up to level 16) and the mesh re-optimized.
-    pub repair_rounds: u32,
-    /// Largest distance, in coordinates that map the bounding box onto a unit box (see
-    /// [`Frame`]), by which a boundary vertex may leave the boundary to open a cell that stays
-    /// folded with every boundary vertex on the boundary (see [`MARGIN`](super::relief::MARGIN)
-    /// and the seam relief); 0 keeps every boundary vertex on the boundary. Default 1e-2: the
-    /// jagged terrain edge of the Jacksboro block needs offsets near it, the jittered duck faces
-    /// 1e-3 with a few more levels of refinement.
-    pub boundary_offset: f64,
-    /// Largest number of cells of the T-mesh (default [`DEFAULT_MAX_CELLS`]): a build whose
-    /// uniform refinement to `min_level` would exceed it is refused before any work, and one
-    /// whose adaptation or repair exceeds it stops there, with [`ErrorKind::LimitExceeded`].
-    pub max_cells: usize,
-}
-
-/// The default cell budget of a domain build (`max_cells` of its options): a million cells, a
-/// planar T-mesh of level 10 everywhere (minutes of optimization and about a gigabyte; a
-/// solid's cells cost more).
-pub const DEFAULT_MAX_CELLS: usize = 1_000_000;
-
-impl DomainOptions {
-    /// The defaults of a solid: [`DomainOptions::default`] with a boundary tolerance of 1e-3
-    /// instead of 1e-5. A tolerance bounds a volume in 3D (an area in 2D), and at 1e-3 the
-    /// shared solids (the duck's B-rep and faces, the Jacksboro block with its axes in km) give
-    /// valid T-meshes of 64–92 cells and certified spline maps in seconds, where 1e-5 refines
-    /// for many minutes.
-    pub fn solid() -> Self {
-        DomainOptions {
-            tolerance: 1e-3,
-            ..Default::default()
-        }
-    }
-}
-
-/// The defaults of a planar domain (see [`DomainOptions::solid`] for a solid's).
-impl Default for DomainOptions {
-    fn default() -> Self {
-        DomainOptions {
-            tolerance: 1e-5,
-            min_level: 2,
-            max_level: 9,
-            max_sweeps: 200,
-            threads: 0,
-            repair_rounds: 6,
-            boundary_offset: 1e-2,
-            max_cells: DEFAULT_MAX_CELLS,
-        }
-    }
-}
-
-/// What [`Domain::build`] did.
-#[derive(Clone, Copy, Debug, Default, PartialEq)]
-pub struct DomainReport {
-    /// Cells of the T-mesh.
-    pub cells: usize,
-    /// Vertices of the T-mesh, hanging ones included.
-    pub vertices: usize,
-    /// Deepest level.
-    pub max_level: u8,
-    /// Largest boundary error, relative (see [`DomainOptions::tolerance`]).
-    pub boundary_error: f64,
-    /// Largest distance of a boundary vertex from its point on the boundary, in coordinates
-    /// that map the bounding box onto a unit box (at most [`DomainOptions::boundary_offset`]).
-    pub boundary_offset: f64,
-    /// Invalid cells after the transfinite placement.
-    pub invalid_after_placement: usize,
-    /// Invalid cells after the optimization.
-    pub invalid_cells: usize,
-    /// Smallest cell quality (1/mean distortion against the parametric cell).
-    pub min_quality: f64,
-    /// Mean cell quality.
-    pub mean_quality: f64,
-    /// Optimization sweeps (with those of the fallback growth from the bounding box and of the
-    /// repair).
-    pub sweeps: u32,
-    /// Repair rounds that refined invalid cells.
-    pub repair_rounds: u32,
-    /// Wall-clock seconds.
-    pub seconds: f64,
-    /// Wall-clock seconds of each stage.
-    pub stages: StageSeconds,
-    /// Whether the boundary's parameterization is left-handed, so that the T-mesh's first two
-    /// parametric coordinates are swapped relative to it.
-    pub swapped: bool,
-}
-
-/// Wall-clock seconds of the stages of [`Domain::build`].
-#[derive(Clone, Copy, Debug, Default, PartialEq)]
-pub struct StageSeconds {
-    /// Adapting the tree to the boundary and building the T-mesh.
-    pub adaptation: f64,
-    /// Placing the vertices (boundary and transfinite interpolation).
-    pub placement: f64,
-    /// Optimizing, with the fallback growth from the bounding box.
-    pub optimization: f64,
-    /// Refining the cells left invalid and optimizing again.
-    pub repair: f64,
 }
 
 /// A domain with its optimized T-mesh: parametric vertices in [0,1]^d, physical ones in the
@@ -318,37 +206,9 @@ impl<const D: usize, B: CubeMap<D>> Domain<D, B> {
         let invalid_after_placement = invalid_cells(&pool, &problem, &x).len();
         stages.placement = clock.elapsed().as_secs_f64();
         let clock = Instant::now();
-        let sweep_options = sweep_options(options);
-        let mut stats = optimize_in_place(&pool, &problem, &mut x, &sweep_options, &mut |d| {
-            progress(d, 0)
-        })?;
-        if !invalid_cells(&pool, &problem, &x).is_empty() {
-            // The transfinite start folds too much (deep necks): grow the domain instead from its
-            // bounding box, where the parametric grid is valid, following the boundary in steps.
-            let (lo, hi) = bounding_box(x.iter().copied());
-            let start: Vec<[f64; D]> = mesh
-                .parametric()
-                .into_iter()
-                .map(|p| std::array::from_fn(|k| lo[k] + p[k] * (hi[k] - lo[k])))
-                .collect();
-            let graph = MeshGraph::new(&problem);
-            let done = stats.sweeps as usize;
-            let (grown, grown_stats) = follow_motion(
-                &pool,
-                &problem,
-                &graph,
-                &start,
-                &x,
-                &sweep_options,
-                &mut |d| progress(done + d, 0),
-            )?;
-            stats.sweeps += grown_stats.sweeps;
-            if invalid_cells(&pool, &problem, &grown).len()
-                < invalid_cells(&pool, &problem, &x).len()
-            {
-                x = grown;
-            }
-        }
+        let mut per_sweep = |d: usize| progress(d, 0);
+        let mut sweeps = Sweeps::new(options.max_total_sweeps, &mut per_sweep);
+        optimize_or_grow(&pool, &problem, &mesh, &mut x, options, &mut sweeps)?;
         stages.optimization = clock.elapsed().as_secs_f64();
         let clock = Instant::now();
         let mut domain = Domain {
@@ -361,14 +221,12 @@ impl<const D: usize, B: CubeMap<D>> Domain<D, B> {
             quality: QualitySummary::of(&pool, &problem, &x).quality,
             framed: x,
         };
-        let done = stats.sweeps as usize;
-        let (sweeps, repair_rounds) =
-            domain.relieve_and_repair(options, &pool, &mut |d| progress(done + d, 0))?;
-        let sweeps = stats.sweeps + sweeps;
+        let repair_rounds = domain.relieve_and_repair(options, &pool, &mut sweeps)?;
         stages.repair = clock.elapsed().as_secs_f64();
         let mut report = domain.report(&pool)?;
         report.invalid_after_placement = invalid_after_placement;
-        report.sweeps = sweeps;
+        report.sweeps = sweeps.spent();
+        report.sweep_budget_exhausted = sweeps.exhausted();
         report.repair_rounds = repair_rounds;
         report.stages = stages;
         report.seconds = start.elapsed().as_secs_f64();
@@ -496,84 +354,53 @@ impl<const D: usize, B: CubeMap<D>> Domain<D, B> {
     }
 }
 
-/// Deepest level the repair refines to.
-pub(super) const MAX_REPAIR_LEVEL: u8 = 16;
-
 /// `√d^d`: the measure of a facet error equal to the tolerance, in frame coordinates (the
 /// diagonal of the unit box to the power d).
 pub(super) fn facet_scale<const D: usize>() -> f64 {
     (D as f64).powf(D as f64 / 2.0)
 }
 
-/// Refuses a build whose uniform refinement to `min_level` alone exceeds `max_cells`.
-fn check_uniform_cells<const D: usize>(options: &DomainOptions) -> Result<()> {
-    let cells = 1u128 << (D * options.min_level as usize);
-    if cells > options.max_cells as u128 {
-        return Err(Error::new(
-            ErrorKind::LimitExceeded,
-            format!(
-                "min_level = {} refines [0,1]^{D} into {cells} cells, above max_cells = {}: \
-                 lower min_level or raise max_cells",
-                options.min_level, options.max_cells
-            ),
-        ));
+/// The first optimization of a build's placed vertices `x`; if cells stay folded, the growth of
+/// the domain from its bounding box instead, kept if it leaves fewer folded cells. Stops where
+/// the sweep budget runs out.
+fn optimize_or_grow<const D: usize>(
+    pool: &rayon::ThreadPool,
+    problem: &Problem<D>,
+    mesh: &TMesh<D>,
+    x: &mut Vec<[f64; D]>,
+    options: &DomainOptions,
+    sweeps: &mut Sweeps<'_>,
+) -> Result<()> {
+    let sweep_options = sweep_options(options);
+    let first = optimize_in_place(pool, problem, x, &sweep_options, &mut sweeps.stage());
+    sweeps.absorb(first)?;
+    if sweeps.exhausted() || invalid_cells(pool, problem, x).is_empty() {
+        return Ok(());
+    }
+    // The transfinite start folds too much (deep necks): grow the domain instead from its
+    // bounding box, where the parametric grid is valid, following the boundary in steps.
+    let (lo, hi) = bounding_box(x.iter().copied());
+    let start: Vec<[f64; D]> = mesh
+        .parametric()
+        .into_iter()
+        .map(|p| std::array::from_fn(|k| lo[k] + p[k] * (hi[k] - lo[k])))
+        .collect();
+    let graph = MeshGraph::new(problem);
+    let grown = follow_motion(
+        pool,
+        problem,
+        &graph,
+        &start,
+        x,
+        &sweep_options,
+        &mut sweeps.stage(),
+    );
+    if let Some((grown, _)) = sweeps.absorb(grown)? {
+        if invalid_cells(pool, problem, &grown).len() < invalid_cells(pool, problem, x).len() {
+            *x = grown;
+        }
     }
     Ok(())
-}
-
-/// Refuses a T-mesh of `cells` cells beyond `max_cells`; `stage` names what made them.
-pub(super) fn cells_within(options: &DomainOptions, cells: usize, stage: &str) -> Result<()> {
-    if cells > options.max_cells {
-        return Err(Error::new(
-            ErrorKind::LimitExceeded,
-            format!(
-                "{stage} reached {cells} cells, above max_cells = {}: raise the tolerance or \
-                 max_cells, or lower max_level",
-                options.max_cells
-            ),
-        ));
-    }
-    Ok(())
-}
-
-/// Checks the options shared by [`Domain::build`] and [`Domain::refine_cells`].
-pub(super) fn check_options(options: &DomainOptions) -> Result<()> {
-    if !(options.tolerance.is_finite() && options.tolerance > 0.0) {
-        return Err(Error::invalid(format!(
-            "tolerance = {} must be positive",
-            options.tolerance
-        )));
-    }
-    if options.min_level > options.max_level || options.max_level > MAX_REPAIR_LEVEL {
-        return Err(Error::invalid(
-            "levels must satisfy min_level <= max_level <= 16",
-        ));
-    }
-    if !(options.boundary_offset.is_finite() && options.boundary_offset >= 0.0) {
-        return Err(Error::invalid(format!(
-            "boundary_offset = {} must be finite and at least 0",
-            options.boundary_offset
-        )));
-    }
-    Ok(())
-}
-
-/// The worker threads of the options.
-pub(super) fn thread_pool(options: &DomainOptions) -> Result<rayon::ThreadPool> {
-    crate::threads::pool(options.threads)
-}
-
-/// The sweep options of a domain's optimization.
-pub(super) fn sweep_options(options: &DomainOptions) -> SweepOptions {
-    SweepOptions {
-        max_sweeps: options.max_sweeps,
-        move_tolerance: 1e-3,
-        node: NodeSolverOptions {
-            gradient_tolerance: 1e-3,
-            max_iterations: 150,
-            relaxation: 1.8,
-        },
-    }
 }
 
 /// VTK's polygon cell type.

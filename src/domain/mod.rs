@@ -3,8 +3,10 @@
 //! the boundary, inner ones by transfinite interpolation), then untangle and smooth with the
 //! optimizer; move the boundary of a built domain keeping its tree.
 
+mod budget;
 mod build;
 mod frame;
+mod options;
 mod planar;
 mod refine;
 mod relief;
@@ -12,10 +14,11 @@ mod repair;
 mod solid;
 mod update;
 
-pub use build::{
-    transfinite, CubeMap, Domain, DomainOptions, DomainReport, StageSeconds, DEFAULT_MAX_CELLS,
-};
+pub use build::{transfinite, CubeMap, Domain};
 pub use frame::Frame;
+pub use options::{
+    DomainOptions, DomainReport, StageSeconds, DEFAULT_MAX_CELLS, DEFAULT_MAX_TOTAL_SWEEPS,
+};
 pub use planar::{PlanarDomain, PlanarOptions, PlanarReport};
 pub use solid::{SolidDomain, SolidOptions, SolidReport};
 pub use update::{UpdateOptions, UpdateReport};

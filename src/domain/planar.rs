@@ -1,6 +1,7 @@
 //! Planar domains bounded by four curves.
 
-use super::build::{CubeMap, Domain, DomainOptions, DomainReport};
+use super::build::{CubeMap, Domain};
+use super::options::{DomainOptions, DomainReport};
 use crate::boundary::{BoundaryLoop2, Side};
 
 impl CubeMap<2> for BoundaryLoop2 {

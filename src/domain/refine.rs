@@ -7,9 +7,10 @@ use std::time::Instant;
 
 use rayon::ThreadPool;
 
-use super::build::{
-    cells_within, check_options, sweep_options, thread_pool, CubeMap, Domain, DomainOptions,
-    DomainReport, MAX_REPAIR_LEVEL,
+use super::build::{CubeMap, Domain};
+use super::options::{
+    cells_within, check_options, sweep_options, thread_pool, DomainOptions, DomainReport,
+    MAX_REPAIR_LEVEL,
 };
 use crate::error::{Error, Result};
 use crate::optimize::motion::optimize_in_place;

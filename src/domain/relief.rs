@@ -16,7 +16,9 @@
 
 use rayon::ThreadPool;
 
-use super::build::{sweep_options, CubeMap, Domain, DomainOptions};
+use super::budget::Sweeps;
+use super::build::{CubeMap, Domain};
+use super::options::{sweep_options, DomainOptions};
 use crate::error::Result;
 use crate::optimize::metric::Term;
 use crate::optimize::motion::optimize_in_place;
@@ -90,23 +92,23 @@ impl<const D: usize, B: CubeMap<D>> Domain<D, B> {
     /// Relieves the folds the boundary vertices alone cause (see the module documentation), with
     /// offsets up to `options.boundary_offset`: in each round the boundary vertices of the
     /// folded cells move, then the inner vertices are optimized. Keeps the positions only if
-    /// they leave fewer folded cells. Returns the folded cells left and the sweeps done.
+    /// they leave fewer folded cells. Stops where the sweep budget runs out. Returns the folded
+    /// cells left.
     pub(super) fn relieve(
         &mut self,
         options: &DomainOptions,
         pool: &ThreadPool,
-        progress: &mut dyn FnMut(usize) -> bool,
-    ) -> Result<(Vec<usize>, u32)> {
+        sweeps: &mut Sweeps<'_>,
+    ) -> Result<Vec<usize>> {
         let problem: Problem<D> = self.mesh.problem()?;
         let initial = invalid_cells(pool, &problem, &self.framed);
         let radius = options.boundary_offset;
-        if initial.is_empty() || radius <= 0.0 {
-            return Ok((initial, 0));
+        if initial.is_empty() || radius <= 0.0 || sweeps.exhausted() {
+            return Ok(initial);
         }
         let mut invalid = initial.clone();
         let anchors = self.boundary_anchors();
         let mut x = self.framed.clone();
-        let mut sweeps = 0;
         let mut terms = Vec::new();
         let mut stalled = 0;
         for _ in 0..RELIEF_ROUNDS {
@@ -123,12 +125,15 @@ impl<const D: usize, B: CubeMap<D>> Domain<D, B> {
                 let d = lifting_displacement(&terms, x[v], MARGIN);
                 x[v] = clip_to_ball(std::array::from_fn(|k| x[v][k] + d[k]), anchor, radius);
             }
-            let done = sweeps as usize;
-            let stats =
-                optimize_in_place(pool, &problem, &mut x, &sweep_options(options), &mut |d| {
-                    progress(done + d)
-                })?;
-            sweeps += stats.sweeps;
+            let optimized = optimize_in_place(
+                pool,
+                &problem,
+                &mut x,
+                &sweep_options(options),
+                &mut sweeps.stage(),
+            );
+            // Stopped by the budget, the sweeps so far are kept.
+            sweeps.absorb(optimized)?;
             let still = invalid_cells(pool, &problem, &x);
             stalled = if still.len() < invalid.len() {
                 0
@@ -136,7 +141,7 @@ impl<const D: usize, B: CubeMap<D>> Domain<D, B> {
                 stalled + 1
             };
             invalid = still;
-            if invalid.is_empty() || stalled == PATIENCE {
+            if invalid.is_empty() || stalled == PATIENCE || sweeps.exhausted() {
                 break;
             }
         }
@@ -144,9 +149,9 @@ impl<const D: usize, B: CubeMap<D>> Domain<D, B> {
             self.quality = QualitySummary::of(pool, &problem, &x).quality;
             self.positions = x.iter().map(|&p| self.frame.to_physical(p)).collect();
             self.framed = x;
-            Ok((invalid, sweeps))
+            Ok(invalid)
         } else {
-            Ok((initial, sweeps))
+            Ok(initial)
         }
     }
 

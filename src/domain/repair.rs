@@ -5,7 +5,9 @@
 
 use rayon::ThreadPool;
 
-use super::build::{CubeMap, Domain, DomainOptions, MAX_REPAIR_LEVEL};
+use super::budget::Sweeps;
+use super::build::{CubeMap, Domain};
+use super::options::{DomainOptions, MAX_REPAIR_LEVEL};
 use crate::error::Result;
 use crate::tmesh::TMesh;
 
@@ -40,16 +42,17 @@ impl<const D: usize, B: CubeMap<D>> Domain<D, B> {
     /// `options.repair_rounds` rounds. Keeps the state with the fewest invalid cells, and stops
     /// once two rounds in a row have increased their number: where the boundary itself folds at
     /// every scale (a seam of two triangulated faces meeting at a reflex angle), refining only
-    /// multiplies the folds. Returns the sweeps done and the rounds that refined cells.
+    /// multiplies the folds. Stops too where the sweep budget runs out. Returns the rounds that
+    /// refined cells.
     pub(super) fn relieve_and_repair(
         &mut self,
         options: &DomainOptions,
         pool: &ThreadPool,
-        progress: &mut dyn FnMut(usize) -> bool,
-    ) -> Result<(u32, u32)> {
+        sweeps: &mut Sweeps<'_>,
+    ) -> Result<u32> {
         // Folds that the boundary vertices alone cause where two faces meet at a reflex angle
         // (a jittered or jagged seam) are relieved before, and after, every refinement.
-        let (mut invalid, mut sweeps) = self.relieve(options, pool, progress)?;
+        let mut invalid = self.relieve(options, pool, sweeps)?;
         let mut repair_rounds = 0;
         let mut best = (invalid.len(), self.state());
         let mut growing = 0;
@@ -59,16 +62,14 @@ impl<const D: usize, B: CubeMap<D>> Domain<D, B> {
                 .copied()
                 .filter(|&c| self.mesh.cell_level(c) < MAX_REPAIR_LEVEL)
                 .collect();
-            if refinable.is_empty() {
+            if refinable.is_empty() || sweeps.exhausted() {
                 break;
             }
-            let done = sweeps as usize;
-            sweeps += self
-                .refine_in_place(&refinable, options, pool, &mut |d| progress(done + d))?
-                .1;
-            let done = sweeps as usize;
-            let (still_invalid, s) = self.relieve(options, pool, &mut |d| progress(done + d))?;
-            sweeps += s;
+            let refined = self.refine_in_place(&refinable, options, pool, &mut sweeps.stage());
+            if sweeps.absorb(refined)?.is_none() {
+                break;
+            }
+            let still_invalid = self.relieve(options, pool, sweeps)?;
             // Folds on the cube's edges may open only once their chords are a few levels
             // shorter, so a round or two with more invalid cells is no failure; a count that
             // keeps growing is.
@@ -86,6 +87,6 @@ impl<const D: usize, B: CubeMap<D>> Domain<D, B> {
         if invalid.len() > best.0 {
             self.restore(best.1);
         }
-        Ok((sweeps, repair_rounds))
+        Ok(repair_rounds)
     }
 }

@@ -1,6 +1,7 @@
 //! Solids bounded by six surfaces mapped onto the faces of the unit cube.
 
-use super::build::{CubeMap, Domain, DomainOptions, DomainReport};
+use super::build::{CubeMap, Domain};
+use super::options::{DomainOptions, DomainReport};
 use crate::boundary::SolidBoundary;
 
 impl CubeMap<3> for SolidBoundary {

@@ -15,12 +15,11 @@ use std::time::Instant;
 
 use rayon::ThreadPool;
 
-use super::build::{
-    cell_boundary_error, check_options, facet_scale, sweep_options, thread_pool, CubeMap, Domain,
-    DomainOptions, DomainReport,
-};
+use super::budget::Sweeps;
+use super::build::{cell_boundary_error, facet_scale, CubeMap, Domain};
 use super::frame::{signed_measure, Frame, Framed};
-use crate::error::{Error, Result};
+use super::options::{check_options, sweep_options, thread_pool, DomainOptions, DomainReport};
+use crate::error::{Error, ErrorKind, Result};
 use crate::optimize::invalid_cells;
 use crate::optimize::laplace::MeshGraph;
 use crate::optimize::motion::follow_motion;
@@ -129,30 +128,28 @@ impl<const D: usize, B: CubeMap<D>> Domain<D, B> {
             positions: self.positions.clone(),
             quality: self.quality.clone(),
         };
-        let mut progress = |done: usize| progress(done, 0);
-        let mut report = next.follow_boundary(&anchors, &domain_options, &pool, &mut progress)?;
-        let done = report.domain.sweeps as usize;
-        let (invalid, sweeps) =
-            next.relieve(&domain_options, &pool, &mut |d| progress(done + d))?;
-        report.domain.sweeps += sweeps;
+        let mut per_sweep = |done: usize| progress(done, 0);
+        let mut sweeps = Sweeps::new(domain_options.max_total_sweeps, &mut per_sweep);
+        let mut report = next.follow_boundary(&anchors, &domain_options, &pool, &mut sweeps)?;
+        let invalid = next.relieve(&domain_options, &pool, &mut sweeps)?;
         if options.refine {
             let cells = next.mesh.cell_count();
-            next.refine_to_tolerance(&domain_options, &pool, &mut progress, &mut report)?;
+            next.refine_to_tolerance(&domain_options, &pool, &mut sweeps)?;
             if !invalid.is_empty() || next.mesh.cell_count() != cells {
-                let done = report.domain.sweeps as usize;
-                let (sweeps, rounds) =
-                    next.relieve_and_repair(&domain_options, &pool, &mut |d| progress(done + d))?;
-                report.domain.sweeps += sweeps;
-                report.domain.repair_rounds = rounds;
+                report.domain.repair_rounds =
+                    next.relieve_and_repair(&domain_options, &pool, &mut sweeps)?;
             }
             report.refined_cells = next.mesh.cell_count().saturating_sub(cells);
         }
+        report.domain.sweeps = sweeps.spent();
+        report.domain.sweep_budget_exhausted = sweeps.exhausted();
         let over = next.cells_over_tolerance()?;
         let summary = next.report(&pool)?;
         report.domain = DomainReport {
             boundary_error: over.1,
             invalid_after_placement: report.domain.invalid_after_placement,
             sweeps: report.domain.sweeps,
+            sweep_budget_exhausted: report.domain.sweep_budget_exhausted,
             repair_rounds: report.domain.repair_rounds,
             seconds: start.elapsed().as_secs_f64(),
             ..summary
@@ -172,7 +169,7 @@ impl<const D: usize, B: CubeMap<D>> Domain<D, B> {
         old: &[Option<[f64; D]>],
         options: &DomainOptions,
         pool: &ThreadPool,
-        progress: &mut dyn FnMut(usize) -> bool,
+        sweeps: &mut Sweeps<'_>,
     ) -> Result<UpdateReport> {
         let problem = self.mesh.problem()?;
         let mut goal = self.framed.clone();
@@ -189,22 +186,31 @@ impl<const D: usize, B: CubeMap<D>> Domain<D, B> {
         let mut placed = goal.clone();
         pool.install(|| graph.harmonic_placement(&problem, &self.framed, &mut placed));
         let invalid_after_placement = invalid_cells(pool, &problem, &placed).len();
-        let (x, stats) = follow_motion(
+        let followed = follow_motion(
             pool,
             &problem,
             &graph,
             &self.framed,
             &goal,
             &sweep_options(options),
-            progress,
-        )?;
+            &mut sweeps.stage(),
+        );
+        let Some((x, stats)) = sweeps.absorb(followed)? else {
+            return Err(Error::new(
+                ErrorKind::LimitExceeded,
+                format!(
+                    "the sweep budget (max_total_sweeps = {} of the build) ran out while the \
+                     vertices followed the boundary; the domain is unchanged",
+                    options.max_total_sweeps
+                ),
+            ));
+        };
         self.quality = QualitySummary::of(pool, &problem, &x).quality;
         self.positions = x.iter().map(|&p| self.frame.to_physical(p)).collect();
         self.framed = x;
         Ok(UpdateReport {
             domain: DomainReport {
                 invalid_after_placement,
-                sweeps: stats.sweeps,
                 ..Default::default()
             },
             boundary_motion: motion,
@@ -214,23 +220,22 @@ impl<const D: usize, B: CubeMap<D>> Domain<D, B> {
     }
 
     /// Refines the boundary cells over tolerance (see [`Domain::cells_over_tolerance`]) until
-    /// none is left, adding the sweeps to the report.
+    /// none is left or the sweep budget is spent.
     fn refine_to_tolerance(
         &mut self,
         options: &DomainOptions,
         pool: &ThreadPool,
-        progress: &mut dyn FnMut(usize) -> bool,
-        report: &mut UpdateReport,
+        sweeps: &mut Sweeps<'_>,
     ) -> Result<()> {
         loop {
             let (cells, _) = self.cells_over_tolerance()?;
-            if cells.is_empty() {
+            if cells.is_empty() || sweeps.exhausted() {
                 return Ok(());
             }
-            let done = report.domain.sweeps as usize;
-            let (_, sweeps) =
-                self.refine_in_place(&cells, options, pool, &mut |d| progress(done + d))?;
-            report.domain.sweeps += sweeps;
+            let refined = self.refine_in_place(&cells, options, pool, &mut sweeps.stage());
+            if sweeps.absorb(refined)?.is_none() {
+                return Ok(());
+            }
         }
     }
 

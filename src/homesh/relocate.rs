@@ -131,14 +131,7 @@ impl RelocateOptions {
                 self.relaxation
             )));
         }
-        if self.threads > crate::threads::MAX_THREADS {
-            return Err(Error::invalid(format!(
-                "threads = {} is more than {}",
-                self.threads,
-                crate::threads::MAX_THREADS
-            )));
-        }
-        Ok(())
+        crate::threads::check(self.threads)
     }
 }
 

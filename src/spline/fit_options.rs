@@ -88,13 +88,7 @@ impl FitOptions {
     /// Checks the ranges of every field.
     pub fn validate(&self) -> Result<()> {
         self.validity.validate()?;
-        if self.threads > crate::threads::MAX_THREADS {
-            return Err(Error::invalid(format!(
-                "threads = {} must be at most {}",
-                self.threads,
-                crate::threads::MAX_THREADS
-            )));
-        }
+        crate::threads::check(self.threads)?;
         let u = &self.untangle;
         if !(2..=MAX_SAMPLES).contains(&u.samples) {
             return Err(Error::invalid(format!(

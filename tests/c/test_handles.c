@@ -278,8 +278,34 @@ static void test_cell_budget(void) {
   igaparam_domain_free(domain);
 }
 
+/* The sweeps of all stages stop at max_total_sweeps: the build succeeds with the T-mesh reached
+   and says so; a budget of 0 is refused and leaves the handle as it was. */
+static void test_sweep_budget(void) {
+  igaparam_domain *domain = new_domain();
+  igaparam_domain_options o = igaparam_domain_options_default();
+  CHECK(o.max_total_sweeps == IGAPARAM_DEFAULT_MAX_TOTAL_SWEEPS);
+  igaparam_domain_report full, cut;
+  igaparam_status status = igaparam_domain_build(domain, &o, &full);
+  CHECKF(status == IGAPARAM_STATUS_OK && full.sweeps > 3 && !full.sweep_budget_exhausted,
+         "status %d, %u sweeps: %s", (int)status, full.sweeps, last_message());
+  o.max_total_sweeps = 3;
+  status = igaparam_domain_build(domain, &o, &cut);
+  CHECKF(status == IGAPARAM_STATUS_OK && cut.sweeps == 3 && cut.sweep_budget_exhausted == 1,
+         "status %d, %u sweeps, exhausted %d: %s", (int)status, cut.sweeps,
+         cut.sweep_budget_exhausted, last_message());
+  CHECK(cut.cells == full.cells);
+  size_t cells = 0;
+  o.max_total_sweeps = 0;
+  status = igaparam_domain_build(domain, &o, NULL);
+  CHECKF(status == IGAPARAM_STATUS_INVALID_ARGUMENT && strstr(last_message(), "max_total_sweeps"),
+         "status %d: %s", (int)status, last_message());
+  CHECK(igaparam_domain_cell_count(domain, &cells) == IGAPARAM_STATUS_OK && cells == cut.cells);
+  igaparam_domain_free(domain);
+}
+
 int main(void) {
   test_cell_budget();
+  test_sweep_budget();
   test_mesh_reentry();
   test_mesh_usable_after_busy();
   test_two_threads();

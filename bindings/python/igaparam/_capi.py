@@ -148,6 +148,7 @@ class DomainOptions(ctypes.Structure):
         ("min_level", ctypes.c_uint32),
         ("max_level", ctypes.c_uint32),
         ("max_sweeps", ctypes.c_uint32),
+        ("max_total_sweeps", ctypes.c_uint32),
         ("threads", ctypes.c_uint32),
         ("repair_rounds", ctypes.c_uint32),
         ("boundary_offset", ctypes.c_double),
@@ -171,6 +172,7 @@ class DomainReport(ctypes.Structure):
         ("min_quality", ctypes.c_double),
         ("mean_quality", ctypes.c_double),
         ("sweeps", ctypes.c_uint32),
+        ("sweep_budget_exhausted", ctypes.c_int),
         ("seconds", ctypes.c_double),
     ]
 

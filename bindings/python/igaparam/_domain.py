@@ -42,11 +42,16 @@ class DomainReport:
     min_quality: float
     mean_quality: float
     sweeps: int
+    #: Whether the optimization stopped because it spent ``max_total_sweeps`` (the T-mesh is
+    #: the state its sweeps reached: check ``invalid_cells``).
+    sweep_budget_exhausted: bool
     seconds: float
 
     @classmethod
     def _from_c(cls, report):
-        return cls(**{field.name: getattr(report, field.name) for field in dataclasses.fields(cls)})
+        values = {field.name: getattr(report, field.name) for field in dataclasses.fields(cls)}
+        values["sweep_budget_exhausted"] = bool(values["sweep_budget_exhausted"])
+        return cls(**values)
 
     def as_dict(self) -> dict:
         """The report as a dict."""
@@ -302,6 +307,7 @@ class Domain(_Handle):
         repair_rounds: Optional[int] = None,
         boundary_offset: Optional[float] = None,
         max_cells: Optional[int] = None,
+        max_total_sweeps: Optional[int] = None,
     ) -> "DomainReport":
         """Adapts a T-mesh to the boundary, places its vertices and optimizes them. Building
         again replaces the previous T-mesh; on any error the domain keeps its previous state.
@@ -314,7 +320,7 @@ class Domain(_Handle):
                 that map the bounding box onto the unit box, exceed ``tolerance × √d^d``.
             min_level: level of the initial uniform refinement (default 2).
             max_level: deepest level of the adaptation, at most 16 (default 9).
-            max_sweeps: largest number of optimization sweeps (default 200).
+            max_sweeps: largest number of optimization sweeps of one stage (default 200).
             threads: worker threads, capped to the cores; 0 uses one per core (the result does not
                 depend on it).
             progress: None, or a callable ``progress(stage, done, total)`` called after
@@ -332,6 +338,9 @@ class Domain(_Handle):
             max_cells: largest number of cells of the T-mesh (default 1,000,000): a build
                 beyond it is refused (``Status.LIMIT_EXCEEDED``), before any work when the
                 uniform refinement to ``min_level`` alone exceeds it.
+            max_total_sweeps: largest number of sweeps of all stages together, at least 1
+                (default 5,000): once spent the build stops optimizing and succeeds with the
+                T-mesh reached so far, ``sweep_budget_exhausted`` set in the report.
 
         Returns:
             DomainReport; ``invalid_cells == 0`` for a usable parameterization.
@@ -351,7 +360,7 @@ class Domain(_Handle):
         if boundary_offset is not None:
             options.boundary_offset = float(boundary_offset)
         _set_counts(options, min_level=min_level, max_level=max_level, max_sweeps=max_sweeps, threads=threads,
-                    repair_rounds=repair_rounds, max_cells=max_cells)
+                    repair_rounds=repair_rounds, max_cells=max_cells, max_total_sweeps=max_total_sweeps)
         report = _call(self._lib.igaparam_domain_build, self._h(), options, progress, _capi.DomainReport())
         return DomainReport._from_c(report)
 

@@ -1,0 +1,236 @@
+//! The options of a domain build and what it reports, with their rules (ranges, budgets of cells
+//! and sweeps) and the optimizer's settings they give.
+
+use crate::error::{Error, ErrorKind, Result};
+use crate::optimize::{NodeSolverOptions, SweepOptions};
+
+/// Options of [`Domain::build`](super::Domain::build).
+#[derive(Clone, Copy, Debug)]
+pub struct DomainOptions {
+    /// Boundary tolerance, relative to the bounding box: a boundary facet of a cell is refined
+    /// while the triangle (2D: its end images and the image of its midpoint) or the four
+    /// tetrahedra (3D: consecutive corner images and the image of the face centre), measured in
+    /// coordinates that map the bounding box onto a unit box (see [`Frame`](super::Frame)), exceed
+    /// `tolerance × √d^d` (for a square or cube box: `tolerance × diagonal^d`).
+    pub tolerance: f64,
+    /// Level of the initial uniform refinement.
+    pub min_level: u8,
+    /// Deepest level of the adaptation.
+    pub max_level: u8,
+    /// Largest number of optimization sweeps of one stage (the first optimization, each step of
+    /// the growth from the bounding box, each round of the seam relief and of the repair).
+    pub max_sweeps: u32,
+    /// Largest number of sweeps of all stages together, at least 1 (default
+    /// [`DEFAULT_MAX_TOTAL_SWEEPS`]): once spent, the running stage stops after its sweep and no
+    /// later stage starts; the T-mesh is what the sweeps so far made of it, and the report says
+    /// so ([`DomainReport::sweep_budget_exhausted`]).
+    pub max_total_sweeps: u32,
+    /// Worker threads; 0 uses one per core.
+    pub threads: usize,
+    /// Rounds of repair after the optimization: while cells stay invalid, they are refined (as
+    /// by [`Domain::refine_cells`](super::Domain::refine_cells), past `max_level` up to level 16) and the mesh re-optimized.
+    pub repair_rounds: u32,
+    /// Largest distance, in coordinates that map the bounding box onto a unit box (see
+    /// [`Frame`](super::Frame)), by which a boundary vertex may leave the boundary to open a cell that stays
+    /// folded with every boundary vertex on the boundary (see [`MARGIN`](super::relief::MARGIN)
+    /// and the seam relief); 0 keeps every boundary vertex on the boundary. Default 1e-2: the
+    /// jagged terrain edge of the Jacksboro block needs offsets near it, the jittered duck faces
+    /// 1e-3 with a few more levels of refinement.
+    pub boundary_offset: f64,
+    /// Largest number of cells of the T-mesh (default [`DEFAULT_MAX_CELLS`]): a build whose
+    /// uniform refinement to `min_level` would exceed it is refused before any work, and one
+    /// whose adaptation or repair exceeds it stops there, with [`ErrorKind::LimitExceeded`].
+    pub max_cells: usize,
+}
+
+/// The default cell budget of a domain build (`max_cells` of its options): a million cells, a
+/// planar T-mesh of level 10 everywhere (minutes of optimization and about a gigabyte; a
+/// solid's cells cost more).
+pub const DEFAULT_MAX_CELLS: usize = 1_000_000;
+
+/// The default total sweep budget of a domain build (`max_total_sweeps` of its options): 25
+/// times the default `max_sweeps`. The bundled domains need at most 4,071 (the duck's B-rep at
+/// tolerance 1e-4, level 4, with its growth from the bounding box and its repair); inputs that
+/// fold at every level stop here, after seconds, instead of running for minutes.
+pub const DEFAULT_MAX_TOTAL_SWEEPS: u32 = 5_000;
+
+impl DomainOptions {
+    /// Checks the ranges of every field (what [`Domain::build`](super::Domain::build) checks before any work).
+    pub fn validate(&self) -> Result<()> {
+        check_options(self)
+    }
+
+    /// The defaults of a solid: [`DomainOptions::default`] with a boundary tolerance of 1e-3
+    /// instead of 1e-5. A tolerance bounds a volume in 3D (an area in 2D), and at 1e-3 the
+    /// shared solids (the duck's B-rep and faces, the Jacksboro block with its axes in km) give
+    /// valid T-meshes of 64–92 cells and certified spline maps in seconds, where 1e-5 refines
+    /// for many minutes.
+    pub fn solid() -> Self {
+        DomainOptions {
+            tolerance: 1e-3,
+            ..Default::default()
+        }
+    }
+}
+
+/// The defaults of a planar domain (see [`DomainOptions::solid`] for a solid's).
+impl Default for DomainOptions {
+    fn default() -> Self {
+        DomainOptions {
+            tolerance: 1e-5,
+            min_level: 2,
+            max_level: 9,
+            max_sweeps: 200,
+            max_total_sweeps: DEFAULT_MAX_TOTAL_SWEEPS,
+            threads: 0,
+            repair_rounds: 6,
+            boundary_offset: 1e-2,
+            max_cells: DEFAULT_MAX_CELLS,
+        }
+    }
+}
+
+/// What [`Domain::build`](super::Domain::build) did.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct DomainReport {
+    /// Cells of the T-mesh.
+    pub cells: usize,
+    /// Vertices of the T-mesh, hanging ones included.
+    pub vertices: usize,
+    /// Deepest level.
+    pub max_level: u8,
+    /// Largest boundary error, relative (see [`DomainOptions::tolerance`]).
+    pub boundary_error: f64,
+    /// Largest distance of a boundary vertex from its point on the boundary, in coordinates
+    /// that map the bounding box onto a unit box (at most [`DomainOptions::boundary_offset`]).
+    pub boundary_offset: f64,
+    /// Invalid cells after the transfinite placement.
+    pub invalid_after_placement: usize,
+    /// Invalid cells after the optimization.
+    pub invalid_cells: usize,
+    /// Smallest cell quality (1/mean distortion against the parametric cell).
+    pub min_quality: f64,
+    /// Mean cell quality.
+    pub mean_quality: f64,
+    /// Optimization sweeps (with those of the fallback growth from the bounding box and of the
+    /// repair).
+    pub sweeps: u32,
+    /// Whether the optimization stopped because it spent
+    /// [`DomainOptions::max_total_sweeps`]: the T-mesh is the state the sweeps reached, less
+    /// optimized (and possibly with more invalid cells) than a larger budget would give.
+    pub sweep_budget_exhausted: bool,
+    /// Repair rounds that refined invalid cells.
+    pub repair_rounds: u32,
+    /// Wall-clock seconds.
+    pub seconds: f64,
+    /// Wall-clock seconds of each stage.
+    pub stages: StageSeconds,
+    /// Whether the boundary's parameterization is left-handed, so that the T-mesh's first two
+    /// parametric coordinates are swapped relative to it.
+    pub swapped: bool,
+}
+
+/// Wall-clock seconds of the stages of [`Domain::build`](super::Domain::build).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct StageSeconds {
+    /// Adapting the tree to the boundary and building the T-mesh.
+    pub adaptation: f64,
+    /// Placing the vertices (boundary and transfinite interpolation).
+    pub placement: f64,
+    /// Optimizing, with the fallback growth from the bounding box.
+    pub optimization: f64,
+    /// Refining the cells left invalid and optimizing again.
+    pub repair: f64,
+}
+
+/// Deepest level the repair refines to.
+pub(super) const MAX_REPAIR_LEVEL: u8 = 16;
+
+/// Refuses a build whose uniform refinement to `min_level` alone exceeds `max_cells`.
+pub(super) fn check_uniform_cells<const D: usize>(options: &DomainOptions) -> Result<()> {
+    let cells = 1u128 << (D * options.min_level as usize);
+    if cells > options.max_cells as u128 {
+        return Err(Error::new(
+            ErrorKind::LimitExceeded,
+            format!(
+                "min_level = {} refines [0,1]^{D} into {cells} cells, above max_cells = {}: \
+                 lower min_level or raise max_cells",
+                options.min_level, options.max_cells
+            ),
+        ));
+    }
+    Ok(())
+}
+
+/// Refuses a T-mesh of `cells` cells beyond `max_cells`; `stage` names what made them.
+pub(super) fn cells_within(options: &DomainOptions, cells: usize, stage: &str) -> Result<()> {
+    if cells > options.max_cells {
+        return Err(Error::new(
+            ErrorKind::LimitExceeded,
+            format!(
+                "{stage} reached {cells} cells, above max_cells = {}: raise the tolerance or \
+                 max_cells, or lower max_level",
+                options.max_cells
+            ),
+        ));
+    }
+    Ok(())
+}
+
+/// Checks the options shared by [`Domain::build`](super::Domain::build) and [`Domain::refine_cells`](super::Domain::refine_cells).
+pub(super) fn check_options(options: &DomainOptions) -> Result<()> {
+    for (name, value) in [
+        ("tolerance", options.tolerance),
+        ("boundary_offset", options.boundary_offset),
+    ] {
+        if !value.is_finite() {
+            return Err(Error::new(
+                ErrorKind::NotFinite,
+                format!("{name} is {value}, it must be finite"),
+            ));
+        }
+    }
+    crate::threads::check(options.threads)?;
+    if options.tolerance <= 0.0 {
+        return Err(Error::invalid(format!(
+            "tolerance = {} must be positive",
+            options.tolerance
+        )));
+    }
+    if options.min_level > options.max_level || options.max_level > MAX_REPAIR_LEVEL {
+        return Err(Error::invalid(format!(
+            "levels must satisfy min_level <= max_level <= 16, got min_level = {}, max_level = {}",
+            options.min_level, options.max_level
+        )));
+    }
+    if options.max_total_sweeps == 0 {
+        return Err(Error::invalid(
+            "max_total_sweeps = 0: the sweep budget of a build must be at least 1",
+        ));
+    }
+    if options.boundary_offset < 0.0 {
+        return Err(Error::invalid(format!(
+            "boundary_offset = {} must be at least 0",
+            options.boundary_offset
+        )));
+    }
+    Ok(())
+}
+
+/// The worker threads of the options.
+pub(super) fn thread_pool(options: &DomainOptions) -> Result<rayon::ThreadPool> {
+    crate::threads::pool(options.threads)
+}
+
+/// The sweep options of a domain's optimization.
+pub(super) fn sweep_options(options: &DomainOptions) -> SweepOptions {
+    SweepOptions {
+        max_sweeps: options.max_sweeps,
+        move_tolerance: 1e-3,
+        node: NodeSolverOptions {
+            gradient_tolerance: 1e-3,
+            max_iterations: 150,
+            relaxation: 1.8,
+        },
+    }
+}
