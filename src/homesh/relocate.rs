@@ -218,7 +218,8 @@ impl Mesh {
     ) -> Result<RelocateReport> {
         let start = Instant::now();
         let problem = self.problem::<D>(options.target)?;
-        let goal = project::<D>(&self.positions);
+        let unit = self.unit();
+        let goal = project::<D>(&self.positions, unit);
         let mut report = RelocateReport {
             cells: self.cell_count(),
             nodes: self.node_count(),
@@ -254,7 +255,7 @@ impl Mesh {
         report.invalid_after = quality.invalid.len();
         report.min_quality = quality.min;
         report.mean_quality = quality.mean;
-        self.positions = super::newton::lift(&self.positions, &x);
+        self.positions = super::lift(&self.positions, &x, unit, &self.fixed);
         self.last = Some(super::State {
             positions: self.positions.clone(),
             stationary: report.gradient_norm
@@ -282,8 +283,8 @@ impl Mesh {
         }
         // Where the motion starts: the reference shape, or the last relocated state.
         let from = match (options.placement, &self.last) {
-            (Placement::Incremental, Some(last)) => project::<D>(&last.positions),
-            _ => project::<D>(&self.reference),
+            (Placement::Incremental, Some(last)) => project::<D>(&last.positions, self.unit()),
+            _ => project::<D>(&self.reference, self.unit()),
         };
         let mut x = goal.to_vec();
         let graph = MeshGraph::new(problem);
