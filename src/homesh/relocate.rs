@@ -197,6 +197,9 @@ impl Mesh {
     /// Relocates the free components of the nodes (see [`Mesh::set_fixed`]) so that every cell is
     /// valid and close to its target shape. `progress(stage, done, total)` is called as work
     /// proceeds; returning `false` cancels. On error or cancellation the mesh is unchanged.
+    ///
+    /// The optimizer runs on the mesh scaled by a power of two to a size of 1–2 (see
+    /// `unit_of` in `homesh`): the result does not depend on the units.
     pub fn relocate(
         &mut self,
         options: &RelocateOptions,
