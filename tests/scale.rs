@@ -5,7 +5,7 @@
 
 mod common;
 
-use common::{boundary_data, boundary_mask, curved_box, grid, MappedCube};
+use common::{boundary_data, boundary_mask, bump_top, curved_box, grid, MappedCube};
 use igaparam::boundary::{read_gismo_curves, BSplineCurve, BoundaryLoop2, Curve2};
 use igaparam::domain::{Domain, DomainOptions, PlanarDomain, PlanarOptions, PlanarReport};
 use igaparam::spline::{QuadraticMap, SplineMap, ThbSpace, UntangleOptions, ValidityOptions};
@@ -44,16 +44,7 @@ fn bumped(cell_type: CellType, n: usize, depth: f64, s: f64) -> Mesh {
     let scaled: Vec<f64> = xyz.iter().map(|v| v * s).collect();
     let mut mesh = Mesh::new(cell_type, &scaled, &conn).unwrap();
     mesh.set_fixed(&mask).unwrap();
-    let mut moved = xyz.clone();
-    for p in moved.chunks_mut(3) {
-        if p[d - 1] == 1.0 {
-            let bump: f64 = p[..d - 1]
-                .iter()
-                .map(|&t| (std::f64::consts::PI * t).sin())
-                .product();
-            p[d - 1] -= depth * bump;
-        }
-    }
+    let moved = bump_top(&xyz, d, depth);
     let moved: Vec<f64> = moved.iter().map(|v| v * s).collect();
     mesh.move_nodes(None, &moved).unwrap();
     mesh
