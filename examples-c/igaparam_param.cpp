@@ -260,6 +260,9 @@ int main(int argc, char** argv) {
         for (double x : q) r.mean_quality += x / double(q.size());
         std::printf("adaptation: %u rounds, %zu cells refined, now %zu cells; target %s\n", ar.rounds,
                     ar.refined_cells, r.cells, ar.reached ? "reached" : "not reached");
+        // The untangling of the last fit, the map returned.
+        fit.untangled = ar.untangled;
+        fit.boundary_offset = ar.boundary_offset;
       } else {
         check(igaparam_spline_fit_domain(domain.d, &spline.s, &fit), "spline fit");
         if (fit.untangled > 0)

@@ -854,6 +854,16 @@ typedef struct {
    * Wall-clock seconds.
    */
   double seconds;
+  /**
+   * Control points moved to untangle the fit of the map returned (as
+   * `igaparam_fit_report.untangled`); 0 when that fit was kept.
+   */
+  size_t untangled;
+  /**
+   * Largest move of a boundary control point by that untangling, relative to the bounding
+   * box (as `igaparam_fit_report.boundary_offset`); 0 when the boundary was kept.
+   */
+  double boundary_offset;
 } igaparam_adapt_report;
 
 /**

@@ -89,8 +89,10 @@ fn shared_domains_give_valid_t_meshes_within_the_boundary_tolerance() {
     }
     for (name, report) in &reports {
         assert_eq!(report.invalid_cells, 0, "{name}: {report:?}");
+        // Every one of them meets the tolerance below the level cap (levels 6 and 7 of 9): the
+        // tolerance is checked, not excused by the cap.
         assert!(
-            report.boundary_error <= options.tolerance || report.max_level == options.max_level,
+            report.boundary_error <= options.tolerance && report.max_level < options.max_level,
             "{name}: {report:?}"
         );
     }
@@ -124,7 +126,11 @@ fn a_curved_solid_gets_a_valid_adapted_octree() {
         igaparam::domain::Domain::build(MappedCube(map), &options, &mut |_, _| true).unwrap();
     println!("{report:?}");
     assert_eq!(report.invalid_cells, 0, "{report:?}");
-    assert!(report.boundary_error <= options.tolerance || report.max_level == options.max_level);
+    // The tolerance is met at level 3, below the cap of 5.
+    assert!(
+        report.boundary_error <= options.tolerance && report.max_level < options.max_level,
+        "{report:?}"
+    );
     assert!(
         report.max_level > options.min_level,
         "the curved boundary refined nothing"
@@ -325,7 +331,8 @@ fn duck_brep_gives_a_valid_t_mesh() {
     assert_eq!(validity, validity_two);
 }
 
-/// Triangulated faces that do not share their edges are refused with the faces named.
+/// Triangulated faces that do not share their edges are refused with a face named (the one
+/// whose corners no longer match).
 #[test]
 fn solid_faces_that_do_not_match_are_refused() {
     let mut cube = igaparam::boundary::CubeFaces::read_dir(boundary_data("duck_faces")).unwrap();
@@ -338,5 +345,8 @@ fn solid_faces_that_do_not_match_are_refused() {
             || e.kind == igaparam::ErrorKind::InvalidArgument,
         "{e:?}"
     );
-    assert!(!e.message.is_empty());
+    let named = ["xmin", "xmax", "ymin", "ymax", "zmin", "zmax"]
+        .iter()
+        .any(|f| e.message.contains(&format!("face {f}")));
+    assert!(named, "no face named: {}", e.message);
 }

@@ -10,6 +10,7 @@ use common::{curved_box, planar_boundary, MappedCube};
 use igaparam::domain::{PlanarDomain, PlanarOptions};
 use igaparam::spline::{
     QuadraticMap, SplineMap, SplineSpace, ThbSpace, UntangleOptions, ValidityOptions,
+    ValidityReport,
 };
 use igaparam::tmesh::TMesh;
 
@@ -142,4 +143,112 @@ fn a_curved_solid_gives_a_certified_spline_map() {
         report.seconds,
         3
     ));
+}
+
+/// `det J` by cofactors (an independent computation, not the library's).
+fn det<const D: usize>(j: &[[f64; D]; D]) -> f64 {
+    match D {
+        2 => j[0][0] * j[1][1] - j[0][1] * j[1][0],
+        3 => {
+            j[0][0] * (j[1][1] * j[2][2] - j[1][2] * j[2][1])
+                - j[0][1] * (j[1][0] * j[2][2] - j[1][2] * j[2][0])
+                + j[0][2] * (j[1][0] * j[2][1] - j[1][1] * j[2][0])
+        }
+        _ => unreachable!(),
+    }
+}
+
+/// Checks a certification against a dense evaluation of the map's Jacobians at a grid of
+/// `4k + 1` points per direction and element, which holds the certification's 5 samples per
+/// direction (multiples of 1/4 of the element): a certified map has det J > 0 at every point;
+/// each element's certified lower bound is at most its dense minimum of det J; the mean ratio
+/// recomputed at the samples is the element's sampled minimum; and the dense minimum of the
+/// mean ratio is at most the reported (sampled) one, the samples being a subset of the grid.
+fn check_dense<const D: usize>(map: &SplineMap<D>, validity: &ValidityReport, k: usize) {
+    assert_eq!(ValidityOptions::default().samples, 5);
+    let n = 4 * k + 1;
+    let mut dense_min_q = f64::INFINITY;
+    for e in 0..map.element_count() {
+        let (lo, hi) = map.element_bounds(e);
+        let (mut min_det, mut sample_min_q) = (f64::INFINITY, f64::INFINITY);
+        for s in 0..n.pow(D as u32) {
+            let index: [usize; D] = std::array::from_fn(|a| s / n.pow(a as u32) % n);
+            let x =
+                std::array::from_fn(|a| lo[a] + (hi[a] - lo[a]) * index[a] as f64 / (n - 1) as f64);
+            let (_, j) = map.eval_with_jacobian(x).expect("inside [0,1]^d");
+            let d = det(&j);
+            let norm2: f64 = j.iter().flatten().map(|v| v * v).sum();
+            let q = if d > 0.0 {
+                D as f64 * d.powf(2.0 / D as f64) / norm2
+            } else {
+                0.0
+            };
+            min_det = min_det.min(d);
+            dense_min_q = dense_min_q.min(q);
+            if index.iter().all(|i| i % k == 0) {
+                sample_min_q = sample_min_q.min(q);
+            }
+        }
+        let element = &validity.elements[e];
+        if validity.certified_positive {
+            assert!(
+                min_det > 0.0,
+                "element {e}: certified, but det J = {min_det} at a dense point"
+            );
+        }
+        let bound = element.det_lower_bound;
+        assert!(
+            min_det >= bound - 1e-9 * bound.abs(),
+            "element {e}: det J {min_det} < certified bound {bound}"
+        );
+        assert!(
+            (sample_min_q - element.min_quality).abs() <= 1e-9,
+            "element {e}: recomputed sampled min q {sample_min_q}, reported {}",
+            element.min_quality
+        );
+    }
+    assert!(
+        dense_min_q <= validity.min_quality + 1e-12,
+        "dense min q {dense_min_q} above the sampled minimum {}",
+        validity.min_quality
+    );
+}
+
+/// The certification of cubic maps against the dense evaluation: Gran Canaria (untangled
+/// before it is certified) and a curved solid.
+#[test]
+fn certification_agrees_with_a_dense_evaluation() {
+    let (domain, _) = PlanarDomain::build(
+        planar_boundary("gran_canaria.txt"),
+        &PlanarOptions::default(),
+        &mut |_, _| true,
+    )
+    .unwrap();
+    let (map, fit, validity) = SplineMap::fit_tmesh_checked(
+        domain.mesh(),
+        domain.positions(),
+        &ValidityOptions::default(),
+        &UntangleOptions::default(),
+    )
+    .unwrap();
+    assert!(fit.untangled > 0 && validity.certified_positive);
+    check_dense(&map, &validity, 4);
+
+    let options = igaparam::domain::DomainOptions {
+        tolerance: 1e-2,
+        max_level: 3,
+        ..igaparam::domain::DomainOptions::solid()
+    };
+    let (solid, _) =
+        igaparam::domain::Domain::build(MappedCube(curved_box), &options, &mut |_, _| true)
+            .unwrap();
+    let (map, _, validity) = SplineMap::fit_tmesh_checked(
+        solid.mesh(),
+        solid.positions(),
+        &ValidityOptions::default(),
+        &UntangleOptions::default(),
+    )
+    .unwrap();
+    assert!(validity.certified_positive);
+    check_dense(&map, &validity, 2);
 }

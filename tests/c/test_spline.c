@@ -10,7 +10,9 @@
  * map and that the G+Smo XML round trip keeps it;
  * calls the entry points with NULL, out-of-range and non-finite arguments, checking the status,
  * the message and that a failed call leaves the handle as it was. Prints "N passed, M failed";
- * exits non-zero if any check failed. Runs the adaptive loop on the puzzle piece.
+ * exits non-zero if any check failed. Checks the certification against a dense evaluation of
+ * det J; runs the adaptive loop on the rotor; compares domain builds, fits and adaptive loops at
+ * 1, 2 and 4 threads bit for bit.
  */
 
 #include <math.h>
@@ -243,6 +245,67 @@ static void test_validity(const igaparam_spline *s) {
          ne, r.min_quality, r.mean_quality, r.det_lower_bound, r.certified_positive);
   free(lower);
   free(quality);
+}
+
+/* The certification against an independent dense evaluation: on every element, det J from the
+ * Jacobians of igaparam_spline_evaluate at a DENSE × DENSE grid (which holds the certification's
+ * 5 × 5 samples, at multiples of 1/4 of the element) is positive when the map is certified, and
+ * at least the element's certified lower bound; the mean ratio recomputed at the sample points
+ * is the reported per-element sampled minimum, and the dense minimum is at most it (the samples
+ * are a subset of the grid, so the dense minimum can only be smaller). */
+#define DENSE 17
+static void test_dense_det(const igaparam_spline *s) {
+  size_t ne = 0;
+  EXPECT(igaparam_spline_element_count(s, &ne), IGAPARAM_STATUS_OK);
+  double *lower = malloc(ne * sizeof *lower), *quality = malloc(ne * sizeof *quality);
+  double *bounds = malloc(4 * ne * sizeof *bounds);
+  igaparam_validity_report r;
+  EXPECT(igaparam_spline_check_validity(s, NULL, &r, lower, quality, ne), IGAPARAM_STATUS_OK);
+  EXPECT(igaparam_spline_copy_elements(s, NULL, bounds, ne), IGAPARAM_STATUS_OK);
+  double uv[2 * DENSE * DENSE], jac[4 * DENSE * DENSE];
+  size_t nonpositive = 0, below_bound = 0, sample_mismatch = 0;
+  double dense_min_q = INFINITY, dense_min_det = INFINITY;
+  for (size_t e = 0; e < ne; e++) {
+    const double *b = bounds + 4 * e;
+    for (int j = 0; j < DENSE; j++)
+      for (int i = 0; i < DENSE; i++) {
+        uv[2 * (j * DENSE + i)] = b[0] + (b[2] - b[0]) * i / (DENSE - 1);
+        uv[2 * (j * DENSE + i) + 1] = b[1] + (b[3] - b[1]) * j / (DENSE - 1);
+      }
+    EXPECT(igaparam_spline_evaluate(s, DENSE * DENSE, uv, NULL, jac), IGAPARAM_STATUS_OK);
+    double element_min_det = INFINITY, sample_min_q = INFINITY;
+    for (int k = 0; k < DENSE * DENSE; k++) {
+      const double *J = jac + 4 * k;
+      double det = J[0] * J[3] - J[1] * J[2];
+      double norm2 = J[0] * J[0] + J[1] * J[1] + J[2] * J[2] + J[3] * J[3];
+      double q = det > 0 ? 2 * det / norm2 : 0;
+      element_min_det = fmin(element_min_det, det);
+      dense_min_q = fmin(dense_min_q, q);
+      if ((k % DENSE) % 4 == 0 && (k / DENSE) % 4 == 0) sample_min_q = fmin(sample_min_q, q);
+    }
+    dense_min_det = fmin(dense_min_det, element_min_det);
+    nonpositive += !(element_min_det > 0);
+    /* A lower bound, up to the round-off of two evaluations of the same polynomial. */
+    below_bound += element_min_det < lower[e] - 1e-9 * fabs(lower[e]);
+    sample_mismatch += fabs(sample_min_q - quality[e]) > 1e-9;
+  }
+  CHECK(r.certified_positive == 1 && nonpositive == 0,
+        "certified %d, but det J <= 0 at a dense sample of %zu elements", r.certified_positive,
+        nonpositive);
+  CHECK(below_bound == 0, "%zu elements have a dense det J under their certified lower bound",
+        below_bound);
+  CHECK(r.det_lower_bound <= dense_min_det * (1 + 1e-9), "lower bound %g, dense minimum %g",
+        r.det_lower_bound, dense_min_det);
+  CHECK(sample_mismatch == 0, "%zu elements' sampled minimum q differs from the recomputed one",
+        sample_mismatch);
+  CHECK(dense_min_q <= r.min_quality + 1e-12 && dense_min_q > 0,
+        "dense minimum q %g, reported sampled minimum %g", dense_min_q, r.min_quality);
+  printf("dense check: %zu elements x %d^2 points, det J >= %.4g (certified bound %.4g), min q %.4f "
+         "(sampled %.4f)\n",
+         ne, DENSE, dense_min_det, r.det_lower_bound, dense_min_q, r.min_quality);
+  free(lower);
+  free(quality);
+  free(bounds);
 }
 
 /* Checks that two splines of the same number of elements have the same validity (summary and
@@ -484,7 +547,7 @@ static void test_adapt(void) {
   EXPECT(igaparam_spline_check_validity(s, NULL, &v, NULL, NULL, 0), IGAPARAM_STATUS_OK);
   CHECK(v.certified_positive == 1 && v.min_quality == r.min_quality,
         "the spline returned: certified %d, min q %g", v.certified_positive, v.min_quality);
-  printf("puzzle adaptation: %u rounds, %zu -> %zu cells, min q %.3f, mean q %.3f\n", r.rounds,
+  printf("rotor adaptation: %u rounds, %zu -> %zu cells, min q %.3f, mean q %.3f\n", r.rounds,
          cells, after, r.min_quality, r.mean_quality);
   /* The validity the adaptive fit keeps is that of its map, read back from XML. */
   const char *xml = joined(out_dir, "rotor_adapted.xml");
@@ -635,6 +698,82 @@ static void test_fit_with(void) {
   igaparam_domain_free(domain);
 }
 
+/* One run of the rotor at `threads` threads: the built T-mesh's physical vertices, the checked
+ * fit's control points, then the adaptive loop's control points and report. */
+typedef struct {
+  double *vertices, *fitted, *adapted;
+  size_t nv, nf, na;
+  igaparam_domain_report built;
+  igaparam_adapt_report adapt;
+} thread_run;
+
+static double *control_points(const igaparam_spline *s, size_t *n) {
+  *n = 0;
+  EXPECT(igaparam_spline_basis_count(s, n), IGAPARAM_STATUS_OK);
+  double *p = malloc(2 * *n * sizeof *p + 1);
+  EXPECT(igaparam_spline_copy_control_points(s, p, 2 * *n), IGAPARAM_STATUS_OK);
+  return p;
+}
+
+static thread_run run_rotor(uint32_t threads) {
+  thread_run run;
+  memset(&run, 0, sizeof run);
+  igaparam_domain *domain = NULL;
+  EXPECT(igaparam_domain_new_from_file(joined(data_dir, "rotor_bdry.xml"), &domain), IGAPARAM_STATUS_OK);
+  if (!domain) return run;
+  igaparam_domain_options o = igaparam_domain_options_default();
+  o.threads = threads;
+  EXPECT(igaparam_domain_build(domain, &o, &run.built), IGAPARAM_STATUS_OK);
+  EXPECT(igaparam_domain_vertex_count(domain, &run.nv), IGAPARAM_STATUS_OK);
+  run.vertices = malloc(2 * run.nv * sizeof *run.vertices + 1);
+  EXPECT(igaparam_domain_copy_vertices(domain, NULL, run.vertices, 2 * run.nv), IGAPARAM_STATUS_OK);
+  igaparam_fit_options f = igaparam_fit_options_default();
+  f.threads = threads;
+  igaparam_spline *s = NULL;
+  EXPECT(igaparam_spline_fit_domain_with(domain, &f, &s, NULL), IGAPARAM_STATUS_OK);
+  if (s) run.fitted = control_points(s, &run.nf);
+  igaparam_spline_free(s);
+  igaparam_adapt_options a = igaparam_adapt_options_default();
+  a.target_quality = 0.3;
+  a.threads = threads;
+  s = NULL;
+  EXPECT(igaparam_domain_fit_adaptive(domain, &a, &s, &run.adapt), IGAPARAM_STATUS_OK);
+  if (s) run.adapted = control_points(s, &run.na);
+  igaparam_spline_free(s);
+  igaparam_domain_free(domain);
+  return run;
+}
+
+/* The domain build, the fit and the adaptive loop give the same bits at 1, 2 and 4 threads
+ * (4 is capped to the machine's cores). */
+static void test_threads(void) {
+  const uint32_t threads[3] = {1, 2, 4};
+  thread_run runs[3];
+  for (int i = 0; i < 3; i++) runs[i] = run_rotor(threads[i]);
+  CHECK(runs[0].adapt.rounds >= 1 && runs[0].adapt.reached, "the rotor's loop did not refine");
+  for (int i = 1; i < 3; i++) {
+    thread_run *a = &runs[0], *b = &runs[i];
+    CHECK(same_points(a->vertices, a->nv, b->vertices, b->nv), "%u threads: other T-mesh vertices",
+          threads[i]);
+    CHECK(a->built.cells == b->built.cells && a->built.sweeps == b->built.sweeps &&
+              a->built.min_quality == b->built.min_quality &&
+              a->built.boundary_error == b->built.boundary_error,
+          "%u threads: another build report", threads[i]);
+    CHECK(same_points(a->fitted, a->nf, b->fitted, b->nf), "%u threads: another fit", threads[i]);
+    CHECK(same_points(a->adapted, a->na, b->adapted, b->na), "%u threads: another adapted map",
+          threads[i]);
+    CHECK(a->adapt.rounds == b->adapt.rounds && a->adapt.refined_cells == b->adapt.refined_cells &&
+              a->adapt.min_quality == b->adapt.min_quality &&
+              a->adapt.mean_quality == b->adapt.mean_quality && a->adapt.untangled == b->adapt.untangled,
+          "%u threads: another adapt report", threads[i]);
+  }
+  for (int i = 0; i < 3; i++) {
+    free(runs[i].vertices);
+    free(runs[i].fitted);
+    free(runs[i].adapted);
+  }
+}
+
 int main(int argc, char **argv) {
   if (!read_dirs(argc, argv)) return 2;
   igaparam_spline *s = fit_male();
@@ -644,6 +783,7 @@ int main(int argc, char **argv) {
     test_greville(s);
     test_inverse(s);
     test_validity(s);
+    test_dense_det(s);
     test_kept_validity(s);
     test_refine_and_files(s);
     test_errors(s);
@@ -652,6 +792,7 @@ int main(int argc, char **argv) {
   test_adapt();
   test_untangled_fit();
   test_fit_with();
+  test_threads();
   printf("%d passed, %d failed\n", passed, failed);
   return failed == 0 ? 0 : 1;
 }

@@ -77,3 +77,17 @@ def test_options_out_of_range(island):
     for kwargs in [{"untangle_rounds": -1}, {"boundary_offset": float("nan")}, {"boundary_offset": -1}]:
         with pytest.raises(ValueError):
             Spline.fit(island, **kwargs)
+
+
+def test_adaptive_report_carries_the_untangling(island):
+    """With target 0 the loop keeps its first, certified fit (no round): its report gives that
+    fit's untangling, as the plain fit's report does (it used to be absent)."""
+    plain = Spline.fit(island)
+    with plain, Domain.from_file(BOUNDARY / "gran_canaria.txt") as domain:
+        domain.build(threads=2)
+        with Spline.fit_adaptive(domain, target_quality=0.0, threads=2) as adaptive:
+            report = adaptive.adapt_report
+            assert report.rounds == 0 and report.reached
+            assert report.untangled == plain.fit_report.untangled > 0
+            assert report.boundary_offset == plain.fit_report.boundary_offset
+            assert np.array_equal(adaptive.control_points, plain.control_points)

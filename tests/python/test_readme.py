@@ -7,6 +7,7 @@ import subprocess
 import sys
 from pathlib import Path
 
+import numpy as np
 import pytest
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -24,7 +25,17 @@ def test_readme_python_example(tmp_path):
     assert run.returncode == 0, run.stderr
     assert "airfoil: 63 folded cells before, 0 after" in run.stdout
     assert re.search(r"^puzzle: \d+ cells, 0 invalid", run.stdout, re.MULTILINE), run.stdout
-    assert (work / "airfoil_relocated.vtu").exists()
+    # The file written, read back: the 490 Q9 cells, no folded one left (the positions are not
+    # the input's: the profile moved).
+    meshio = pytest.importorskip("meshio")
+    written = meshio.read(work / "airfoil_relocated.vtu")
+    cells = written.cells_dict["quad9"]
+    assert cells.shape == (490, 9) and written.points.shape == (2060, 3)
+    original = meshio.read(readme_examples.ROOT / "tests" / "data" / "airfoil_0012_q9.vtu")
+    assert np.array_equal(cells, original.cells_dict["quad9"])
+    assert not np.allclose(written.points, original.points)
+    quality = np.asarray(written.cell_data["quality"][0])
+    assert quality.shape == (490,) and quality.min() > 0 and quality.max() <= 1
 
 
 def test_readme_loop_example(tmp_path):

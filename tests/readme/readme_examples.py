@@ -7,7 +7,9 @@ example as ``main.c``), ``python`` and ``pyloop``. Examples run in a work direct
 
     python3 readme_examples.py --build-dir BUILD --work-dir DIR NAME...   # c, cpp, cmake
 
-The Python example is run by tests/python/test_readme.py (it needs the virtual environment).
+Each compiled example's output is checked (check_output: the figures it prints and, for c and
+cmake, the T-mesh file it writes, read back), not only its exit code. The Python example is run
+by tests/python/test_readme.py (it needs the virtual environment).
 """
 
 import argparse
@@ -100,6 +102,38 @@ def run_cmake(code, c_code, args, work):
     return run([executables[0]], work)
 
 
+def check_output(name, stdout, work):
+    """What each compiled example must print and write, beyond exiting 0 (raises SystemExit)."""
+    def fail(what):
+        raise SystemExit(f"readme_examples: `{name}` example: {what}\n{stdout}")
+
+    if name in ("c", "cmake"):
+        m = re.fullmatch(r"(\d+) cells, (\d+) invalid, quality min ([\d.]+), mean ([\d.]+)\n", stdout)
+        if not m or int(m.group(2)) != 0 or not 0 < float(m.group(3)) <= float(m.group(4)) <= 1:
+            fail("expected `N cells, 0 invalid, quality min A, mean B` with 0 < A <= B <= 1")
+        # The T-mesh file read back: its cell count is the printed one, its arrays are there.
+        import xml.etree.ElementTree as ET
+        root = ET.parse(work / "puzzle_tmesh.vtu").getroot()
+        piece = root.find("UnstructuredGrid/Piece")
+        names = {a.get("Name") for a in root.iter("DataArray")}
+        if piece is None or int(piece.get("NumberOfCells")) != int(m.group(1)):
+            fail("puzzle_tmesh.vtu does not hold the printed number of cells")
+        if not {"parametric", "quality", "level"} <= names:
+            fail(f"puzzle_tmesh.vtu has the arrays {sorted(n for n in names if n)}")
+    elif name == "cpp":
+        m = re.fullmatch(r"(\d+) folded cells before, 0 after; quality min ([\d.eE+-]+)\n", stdout)
+        if not m or int(m.group(1)) == 0 or not 0 < float(m.group(2)) <= 1:
+            fail("expected `K folded cells before, 0 after; quality min Q` with K > 0, 0 < Q <= 1")
+    elif name == "cloop":
+        steps = re.findall(r"^step +(\d+): a ([\d.]+), \d+ Newton iterations, min quality ([\d.]+), "
+                           r"dJ/da (-?[\d.]+), central differences (-?[\d.]+)$", stdout, re.M)
+        if [int(s[0]) for s in steps] != list(range(1, 11)):
+            fail("expected the lines of steps 1 to 10")
+        for _, _, quality, adjoint, fd in steps:
+            if not (0 < float(quality) <= 1 and abs(float(adjoint) - float(fd)) <= 1e-6 * abs(float(fd))):
+                fail("a step's quality or adjoint derivative is off")
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("--build-dir", required=True)
@@ -116,9 +150,10 @@ def main():
             raise SystemExit(f"readme_examples: README.md has no `<!-- example: {name} -->` block")
         work = work_directory(Path(args.work_dir) / name)
         if name == "cmake":
-            run_cmake(found["cmake"], found["c"], args, work)
+            stdout = run_cmake(found["cmake"], found["c"], args, work)
         else:
-            run_compiled(name, found[name], args, work)
+            stdout = run_compiled(name, found[name], args, work)
+        check_output(name, stdout, work)
         print(f"readme_examples: `{name}` example ran", flush=True)
 
 

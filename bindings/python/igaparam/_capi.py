@@ -332,6 +332,8 @@ class AdaptReport(ctypes.Structure):
         ("min_quality", ctypes.c_double),
         ("mean_quality", ctypes.c_double),
         ("seconds", ctypes.c_double),
+        ("untangled", ctypes.c_size_t),
+        ("boundary_offset", ctypes.c_double),
     ]
 
 

@@ -318,8 +318,10 @@ class Domain(_Handle):
             threads: worker threads, capped to the cores; 0 uses one per core (the result does not
                 depend on it).
             progress: None, or a callable ``progress(stage, done, total)`` called after
-                optimization sweeps and between the rounds of the adaptation; return False to cancel (``Status.CANCELLED``). An exception
-                raised by it cancels the build and is re-raised.
+                optimization sweeps and between the rounds of the adaptation; return None or
+                True to go on, False to cancel (``Status.CANCELLED``); any other answer (an int
+                included) raises TypeError. An exception raised by it cancels the build and is
+                re-raised.
             repair_rounds: rounds of repair after the optimization (default 6): cells left
                 invalid are refined (past ``max_level``, up to level 16) and the mesh optimized
                 again; 0 disables it.

@@ -175,9 +175,25 @@ def _attach_progress(options, progress):
     return raised, callback
 
 
+PROGRESS_RULE = "return None or True to go on, False to cancel"
+
+
+def _cancels(answer) -> bool:
+    """The progress rule of every entry point taking ``progress``: None or True go on, False
+    cancels (numpy's booleans alike). Any other value raises TypeError, which cancels the call
+    and is re-raised after it: an int would be ambiguous, C's callback cancelling on non-zero
+    where Python's truth would go on at 0 and cancel at 1 only by accident."""
+    if answer is None:
+        return False
+    if isinstance(answer, (bool, np.bool_)):
+        return not answer
+    raise TypeError(f"progress returned {answer!r}: {PROGRESS_RULE}")
+
+
 def _progress_callback(progress, raised):
     """A C progress callback calling ``progress(stage, done, total)`` (None if ``progress`` is
-    None): False cancels; an exception cancels and is appended to ``raised`` (re-raise it after
+    None) under :func:`_cancels`' rule: False cancels; an exception (TypeError for an answer
+    other than None, True or False) cancels and is appended to ``raised`` (re-raise it after
     the call)."""
     if progress is None:
         return None
@@ -188,7 +204,7 @@ def _progress_callback(progress, raised):
                 stage = Stage(stage)
             except ValueError:
                 pass
-            return 1 if progress(stage, done, total) is False else 0
+            return 1 if _cancels(progress(stage, done, total)) else 0
         except BaseException as error:  # cancel, re-raise after the call
             raised.append(error)
             return 1
@@ -520,9 +536,10 @@ class Mesh(_Handle):
             laplacian_only: stop after the first placement (no optimization).
             max_sweeps: largest number of Gauss–Seidel sweeps (library default: 100 per step).
             progress: None, or a callable ``progress(stage, done, total)`` (stage a
-                :class:`Stage`) called on this thread; return False to cancel (the call then
-                raises IgaparamError with ``Status.CANCELLED``). An exception raised by it
-                cancels the call and is re-raised.
+                :class:`Stage`) called on this thread; return None or True to go on, False to
+                cancel (the call then raises IgaparamError with ``Status.CANCELLED``); any other
+                answer (an int included) raises TypeError. An exception raised by it cancels the
+                call and is re-raised.
             placement: 'laplacian' (from the reference shape), 'current' (the positions as they
                 are) or 'incremental' (from the last relocation: the placement of a loop that
                 moves the boundary a little at every step).

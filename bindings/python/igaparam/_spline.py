@@ -94,6 +94,10 @@ class AdaptReport(_StructReport):
         min_quality: smallest sampled mean ratio of the map returned.
         mean_quality: mean sampled mean ratio of the map returned.
         seconds: wall-clock seconds of the call.
+        untangled: control points moved to untangle the fit of the map returned (as
+            :attr:`FitReport.untangled`); 0 when that fit was kept.
+        boundary_offset: largest move of a boundary control point by that untangling,
+            relative to the bounding box; 0 when the boundary was kept.
     """
 
     rounds: int
@@ -105,6 +109,8 @@ class AdaptReport(_StructReport):
     min_quality: float
     mean_quality: float
     seconds: float
+    untangled: int
+    boundary_offset: float
 
 
 
@@ -220,8 +226,9 @@ class Spline(_Refit, _Handle):
                 and samples per direction and element (default 5, 2 to 64).
             threads: worker threads; 0 uses one per core (the result does not depend on it).
             progress: None, or a callable ``progress(stage, done, total)`` with ``Stage.FIT``,
-                ``Stage.UNTANGLING`` and ``Stage.SMOOTHING``; return False to cancel
-                (``Status.CANCELLED``). An exception raised by it cancels and is re-raised.
+                ``Stage.UNTANGLING`` and ``Stage.SMOOTHING``; return None or True to go on,
+                False to cancel (``Status.CANCELLED``); any other answer (an int included)
+                raises TypeError. An exception raised by it cancels and is re-raised.
 
         Returns:
             Spline, with the fit's :class:`FitReport` in ``fit_report``.
@@ -283,8 +290,9 @@ class Spline(_Refit, _Handle):
             threads: worker threads, capped to the cores; 0 uses one per core (the result does not
                 depend on it).
             progress: None, or a callable ``progress(stage, done, total)`` called before each
-                refinement; return False to cancel (``Status.CANCELLED``). An exception raised
-                by it cancels the loop and is re-raised.
+                refinement; return None or True to go on, False to cancel
+                (``Status.CANCELLED``); any other answer (an int included) raises TypeError. An
+                exception raised by it cancels the loop and is re-raised.
 
         Returns:
             Spline, with the loop's :class:`AdaptReport` in ``adapt_report``.

@@ -56,6 +56,12 @@ pub struct igaparam_adapt_report {
     pub mean_quality: f64,
     /// Wall-clock seconds.
     pub seconds: f64,
+    /// Control points moved to untangle the fit of the map returned (as
+    /// `igaparam_fit_report.untangled`); 0 when that fit was kept.
+    pub untangled: usize,
+    /// Largest move of a boundary control point by that untangling, relative to the bounding
+    /// box (as `igaparam_fit_report.boundary_offset`); 0 when the boundary was kept.
+    pub boundary_offset: f64,
 }
 
 /// The default adaptation options.
@@ -145,6 +151,8 @@ pub extern "C" fn igaparam_domain_fit_adaptive(
                 min_quality: last.min_quality,
                 mean_quality: last.mean_quality,
                 seconds: r.seconds,
+                untangled: r.fit.untangled,
+                boundary_offset: r.fit.boundary_offset,
             };
         }
         let validity = std::mem::take(&mut r.validity);
