@@ -1614,6 +1614,14 @@ igaparam_status igaparam_mesh_reset_reference(igaparam_mesh *mesh);
  * Relocates the free coordinates of the nodes so that every cell is valid and close to its
  * target shape, keeping the connectivity. `options` may be NULL for the defaults; `report` may
  * be NULL. On any error or cancellation the mesh is unchanged and `*report` is not written.
+ *
+ * Units: the result does not depend on them. The mesh is optimized in coordinates scaled by
+ * the power of two `2^-k` with `2^k <= L < 2^(k+1)`, L the largest side of the bounding box of
+ * the reference shape's cell nodes, so every tolerance inside (and every option's tolerance,
+ * given relative to a local cell size) is relative to the mesh's size; a mesh scaled by a
+ * power of two relocates to the same result scaled bit for bit, by any other factor to the
+ * same result to round-off. Prescribed coordinates are returned with the bits they were
+ * given.
  */
 igaparam_status igaparam_mesh_relocate(igaparam_mesh *mesh,
                                        const igaparam_relocate_options *options,

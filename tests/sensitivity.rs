@@ -3,7 +3,7 @@
 
 mod common;
 
-use common::{boundary_mask, grid, load_case, Lcg};
+use common::{boundary_mask, bump_top, grid, load_case, Lcg};
 use igaparam::{CellType, ErrorKind, Mesh, Placement, RelocateOptions, RelocateReport};
 
 /// Tight stationarity: the finite differences below resolve the optimum's motion to ~1e-8.
@@ -39,16 +39,7 @@ fn bumped(cell_type: CellType, n: usize) -> Mesh {
     let mut mesh = Mesh::new(cell_type, &xyz, &conn).unwrap();
     let mask = boundary_mask(&xyz, d);
     mesh.set_fixed(&mask).unwrap();
-    let mut moved = xyz.clone();
-    for p in moved.chunks_mut(3) {
-        if p[d - 1] == 1.0 {
-            let bump: f64 = p[..d - 1]
-                .iter()
-                .map(|&t| (std::f64::consts::PI * t).sin())
-                .product();
-            p[d - 1] -= 0.2 * bump;
-        }
-    }
+    let moved = bump_top(&xyz, d, 0.2);
     mesh.move_nodes(None, &moved).unwrap();
     mesh
 }

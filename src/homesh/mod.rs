@@ -260,7 +260,16 @@ impl Mesh {
             &self.fixed,
             &self.reference,
             target,
+            self.unit(),
         )
+    }
+
+    /// The factor that brings the mesh to unit size (see [`unit_of`]): a power of two fixed by
+    /// the reference shape, so it changes only with the reference (which also drops the stored
+    /// Hessians, made in the scaled coordinates).
+    fn unit(&self) -> f64 {
+        let (lo, hi) = cell_node_box(&self.connectivity, &self.reference, self.dimension());
+        unit_of(extent(lo, hi))
     }
 
     /// Quality of every cell against the given target: 1/mean distortion over the
@@ -274,7 +283,7 @@ impl Mesh {
 
     fn quality_d<const D: usize>(&self, target: TargetKind) -> Result<Vec<f64>> {
         let problem = self.problem::<D>(target)?;
-        let x = project::<D>(&self.positions);
+        let x = project::<D>(&self.positions, self.unit());
         Ok((0..self.cell_count())
             .map(|c| problem.cell_quality(c, &x))
             .collect())
@@ -315,6 +324,7 @@ pub(crate) fn problem_of<const D: usize>(
     fixed: &[u8],
     reference: &[[f64; 3]],
     target: TargetKind,
+    unit: f64,
 ) -> Result<Problem<D>> {
     let pattern = CellPattern::<D>::new(cell_type.lattice())
         .ok_or_else(|| Error::mesh("unsupported cell pattern"))?;
@@ -326,7 +336,7 @@ pub(crate) fn problem_of<const D: usize>(
     Problem::new(
         vec![pattern],
         &specs,
-        &project::<D>(reference),
+        &project::<D>(reference, unit),
         target,
         free,
     )
@@ -335,10 +345,78 @@ pub(crate) fn problem_of<const D: usize>(
 /// Why a mesh whose nodes were moved has no sensitivities.
 const MOVED: &str = "nodes were moved since the last relocation";
 
-/// The first `D` coordinates of each point.
-pub(crate) fn project<const D: usize>(points: &[[f64; 3]]) -> Vec<[f64; D]> {
+/// The first `D` coordinates of each point times `unit` (a power of two: exact).
+pub(crate) fn project<const D: usize>(points: &[[f64; 3]], unit: f64) -> Vec<[f64; D]> {
     points
         .iter()
-        .map(|p| std::array::from_fn(|k| p[k]))
+        .map(|p| std::array::from_fn(|k| p[k] * unit))
         .collect()
+}
+
+/// `points` with the free coordinates of their first `D` replaced by `x / unit` (exact: `unit`
+/// is a power of two); the coordinates whose bit is set in `fixed` keep their bits as given.
+pub(crate) fn lift<const D: usize>(
+    points: &[[f64; 3]],
+    x: &[[f64; D]],
+    unit: f64,
+    fixed: &[u8],
+) -> Vec<[f64; 3]> {
+    points
+        .iter()
+        .zip(x)
+        .zip(fixed)
+        .map(|((p, q), &mask)| {
+            let mut p = *p;
+            for k in (0..D).filter(|&k| mask & 1 << k == 0) {
+                p[k] = q[k] / unit;
+            }
+            p
+        })
+        .collect()
+}
+
+/// The bounding box, in its first `d` coordinates, of the points used by the cells.
+pub(crate) fn cell_node_box(
+    connectivity: &[u32],
+    points: &[[f64; 3]],
+    d: usize,
+) -> ([f64; 3], [f64; 3]) {
+    let mut lo = [f64::INFINITY; 3];
+    let mut hi = [f64::NEG_INFINITY; 3];
+    for &n in connectivity {
+        let p = points[n as usize];
+        for k in 0..d {
+            lo[k] = lo[k].min(p[k]);
+            hi[k] = hi[k].max(p[k]);
+        }
+    }
+    (lo, hi)
+}
+
+/// The largest side of a box (0 when it is empty or flat).
+pub(crate) fn extent(lo: [f64; 3], hi: [f64; 3]) -> f64 {
+    (0..3)
+        .filter(|&k| hi[k] >= lo[k])
+        .map(|k| hi[k] - lo[k])
+        .fold(0.0, f64::max)
+}
+
+/// The scale rule of relocation: the mesh is optimized in coordinates multiplied by `2^-k`,
+/// `2^k ≤ extent < 2^(k+1)` with `extent` the largest side of the bounding box of the
+/// reference shape, so that the optimizer always sees a mesh of size 1–2 and every tolerance
+/// inside it (the δ rule's ε, validity, stopping rules) is relative to the mesh's own size;
+/// a power of two makes the scaling exact both ways. 1 for an extent of 0 or not finite, and
+/// `k` is kept within ±1000 (extents near the ends of the floating-point range).
+pub(crate) fn unit_of(extent: f64) -> f64 {
+    if !(extent.is_finite() && extent > 0.0) {
+        return 1.0;
+    }
+    // floor(log2(extent)) from the exponent bits (exact, unlike log2 near powers of two);
+    // subnormal extents are brought into the normal range first.
+    let (x, shift) = match extent < f64::MIN_POSITIVE {
+        true => (extent * 2f64.powi(64), 64),
+        false => (extent, 0),
+    };
+    let k = ((x.to_bits() >> 52) & 0x7ff) as i32 - 1023 - shift;
+    2f64.powi(-k.clamp(-1000, 1000))
 }

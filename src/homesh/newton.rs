@@ -7,7 +7,7 @@ use std::sync::Arc;
 use rayon::ThreadPool;
 
 use super::relocate::{Placement, RelocateOptions, RelocateReport, Stage};
-use super::{project, Mesh, Solver, State};
+use super::{lift, project, Mesh, Solver, State};
 use crate::error::Result;
 use crate::optimize::blocks::BlockLayout;
 use crate::optimize::global::GlobalObjective;
@@ -129,7 +129,7 @@ impl Mesh {
             .clone()
             .filter(|_| state.stationary)
             .and_then(|s| s.downcast::<HessianSolver<D>>().ok());
-        let mut x = project::<D>(&state.positions);
+        let mut x = project::<D>(&state.positions, self.unit());
         let solver = match stored_solver {
             Some(solver) => solver,
             None => {
@@ -155,7 +155,7 @@ impl Mesh {
                 };
                 let solver = Arc::new(solver);
                 if !from_last {
-                    let positions = lift(&self.reference, &x);
+                    let positions = lift(&self.reference, &x, self.unit(), &self.fixed);
                     let state = State {
                         positions,
                         solver: Some(solver.clone() as Solver),
@@ -238,17 +238,4 @@ fn newton_tolerance(options: &RelocateOptions) -> f64 {
         true => options.stationarity_tolerance,
         false => super::relocate::DEFAULT_NEWTON_TOLERANCE,
     }
-}
-
-/// `points` with their first `D` coordinates replaced by `x`.
-pub(super) fn lift<const D: usize>(points: &[[f64; 3]], x: &[Vector<D>]) -> Vec<[f64; 3]> {
-    points
-        .iter()
-        .zip(x)
-        .map(|(p, q)| {
-            let mut p = *p;
-            p[..D].copy_from_slice(q);
-            p
-        })
-        .collect()
 }

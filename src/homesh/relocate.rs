@@ -190,6 +190,9 @@ impl Mesh {
     /// Relocates the free components of the nodes (see [`Mesh::set_fixed`]) so that every cell is
     /// valid and close to its target shape. `progress(stage, done, total)` is called as work
     /// proceeds; returning `false` cancels. On error or cancellation the mesh is unchanged.
+    ///
+    /// The optimizer runs on the mesh scaled by a power of two to a size of 1–2 (see
+    /// `unit_of` in `homesh`): the result does not depend on the units.
     pub fn relocate(
         &mut self,
         options: &RelocateOptions,
@@ -211,7 +214,8 @@ impl Mesh {
     ) -> Result<RelocateReport> {
         let start = Instant::now();
         let problem = self.problem::<D>(options.target)?;
-        let goal = project::<D>(&self.positions);
+        let unit = self.unit();
+        let goal = project::<D>(&self.positions, unit);
         let mut report = RelocateReport {
             cells: self.cell_count(),
             nodes: self.node_count(),
@@ -247,7 +251,7 @@ impl Mesh {
         report.invalid_after = quality.invalid.len();
         report.min_quality = quality.min;
         report.mean_quality = quality.mean;
-        self.positions = super::newton::lift(&self.positions, &x);
+        self.positions = super::lift(&self.positions, &x, unit, &self.fixed);
         self.last = Some(super::State {
             positions: self.positions.clone(),
             stationary: report.gradient_norm
@@ -275,8 +279,8 @@ impl Mesh {
         }
         // Where the motion starts: the reference shape, or the last relocated state.
         let from = match (options.placement, &self.last) {
-            (Placement::Incremental, Some(last)) => project::<D>(&last.positions),
-            _ => project::<D>(&self.reference),
+            (Placement::Incremental, Some(last)) => project::<D>(&last.positions, self.unit()),
+            _ => project::<D>(&self.reference, self.unit()),
         };
         let mut x = goal.to_vec();
         let graph = MeshGraph::new(problem);

@@ -7,7 +7,7 @@ use super::exchange::Ranks;
 use super::team::PartTeam;
 use super::Partition;
 use crate::error::{Error, Result};
-use crate::homesh::{problem_of, project, sweep_motion};
+use crate::homesh::{cell_node_box, extent, lift, problem_of, project, sweep_motion, unit_of};
 use crate::homesh::{Method, Placement, RelocateOptions, RelocateReport, Stage};
 use crate::optimize::motion::Ends;
 use crate::optimize::small::Vector;
@@ -96,12 +96,14 @@ impl Partition {
         progress: &mut dyn FnMut(Stage, usize, usize) -> bool,
     ) -> Result<RelocateReport> {
         let (positions, fixed) = self.owners_state(ranks)?;
+        let unit = self.unit(ranks)?;
         let problem = problem_of::<D>(
             self.cell_type,
             &self.connectivity,
             &fixed,
             &self.reference,
             options.target,
+            unit,
         );
         ranks.agree(problem.as_ref().map(|_| ()).map_err(Clone::clone))?;
         let problem = problem?;
@@ -117,7 +119,7 @@ impl Partition {
             owned: &self.owned,
             counted,
         };
-        let goal = project::<D>(&positions);
+        let goal = project::<D>(&positions, unit);
         let owned = |v: &usize| self.owned[*v];
         let mut report = RelocateReport {
             cells: team.count((0..self.cell_count()).filter(|&c| team.counts(c)).count())?,
@@ -135,7 +137,7 @@ impl Partition {
         let x = self.place_and_sweep(
             &mut team,
             pool,
-            &problem,
+            (&problem, unit),
             &goal,
             options,
             &mut report,
@@ -145,14 +147,32 @@ impl Partition {
         report.invalid_after = quality.invalid_count;
         report.min_quality = quality.min;
         report.mean_quality = quality.mean;
-        let mut relocated = positions;
-        for (p, x) in relocated.iter_mut().zip(&x) {
-            p[..D].copy_from_slice(x);
-        }
+        let relocated = lift(&positions, &x, unit, &fixed);
         self.positions = relocated.clone();
         self.fixed = fixed;
         self.last = Some(relocated);
         Ok(report)
+    }
+
+    /// The factor that brings the whole mesh to unit size, as `Mesh::relocate` takes it: from
+    /// the bounding box of the reference positions of every rank's cell nodes.
+    fn unit(&self, ranks: &mut Ranks<'_>) -> Result<f64> {
+        let d = self.cell_type.dimension();
+        let (lo, hi) = cell_node_box(&self.connectivity, &self.reference, d);
+        let words: Vec<u64> = lo.iter().chain(&hi).map(|v| v.to_bits()).collect();
+        let mut all = ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]);
+        for w in ranks.all_gather_words(&words)? {
+            if w.len() != 6 {
+                return Err(super::exchange::exchange_failed(
+                    "a bounding box was garbled",
+                ));
+            }
+            for k in 0..3 {
+                all.0[k] = all.0[k].min(f64::from_bits(w[k]));
+                all.1[k] = all.1[k].max(f64::from_bits(w[3 + k]));
+            }
+        }
+        Ok(unit_of(extent(all.0, all.1)))
     }
 
     /// The first placement and the sweeps, as `Mesh::relocate` makes them.
@@ -161,7 +181,7 @@ impl Partition {
         &self,
         team: &mut PartTeam<'_, '_>,
         pool: &rayon::ThreadPool,
-        problem: &Problem<D>,
+        (problem, unit): (&Problem<D>, f64),
         goal: &[Vector<D>],
         options: &RelocateOptions,
         report: &mut RelocateReport,
@@ -171,8 +191,8 @@ impl Partition {
             return Err(Error::cancelled());
         }
         let from = match (options.placement, &self.last) {
-            (Placement::Incremental, Some(last)) => project::<D>(last),
-            _ => project::<D>(&self.reference),
+            (Placement::Incremental, Some(last)) => project::<D>(last, unit),
+            _ => project::<D>(&self.reference, unit),
         };
         let mut x = goal.to_vec();
         let graph = MeshGraph::new(problem);

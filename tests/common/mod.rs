@@ -63,6 +63,22 @@ pub fn boundary_mask(xyz: &[f64], d: usize) -> Vec<u8> {
         .collect()
 }
 
+/// `xyz` (3 per node, on [0,1]^d) with the top side (2D) or face (3D) pushed down by
+/// `depth · Π sin(π t)` over its other coordinates: a bump or a dome.
+pub fn bump_top(xyz: &[f64], d: usize, depth: f64) -> Vec<f64> {
+    let mut moved = xyz.to_vec();
+    for p in moved.chunks_mut(3) {
+        if p[d - 1] == 1.0 {
+            let bump: f64 = p[..d - 1]
+                .iter()
+                .map(|&t| (std::f64::consts::PI * t).sin())
+                .product();
+            p[d - 1] -= depth * bump;
+        }
+    }
+    moved
+}
+
 /// A small linear congruential generator, uniform in [-1, 1).
 pub struct Lcg(pub u64);
 
