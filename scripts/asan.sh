@@ -16,7 +16,7 @@ export PATH="$PATH:${CARGO_HOME:-$HOME/.cargo}/bin"
 
 modes=("$@")
 ((${#modes[@]} > 0)) || modes=(asan valgrind)
-programs=(test_capi test_domain test_spline)
+programs=(test_capi test_domain test_spline test_handles)
 work=build/asan
 mkdir -p "$work"
 cc=${CC:-cc}

@@ -4,6 +4,7 @@
 //!
 //! Written once for d = 2 and 3 through const generics.
 
+mod aggregation;
 pub mod amg;
 pub mod blocks;
 pub mod colour;
