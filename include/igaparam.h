@@ -294,6 +294,13 @@ typedef struct {
    */
   size_t max_cells;
   /**
+   * The Newton polish after the sweeps, finite and at least 0 (default 0: off): when
+   * positive and every cell is valid, the inner vertices go to a stationary point of the
+   * global objective (the sum of the cells' mean distortions) to this scaled max-norm of its
+   * gradient (1e-8 is typical). It raises the mean cell quality and may lower the smallest.
+   */
+  double stationarity_tolerance;
+  /**
    * Progress callback, or NULL (default). Called with `IGAPARAM_STAGE_OPTIMIZATION`, `done`
    * sweeps so far and `total` 0, also between the rounds of the adaptation of the tree (with
    * `done` 0); returning non-zero cancels the build.

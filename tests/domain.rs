@@ -350,3 +350,67 @@ fn solid_faces_that_do_not_match_are_refused() {
         .any(|f| e.message.contains(&format!("face {f}")));
     assert!(named, "no face named: {}", e.message);
 }
+
+/// The Newton polish leaves a valid T-mesh at a stationary point of the global objective: its
+/// scaled gradient norm, recomputed here from the physical positions, is within the tolerance,
+/// where the sweeps alone stop far from it. A bad tolerance is refused.
+#[test]
+fn the_polished_t_mesh_is_valid_and_stationary() {
+    use igaparam::optimize::blocks::BlockLayout;
+    use igaparam::optimize::global::GlobalObjective;
+    use igaparam::optimize::solver::SolverSetup;
+    use igaparam::optimize::stationary::scaled_gradient_norm;
+    let boundary = || BoundaryLoop2::from_gismo_file(boundary_data("rotor_bdry.xml")).unwrap();
+    let norm = |domain: &PlanarDomain| {
+        let problem = domain.mesh().problem().unwrap();
+        let layout = BlockLayout::new(&problem);
+        let objective = GlobalObjective::new(&problem, &layout, None, 0.0);
+        let frame = domain.frame();
+        let x: Vec<[f64; 2]> = domain
+            .positions()
+            .iter()
+            .map(|&p| frame.to_frame(p))
+            .collect();
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(1)
+            .build()
+            .unwrap();
+        let eval = objective.evaluate(&pool, &x, false);
+        scaled_gradient_norm(
+            &objective,
+            &SolverSetup::free_mask(&problem),
+            &eval.gradient,
+        )
+    };
+    let tolerance = 1e-8;
+    let options = PlanarOptions {
+        stationarity_tolerance: tolerance,
+        ..PlanarOptions::default()
+    };
+    let (polished, report) = build(boundary(), &options);
+    assert_eq!(report.invalid_cells, 0);
+    assert!(report.newton_iterations > 0, "{report:?}");
+    assert!(report.gradient_norm <= tolerance, "{report:?}");
+    let recomputed = norm(&polished);
+    assert!(recomputed <= 2.0 * tolerance, "{recomputed:e}");
+    let off = PlanarOptions {
+        stationarity_tolerance: 0.0,
+        ..PlanarOptions::default()
+    };
+    let (swept, report) = build(boundary(), &off);
+    assert_eq!((report.newton_iterations, report.gradient_norm), (0, 0.0));
+    assert!(norm(&swept) > 1e3 * tolerance, "{:e}", norm(&swept));
+    for bad in [-1e-8, f64::NAN] {
+        let options = PlanarOptions {
+            stationarity_tolerance: bad,
+            ..PlanarOptions::default()
+        };
+        let error = PlanarDomain::build(boundary(), &options, &mut |_, _| true)
+            .expect_err("a bad stationarity_tolerance was accepted");
+        assert!(
+            error.message.contains("stationarity_tolerance"),
+            "{}",
+            error.message
+        );
+    }
+}

@@ -53,6 +53,11 @@ pub struct igaparam_domain_options {
     /// T-meshes (time and memory grow with the cells: minutes and about a gigabyte at the
     /// default in 2D, more for a solid).
     pub max_cells: usize,
+    /// The Newton polish after the sweeps, finite and at least 0 (default 0: off): when
+    /// positive and every cell is valid, the inner vertices go to a stationary point of the
+    /// global objective (the sum of the cells' mean distortions) to this scaled max-norm of its
+    /// gradient (1e-8 is typical). It raises the mean cell quality and may lower the smallest.
+    pub stationarity_tolerance: f64,
     /// Progress callback, or NULL (default). Called with `IGAPARAM_STAGE_OPTIMIZATION`, `done`
     /// sweeps so far and `total` 0, also between the rounds of the adaptation of the tree (with
     /// `done` 0); returning non-zero cancels the build.
@@ -119,6 +124,7 @@ fn c_options(d: &PlanarOptions) -> igaparam_domain_options {
         repair_rounds: d.repair_rounds,
         boundary_offset: d.boundary_offset,
         max_cells: d.max_cells,
+        stationarity_tolerance: d.stationarity_tolerance,
         progress: None,
         progress_user: std::ptr::null_mut(),
     }
@@ -138,6 +144,7 @@ fn planar_options(o: &igaparam_domain_options) -> Result<PlanarOptions> {
         repair_rounds: o.repair_rounds,
         boundary_offset: o.boundary_offset,
         max_cells: o.max_cells,
+        stationarity_tolerance: o.stationarity_tolerance,
     };
     options.validate()?;
     Ok(options)

@@ -223,11 +223,17 @@ impl<const D: usize, B: CubeMap<D>> Domain<D, B> {
         };
         let repair_rounds = domain.relieve_and_repair(options, &pool, &mut sweeps)?;
         stages.repair = clock.elapsed().as_secs_f64();
+        let (spent, exhausted) = (sweeps.spent(), sweeps.exhausted());
+        let clock = Instant::now();
+        let polished = domain.polish(options, &pool, &mut |_| progress(spent as usize, 0))?;
+        stages.polish = clock.elapsed().as_secs_f64();
         let mut report = domain.report(&pool)?;
         report.invalid_after_placement = invalid_after_placement;
-        report.sweeps = sweeps.spent();
-        report.sweep_budget_exhausted = sweeps.exhausted();
+        report.sweeps = spent;
+        report.sweep_budget_exhausted = exhausted;
         report.repair_rounds = repair_rounds;
+        report.newton_iterations = polished.iterations;
+        report.gradient_norm = polished.gradient_norm;
         report.stages = stages;
         report.seconds = start.elapsed().as_secs_f64();
         Ok((domain, report))

@@ -8,6 +8,7 @@ mod build;
 mod frame;
 mod options;
 mod planar;
+mod polish;
 mod refine;
 mod relief;
 mod repair;

@@ -41,6 +41,14 @@ pub struct DomainOptions {
     /// uniform refinement to `min_level` would exceed it is refused before any work, and one
     /// whose adaptation or repair exceeds it stops there, with [`ErrorKind::LimitExceeded`].
     pub max_cells: usize,
+    /// The Newton polish after the sweeps: when positive and every cell is valid, the inner
+    /// vertices go to a stationary point of the global objective `F = Σ_cells η̄*_c` (δ = 0), to
+    /// this scaled max-norm of its gradient (1e-8 is typical: a few to a few tens of Newton
+    /// iterations); 0 (the default) keeps the sweeps' result. The stationary point depends on
+    /// the basin the sweeps end in, not on their round-off within it; it raises the mean cell
+    /// quality and may lower the smallest (the bundled planar domains: mean +3–11%, min −6% to
+    /// −51%), so it is off by default.
+    pub stationarity_tolerance: f64,
 }
 
 /// The default cell budget of a domain build (`max_cells` of its options): a million cells, a
@@ -86,6 +94,7 @@ impl Default for DomainOptions {
             repair_rounds: 6,
             boundary_offset: 1e-2,
             max_cells: DEFAULT_MAX_CELLS,
+            stationarity_tolerance: 0.0,
         }
     }
 }
@@ -121,6 +130,12 @@ pub struct DomainReport {
     pub sweep_budget_exhausted: bool,
     /// Repair rounds that refined invalid cells.
     pub repair_rounds: u32,
+    /// Newton iterations of the polish (0 when it is off or a cell stays invalid).
+    pub newton_iterations: u32,
+    /// Scaled max-norm of the global objective's gradient after the polish (at most
+    /// [`DomainOptions::stationarity_tolerance`] when it converged; `+∞` when a cell stays
+    /// invalid; 0 when the polish is off).
+    pub gradient_norm: f64,
     /// Wall-clock seconds.
     pub seconds: f64,
     /// Wall-clock seconds of each stage.
@@ -141,6 +156,8 @@ pub struct StageSeconds {
     pub optimization: f64,
     /// Refining the cells left invalid and optimizing again.
     pub repair: f64,
+    /// The Newton polish.
+    pub polish: f64,
 }
 
 /// Deepest level the repair refines to.
@@ -182,6 +199,7 @@ pub(super) fn check_options(options: &DomainOptions) -> Result<()> {
     for (name, value) in [
         ("tolerance", options.tolerance),
         ("boundary_offset", options.boundary_offset),
+        ("stationarity_tolerance", options.stationarity_tolerance),
     ] {
         if !value.is_finite() {
             return Err(Error::new(
@@ -207,6 +225,12 @@ pub(super) fn check_options(options: &DomainOptions) -> Result<()> {
         return Err(Error::invalid(
             "max_total_sweeps = 0: the sweep budget of a build must be at least 1",
         ));
+    }
+    if options.stationarity_tolerance < 0.0 {
+        return Err(Error::invalid(format!(
+            "stationarity_tolerance = {} must be at least 0",
+            options.stationarity_tolerance
+        )));
     }
     if options.boundary_offset < 0.0 {
         return Err(Error::invalid(format!(

@@ -153,6 +153,7 @@ class DomainOptions(ctypes.Structure):
         ("repair_rounds", ctypes.c_uint32),
         ("boundary_offset", ctypes.c_double),
         ("max_cells", ctypes.c_size_t),
+        ("stationarity_tolerance", ctypes.c_double),
         ("progress", PROGRESS_FN),
         ("progress_user", ctypes.c_void_p),
     ]
