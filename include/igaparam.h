@@ -77,43 +77,6 @@
 #define IGAPARAM_MAX_THREADS 4096
 
 /**
- * A stage of long work, passed to the progress callback.
- */
-typedef enum {
-  /**
-   * First placement of the free nodes.
-   */
-  IGAPARAM_STAGE_PLACEMENT = 0,
-  /**
-   * Optimization sweeps: `done` sweeps so far over all steps; `total` is 0 (not known in
-   * advance, as large motions may be split into more steps).
-   */
-  IGAPARAM_STAGE_OPTIMIZATION = 1,
-  /**
-   * Adaptive refinement of a domain's T-mesh from the quality of its spline map: `done`
-   * rounds of `total` at most.
-   */
-  IGAPARAM_STAGE_ADAPTATION = 2,
-  /**
-   * Newton iterations on the global objective (`stationarity_tolerance`): `done` so far,
-   * `total` 0.
-   */
-  IGAPARAM_STAGE_STATIONARITY = 3,
-  /**
-   * The fits and certifications of `igaparam_spline_fit_domain_with`: `done` of `total`.
-   */
-  IGAPARAM_STAGE_FIT = 4,
-  /**
-   * Untangling rounds of a fitted map that is not certified: `done` of at most `total`.
-   */
-  IGAPARAM_STAGE_UNTANGLING = 5,
-  /**
-   * Smoothing sweeps of a certified map: `done` of at most `total`.
-   */
-  IGAPARAM_STAGE_SMOOTHING = 6,
-} igaparam_stage;
-
-/**
  * Status of a call. `IGAPARAM_STATUS_OK` is zero; every other value comes with a message from
  * `igaparam_last_error_message`.
  */
@@ -167,6 +130,43 @@ typedef enum {
    */
   IGAPARAM_STATUS_LIMIT_EXCEEDED = 10,
 } igaparam_status;
+
+/**
+ * A stage of long work, passed to the progress callback.
+ */
+typedef enum {
+  /**
+   * First placement of the free nodes.
+   */
+  IGAPARAM_STAGE_PLACEMENT = 0,
+  /**
+   * Optimization sweeps: `done` sweeps so far over all steps; `total` is 0 (not known in
+   * advance, as large motions may be split into more steps).
+   */
+  IGAPARAM_STAGE_OPTIMIZATION = 1,
+  /**
+   * Adaptive refinement of a domain's T-mesh from the quality of its spline map: `done`
+   * rounds of `total` at most.
+   */
+  IGAPARAM_STAGE_ADAPTATION = 2,
+  /**
+   * Newton iterations on the global objective (`stationarity_tolerance`): `done` so far,
+   * `total` 0.
+   */
+  IGAPARAM_STAGE_STATIONARITY = 3,
+  /**
+   * The fits and certifications of `igaparam_spline_fit_domain_with`: `done` of `total`.
+   */
+  IGAPARAM_STAGE_FIT = 4,
+  /**
+   * Untangling rounds of a fitted map that is not certified: `done` of at most `total`.
+   */
+  IGAPARAM_STAGE_UNTANGLING = 5,
+  /**
+   * Smoothing sweeps of a certified map: `done` of at most `total`.
+   */
+  IGAPARAM_STAGE_SMOOTHING = 6,
+} igaparam_stage;
 
 /**
  * How the control points of a spline come from the T-mesh's map.
@@ -517,9 +517,78 @@ typedef struct {
 } igaparam_domain_update_report;
 
 /**
+ * A cell type: one of the `IGAPARAM_CELL_*` values (VTK's cell type codes). The local order of
+ * each type's nodes, VTK's and Gmsh's, is tabulated at `igaparam_node_order`.
+ */
+typedef int igaparam_cell_type;
+
+/**
  * The ideal shape of a cell: one of the `IGAPARAM_TARGET_*` values.
  */
 typedef int igaparam_target;
+
+/**
+ * The storage of a written `.vtu` file: one of `IGAPARAM_VTU_ASCII`, `IGAPARAM_VTU_BINARY`,
+ * `IGAPARAM_VTU_APPENDED`, `IGAPARAM_VTU_APPENDED_BASE64`, the binary ones optionally OR-ed with
+ * `IGAPARAM_VTU_ZLIB`.
+ */
+typedef int igaparam_vtu_format;
+
+/**
+ * A local node order: one of the `IGAPARAM_ORDER_*` values.
+ *
+ * VTK order (the library's own; meshio's and ParaView's), nodes by reference coordinates in
+ * [-1,1]^d (xi, eta[, zeta]):
+ * - Q4: 0 (-1,-1), 1 (1,-1), 2 (1,1), 3 (-1,1); Q8 adds the mid-edges 4 (0,-1), 5 (1,0),
+ *   6 (0,1), 7 (-1,0); Q9 adds the centre 8 (0,0).
+ * - H8: 0-3 the corners of the face zeta = -1 as in Q4, 4-7 those of zeta = 1;
+ *   H20 adds the mid-edges 8-11 of the bottom face (edges 0-1, 1-2, 2-3, 3-0), 12-15 of the top
+ *   face (4-5, 5-6, 6-7, 7-4), 16-19 of the vertical edges (0-4, 1-5, 2-6, 3-7);
+ *   H27 adds the face centres 20 (xi = -1), 21 (xi = 1), 22 (eta = -1), 23 (eta = 1),
+ *   24 (zeta = -1), 25 (zeta = 1) and the body centre 26.
+ *
+ * Gmsh order: quadrilaterals as VTK. Hexahedra: the same corners 0-7, then the mid-edges of the
+ * edges 0-1, 0-3, 0-4, 1-2, 1-5, 2-3, 2-6, 3-7, 4-5, 4-7, 5-6, 6-7 (8-19), then the face centres
+ * zeta = -1, eta = -1, xi = -1, xi = 1, eta = 1, zeta = 1 (20-25) and the body centre 26.
+ * `igaparam_cell_type_copy_node_coordinates` gives these tables.
+ */
+typedef int igaparam_node_order;
+
+/**
+ * The host's all-to-all exchange of bytes among the ranks of its communicator, as
+ * `MPI_Alltoallv` with `MPI_BYTE`: send `send_counts[r]` bytes to each rank `r` (the blocks of
+ * `send` in rank order) and receive `recv_counts[r]` bytes from each into `recv` (in rank
+ * order; the library knows the counts in advance). `user` is the exchange's `user`. Return 0
+ * on success. Called only on the thread that called the library.
+ */
+typedef int (*igaparam_exchange_fn)(void *user,
+                                    const size_t *send_counts,
+                                    const uint8_t *send,
+                                    const size_t *recv_counts,
+                                    uint8_t *recv);
+
+/**
+ * The ranks a partition lives on: this rank's number in `0..size` and the host's exchange.
+ * The library never starts, ends or calls MPI itself.
+ */
+typedef struct {
+  /**
+   * This rank, in `0..size` (e.g. from `MPI_Comm_rank`).
+   */
+  int rank;
+  /**
+   * Number of ranks (e.g. from `MPI_Comm_size`).
+   */
+  int size;
+  /**
+   * The exchange callback.
+   */
+  igaparam_exchange_fn exchange;
+  /**
+   * Passed to `exchange` as its first argument (e.g. a pointer to the communicator).
+   */
+  void *user;
+} igaparam_exchange;
 
 /**
  * Where free nodes start: one of the `IGAPARAM_PLACEMENT_*` values.
@@ -601,12 +670,6 @@ typedef struct {
 } igaparam_relocate_options;
 
 /**
- * A cell type: one of the `IGAPARAM_CELL_*` values (VTK's cell type codes). The local order of
- * each type's nodes, VTK's and Gmsh's, is tabulated at `igaparam_node_order`.
- */
-typedef int igaparam_cell_type;
-
-/**
  * What `igaparam_mesh_relocate` did. Quality is the inverse mean distortion of a cell against its
  * target over its Gauss–Lobatto points: 1 is the target shape, 0 an inverted cell.
  */
@@ -672,69 +735,6 @@ typedef struct {
    */
   double seconds;
 } igaparam_relocate_report;
-
-/**
- * The storage of a written `.vtu` file: one of `IGAPARAM_VTU_ASCII`, `IGAPARAM_VTU_BINARY`,
- * `IGAPARAM_VTU_APPENDED`, `IGAPARAM_VTU_APPENDED_BASE64`, the binary ones optionally OR-ed with
- * `IGAPARAM_VTU_ZLIB`.
- */
-typedef int igaparam_vtu_format;
-
-/**
- * A local node order: one of the `IGAPARAM_ORDER_*` values.
- *
- * VTK order (the library's own; meshio's and ParaView's), nodes by reference coordinates in
- * [-1,1]^d (xi, eta[, zeta]):
- * - Q4: 0 (-1,-1), 1 (1,-1), 2 (1,1), 3 (-1,1); Q8 adds the mid-edges 4 (0,-1), 5 (1,0),
- *   6 (0,1), 7 (-1,0); Q9 adds the centre 8 (0,0).
- * - H8: 0-3 the corners of the face zeta = -1 as in Q4, 4-7 those of zeta = 1;
- *   H20 adds the mid-edges 8-11 of the bottom face (edges 0-1, 1-2, 2-3, 3-0), 12-15 of the top
- *   face (4-5, 5-6, 6-7, 7-4), 16-19 of the vertical edges (0-4, 1-5, 2-6, 3-7);
- *   H27 adds the face centres 20 (xi = -1), 21 (xi = 1), 22 (eta = -1), 23 (eta = 1),
- *   24 (zeta = -1), 25 (zeta = 1) and the body centre 26.
- *
- * Gmsh order: quadrilaterals as VTK. Hexahedra: the same corners 0-7, then the mid-edges of the
- * edges 0-1, 0-3, 0-4, 1-2, 1-5, 2-3, 2-6, 3-7, 4-5, 4-7, 5-6, 6-7 (8-19), then the face centres
- * zeta = -1, eta = -1, xi = -1, xi = 1, eta = 1, zeta = 1 (20-25) and the body centre 26.
- * `igaparam_cell_type_copy_node_coordinates` gives these tables.
- */
-typedef int igaparam_node_order;
-
-/**
- * The host's all-to-all exchange of bytes among the ranks of its communicator, as
- * `MPI_Alltoallv` with `MPI_BYTE`: send `send_counts[r]` bytes to each rank `r` (the blocks of
- * `send` in rank order) and receive `recv_counts[r]` bytes from each into `recv` (in rank
- * order; the library knows the counts in advance). `user` is the exchange's `user`. Return 0
- * on success. Called only on the thread that called the library.
- */
-typedef int (*igaparam_exchange_fn)(void *user,
-                                    const size_t *send_counts,
-                                    const uint8_t *send,
-                                    const size_t *recv_counts,
-                                    uint8_t *recv);
-
-/**
- * The ranks a partition lives on: this rank's number in `0..size` and the host's exchange.
- * The library never starts, ends or calls MPI itself.
- */
-typedef struct {
-  /**
-   * This rank, in `0..size` (e.g. from `MPI_Comm_rank`).
-   */
-  int rank;
-  /**
-   * Number of ranks (e.g. from `MPI_Comm_size`).
-   */
-  int size;
-  /**
-   * The exchange callback.
-   */
-  igaparam_exchange_fn exchange;
-  /**
-   * Passed to `exchange` as its first argument (e.g. a pointer to the communicator).
-   */
-  void *user;
-} igaparam_exchange;
 
 /**
  * What `igaparam_partition_relocate` did.
@@ -1127,43 +1127,6 @@ typedef struct {
 #define IGAPARAM_TARGET_MASTER 1
 
 /**
- * Harmonic extension of the prescribed displacements (a discrete Laplace equation).
- */
-#define IGAPARAM_PLACEMENT_LAPLACIAN 0
-
-/**
- * The current positions, as they are.
- */
-#define IGAPARAM_PLACEMENT_CURRENT 1
-
-/**
- * Warm start for loops: the positions of the last successful relocation plus the harmonic
- * extension of the prescribed motion since then (the first relocation of a mesh starts as
- * `IGAPARAM_PLACEMENT_LAPLACIAN`); the targets stay the reference shapes. Use it when the
- * boundary moves a little at every call, as in a shape-optimization loop.
- */
-#define IGAPARAM_PLACEMENT_INCREMENTAL 2
-
-/**
- * `IGAPARAM_METHOD_NEWTON` where the Hessian's Cholesky factor is small (2D meshes, 3D meshes
- * up to about 20,000 nodes), else `IGAPARAM_METHOD_SWEEPS` (default).
- */
-#define IGAPARAM_METHOD_AUTO 0
-
-/**
- * The per-node optimizer's coloured Gauss–Seidel sweeps, large motions in steps placed
- * harmonically; with `stationarity_tolerance > 0`, followed by the Newton stage.
- */
-#define IGAPARAM_METHOD_SWEEPS 1
-
-/**
- * Path following of the optimum of the global objective: each step predicted by the tangent of
- * the optimum (the linearised response of the mesh to the motion) and corrected by Newton's
- * method; the sweeps are the fallback where a step cannot be made (e.g. a tangled start).
- */
-#define IGAPARAM_METHOD_NEWTON 2
-
-/**
  * Numbers as text: large, for reading by eye.
  */
 #define IGAPARAM_VTU_ASCII 0
@@ -1202,6 +1165,43 @@ typedef struct {
  * Gmsh's node order (`.msh` files, the Gmsh API).
  */
 #define IGAPARAM_ORDER_GMSH 1
+
+/**
+ * Harmonic extension of the prescribed displacements (a discrete Laplace equation).
+ */
+#define IGAPARAM_PLACEMENT_LAPLACIAN 0
+
+/**
+ * The current positions, as they are.
+ */
+#define IGAPARAM_PLACEMENT_CURRENT 1
+
+/**
+ * Warm start for loops: the positions of the last successful relocation plus the harmonic
+ * extension of the prescribed motion since then (the first relocation of a mesh starts as
+ * `IGAPARAM_PLACEMENT_LAPLACIAN`); the targets stay the reference shapes. Use it when the
+ * boundary moves a little at every call, as in a shape-optimization loop.
+ */
+#define IGAPARAM_PLACEMENT_INCREMENTAL 2
+
+/**
+ * `IGAPARAM_METHOD_NEWTON` where the Hessian's Cholesky factor is small (2D meshes, 3D meshes
+ * up to about 20,000 nodes), else `IGAPARAM_METHOD_SWEEPS` (default).
+ */
+#define IGAPARAM_METHOD_AUTO 0
+
+/**
+ * The per-node optimizer's coloured Gauss–Seidel sweeps, large motions in steps placed
+ * harmonically; with `stationarity_tolerance > 0`, followed by the Newton stage.
+ */
+#define IGAPARAM_METHOD_SWEEPS 1
+
+/**
+ * Path following of the optimum of the global objective: each step predicted by the tangent of
+ * the optimum (the linearised response of the mesh to the motion) and corrected by Newton's
+ * method; the sweeps are the fallback where a step cannot be made (e.g. a tangled start).
+ */
+#define IGAPARAM_METHOD_NEWTON 2
 
 /**
  * Interpolation at the Greville points (least squares when that system is singular or badly
@@ -1245,6 +1245,26 @@ size_t igaparam_last_error_message(char *buf,
 const char *igaparam_version(void);
 
 /**
+ * Releases a domain. NULL is a no-op. Called on a domain in use (from the progress callback of
+ * `igaparam_domain_build`, `igaparam_domain_update` or `igaparam_domain_fit_adaptive`, or from
+ * another thread), the release waits for that call: the call stops at its next progress point
+ * with `IGAPARAM_STATUS_CANCELLED` and the domain is released as it returns; the handle must
+ * not be used after this call in either case.
+ */
+void igaparam_domain_free(igaparam_domain *domain);
+
+/**
+ * Writes to `*out` the dimension of the domain: 2 for a planar domain, 3 for a solid.
+ */
+igaparam_status igaparam_domain_dimension(const igaparam_domain *domain, size_t *out);
+
+/**
+ * Writes to `*out` 1 if the domain has been built (by a successful `igaparam_domain_build`),
+ * else 0.
+ */
+igaparam_status igaparam_domain_is_built(const igaparam_domain *domain, int *out);
+
+/**
  * The default options of a planar domain (tolerance 1e-5).
  */
 igaparam_domain_options igaparam_domain_options_default(void);
@@ -1257,15 +1277,6 @@ igaparam_domain_options igaparam_domain_options_default(void);
 igaparam_domain_options igaparam_domain_options_default_solid(void);
 
 /**
- * Releases a domain. NULL is a no-op. Called on a domain in use (from the progress callback of
- * `igaparam_domain_build`, `igaparam_domain_update` or `igaparam_domain_fit_adaptive`, or from
- * another thread), the release waits for that call: the call stops at its next progress point
- * with `IGAPARAM_STATUS_CANCELLED` and the domain is released as it returns; the handle must
- * not be used after this call in either case.
- */
-void igaparam_domain_free(igaparam_domain *domain);
-
-/**
  * Adapts a T-mesh to the boundary (refining boundary cells until `options.tolerance` or
  * `options.max_level` is met), places its vertices (boundary ones on the curves, inner ones by
  * the Coons patch) and optimizes them; the result is kept in the handle, replacing that of an
@@ -1276,91 +1287,6 @@ void igaparam_domain_free(igaparam_domain *domain);
 igaparam_status igaparam_domain_build(igaparam_domain *domain,
                                       const igaparam_domain_options *options,
                                       igaparam_domain_report *report);
-
-/**
- * Writes the number of vertices of the built T-mesh (hanging ones included) to `*out`.
- * Fails with `IGAPARAM_STATUS_INVALID_ARGUMENT` if the domain has not been built.
- */
-igaparam_status igaparam_domain_vertex_count(const igaparam_domain *domain, size_t *out);
-
-/**
- * Writes the number of cells of the built T-mesh to `*out`. Fails with
- * `IGAPARAM_STATUS_INVALID_ARGUMENT` if the domain has not been built.
- */
-igaparam_status igaparam_domain_cell_count(const igaparam_domain *domain, size_t *out);
-
-/**
- * Copies the vertices of the built T-mesh: `parametric` receives their parametric coordinates
- * in [0,1]^d (u, v; u, v, w for a solid), and `physical` their coordinates in the domain (x, y;
- * x, y, z), each `num_vertices × d` doubles (d = 2 for a planar domain, 3 for a solid; see
- * `igaparam_domain_dimension`). Either may be NULL to skip it; `len_each` is the number of
- * doubles each non-NULL buffer holds (at least `d × num_vertices`). Fails with
- * `IGAPARAM_STATUS_INVALID_ARGUMENT` if the domain has not been built.
- */
-igaparam_status igaparam_domain_copy_vertices(const igaparam_domain *domain,
-                                              double *parametric,
-                                              double *physical,
-                                              size_t len_each);
-
-/**
- * Copies the quality of every cell of the built T-mesh into `quality` (`len` doubles, at least
- * `num_cells`): the inverse mean distortion against its parametric cell, in (0, 1], or 0 for a
- * cell with det J <= 0 somewhere. Fails with `IGAPARAM_STATUS_INVALID_ARGUMENT` if the domain
- * has not been built.
- */
-igaparam_status igaparam_domain_copy_cell_quality(const igaparam_domain *domain,
-                                                  double *quality,
-                                                  size_t len);
-
-/**
- * Copies the cells of the built T-mesh, in the order of their qualities:
- *
- * - `levels`: the refinement level of every cell (`num_cells` bytes), or NULL to skip it;
- * - `bounds`: the parametric box of every cell, `num_cells × 2d` doubles (lower then upper
- *   corner: `u0 v0 u1 v1` for a planar domain, `u0 v0 w0 u1 v1 w1` for a solid), or NULL to
- *   skip it.
- *
- * `len` is the number of cells the buffers hold (`levels` has `len` bytes, `bounds` `2d × len`
- * doubles), at least `num_cells`. Fails with `IGAPARAM_STATUS_INVALID_ARGUMENT` if the domain has
- * not been built.
- */
-igaparam_status igaparam_domain_copy_cells(const igaparam_domain *domain,
-                                           uint8_t *levels,
-                                           double *bounds,
-                                           size_t len);
-
-/**
- * Copies the corner vertices of every cell of the built T-mesh into `corners`: `num_cells × 2^d`
- * vertex indices (4 per cell for a planar domain, counter-clockwise from the lower-left corner;
- * 8 per cell for a solid, in VTK's hexahedron order), indices into the vertices of
- * `igaparam_domain_copy_vertices`. Hanging vertices on a cell's edges or faces are not listed.
- * `len` is the number of entries `corners` holds, at least `2^d × num_cells`. Fails with
- * `IGAPARAM_STATUS_INVALID_ARGUMENT` if the domain has not been built.
- */
-igaparam_status igaparam_domain_copy_cell_corners(const igaparam_domain *domain,
-                                                  size_t *corners,
-                                                  size_t len);
-
-/**
- * Writes to `*out` the dimension of the domain: 2 for a planar domain, 3 for a solid.
- */
-igaparam_status igaparam_domain_dimension(const igaparam_domain *domain, size_t *out);
-
-/**
- * Writes the built T-mesh to a VTK XML unstructured grid (`.vtu`) at `path` (NUL-terminated
- * UTF-8): for a planar domain one polygon per cell through its corners and hanging vertices,
- * for a solid one hexahedron per cell through its corners, at the physical positions; point data
- * `parametric` (u, v, 0 or u, v, w), cell data `quality` and `level`. Fails with
- * `IGAPARAM_STATUS_IO` if the file cannot be written, `IGAPARAM_STATUS_INVALID_ARGUMENT` if the
- * domain has not been built.
- */
-igaparam_status igaparam_domain_write_vtu(const igaparam_domain *domain, const char *path);
-
-/**
- * Writes to `*out` 1 if the domain has been built (by a successful `igaparam_domain_build`),
- * else 0.
- */
-igaparam_status igaparam_domain_is_built(const igaparam_domain *domain, int *out);
 
 /**
  * Creates a domain from a boundary file, chosen by its extension (case-insensitive):
@@ -1496,6 +1422,80 @@ igaparam_status igaparam_domain_new_solid_from_surfaces(size_t count,
                                                         igaparam_domain **out);
 
 /**
+ * Writes the number of vertices of the built T-mesh (hanging ones included) to `*out`.
+ * Fails with `IGAPARAM_STATUS_INVALID_ARGUMENT` if the domain has not been built.
+ */
+igaparam_status igaparam_domain_vertex_count(const igaparam_domain *domain, size_t *out);
+
+/**
+ * Writes the number of cells of the built T-mesh to `*out`. Fails with
+ * `IGAPARAM_STATUS_INVALID_ARGUMENT` if the domain has not been built.
+ */
+igaparam_status igaparam_domain_cell_count(const igaparam_domain *domain, size_t *out);
+
+/**
+ * Copies the vertices of the built T-mesh: `parametric` receives their parametric coordinates
+ * in [0,1]^d (u, v; u, v, w for a solid), and `physical` their coordinates in the domain (x, y;
+ * x, y, z), each `num_vertices × d` doubles (d = 2 for a planar domain, 3 for a solid; see
+ * `igaparam_domain_dimension`). Either may be NULL to skip it; `len_each` is the number of
+ * doubles each non-NULL buffer holds (at least `d × num_vertices`). Fails with
+ * `IGAPARAM_STATUS_INVALID_ARGUMENT` if the domain has not been built.
+ */
+igaparam_status igaparam_domain_copy_vertices(const igaparam_domain *domain,
+                                              double *parametric,
+                                              double *physical,
+                                              size_t len_each);
+
+/**
+ * Copies the quality of every cell of the built T-mesh into `quality` (`len` doubles, at least
+ * `num_cells`): the inverse mean distortion against its parametric cell, in (0, 1], or 0 for a
+ * cell with det J <= 0 somewhere. Fails with `IGAPARAM_STATUS_INVALID_ARGUMENT` if the domain
+ * has not been built.
+ */
+igaparam_status igaparam_domain_copy_cell_quality(const igaparam_domain *domain,
+                                                  double *quality,
+                                                  size_t len);
+
+/**
+ * Copies the cells of the built T-mesh, in the order of their qualities:
+ *
+ * - `levels`: the refinement level of every cell (`num_cells` bytes), or NULL to skip it;
+ * - `bounds`: the parametric box of every cell, `num_cells × 2d` doubles (lower then upper
+ *   corner: `u0 v0 u1 v1` for a planar domain, `u0 v0 w0 u1 v1 w1` for a solid), or NULL to
+ *   skip it.
+ *
+ * `len` is the number of cells the buffers hold (`levels` has `len` bytes, `bounds` `2d × len`
+ * doubles), at least `num_cells`. Fails with `IGAPARAM_STATUS_INVALID_ARGUMENT` if the domain has
+ * not been built.
+ */
+igaparam_status igaparam_domain_copy_cells(const igaparam_domain *domain,
+                                           uint8_t *levels,
+                                           double *bounds,
+                                           size_t len);
+
+/**
+ * Copies the corner vertices of every cell of the built T-mesh into `corners`: `num_cells × 2^d`
+ * vertex indices (4 per cell for a planar domain, counter-clockwise from the lower-left corner;
+ * 8 per cell for a solid, in VTK's hexahedron order), indices into the vertices of
+ * `igaparam_domain_copy_vertices`. Hanging vertices on a cell's edges or faces are not listed.
+ * `len` is the number of entries `corners` holds, at least `2^d × num_cells`. Fails with
+ * `IGAPARAM_STATUS_INVALID_ARGUMENT` if the domain has not been built.
+ */
+igaparam_status igaparam_domain_copy_cell_corners(const igaparam_domain *domain,
+                                                  size_t *corners,
+                                                  size_t len);
+
+/**
+ * Writes the built T-mesh to a VTK XML unstructured grid (`.vtu`) at `path` (NUL-terminated
+ * UTF-8): for a planar domain one polygon per cell through its corners and hanging vertices,
+ * for a solid one hexahedron per cell through its corners, at the physical positions; point data
+ * `parametric` (u, v, 0 or u, v, w), cell data `quality` and `level`. Fails with
+ * `IGAPARAM_STATUS_IO` if the file cannot be written, `IGAPARAM_STATUS_INVALID_ARGUMENT` if the
+ * domain has not been built.
+ */
+igaparam_status igaparam_domain_write_vtu(const igaparam_domain *domain, const char *path);
+
+/**
  * The default update options.
  */
 igaparam_domain_update_options igaparam_domain_update_options_default(void);
@@ -1586,11 +1586,6 @@ igaparam_status igaparam_domain_update(igaparam_domain *domain,
                                        igaparam_domain_update_report *report);
 
 /**
- * The default relocation options.
- */
-igaparam_relocate_options igaparam_relocate_options_default(void);
-
-/**
  * Creates a mesh of `num_cells` cells of one type.
  *
  * - `xyz`: `num_nodes × 3` coordinates, flat (x0 y0 z0 x1 ...); always 3 per node, as in VTK; for
@@ -1658,23 +1653,6 @@ igaparam_status igaparam_mesh_move_nodes(igaparam_mesh *mesh,
 igaparam_status igaparam_mesh_reset_reference(igaparam_mesh *mesh);
 
 /**
- * Relocates the free coordinates of the nodes so that every cell is valid and close to its
- * target shape, keeping the connectivity. `options` may be NULL for the defaults; `report` may
- * be NULL. On any error or cancellation the mesh is unchanged and `*report` is not written.
- *
- * Units: the result does not depend on them. The mesh is optimized in coordinates scaled by
- * the power of two `2^-k` with `2^k <= L < 2^(k+1)`, L the largest side of the bounding box of
- * the reference shape's cell nodes, so every tolerance inside (and every option's tolerance,
- * given relative to a local cell size) is relative to the mesh's size; a mesh scaled by a
- * power of two relocates to the same result scaled bit for bit, by any other factor to the
- * same result to round-off. Prescribed coordinates are returned with the bits they were
- * given.
- */
-igaparam_status igaparam_mesh_relocate(igaparam_mesh *mesh,
-                                       const igaparam_relocate_options *options,
-                                       igaparam_relocate_report *report);
-
-/**
  * Copies the current node positions into `xyz` (`len` doubles, at least `3 × num_nodes`; x0 y0
  * z0 x1 ...).
  */
@@ -1712,40 +1690,6 @@ igaparam_status igaparam_cell_type_node_count(igaparam_cell_type cell_type_code,
  * Writes to `*out` the number of cells with det J <= 0 at some Gauss–Lobatto point.
  */
 igaparam_status igaparam_mesh_invalid_cell_count(const igaparam_mesh *mesh, size_t *out);
-
-/**
- * The adjoint product of the last relocation: `dj_dx` holds the partial derivatives dJ/dx of a
- * scalar J of the node positions (`size` = 3 × num_nodes doubles, x0 y0 z0 x1 ...);
- * `dj_dprescribed` (`size` doubles) receives the total derivative of J with respect to every
- * prescribed coordinate, dJ/dx_p = dJ/dx_p (partial) − H_pf H_ff⁻¹ dJ/dx_f, through the
- * relocation's dependence of the free coordinates on the prescribed ones (implicit function
- * theorem at the stationary point; H the Hessian of F), and 0 at the free coordinates.
- *
- * Free coordinates: those whose constraint bit is clear, of nodes that belong to a cell
- * (sliding nodes have both kinds); all others are prescribed, and z of every node of a 2D mesh.
- * Needs a last relocation with `stationarity_tolerance > 0` that reached it on a valid mesh;
- * `igaparam_mesh_move_nodes`, `igaparam_mesh_set_fixed`, `igaparam_mesh_reset_reference` and
- * a new relocation invalidate the state (the call then fails and says why). The factorisation
- * of H_ff (2D meshes and small 3D ones) is kept on the handle, so further products at one
- * state cost a solve each; larger 3D meshes solve by preconditioned conjugate gradients.
- * Uses the thread count of the last relocation.
- */
-igaparam_status igaparam_mesh_adjoint(const igaparam_mesh *mesh,
-                                      size_t size,
-                                      const double *dj_dx,
-                                      double *dj_dprescribed);
-
-/**
- * The tangent product of the last relocation (the transpose of `igaparam_mesh_adjoint`):
- * `dx_prescribed` (`size` = 3 × num_nodes doubles) is a motion of the prescribed coordinates
- * (its entries at free coordinates are ignored); `dx` (`size` doubles) receives the first-order
- * motion of every node: the given motion at prescribed coordinates, −H_ff⁻¹ H_fp dx_p at free
- * ones. Same conditions as `igaparam_mesh_adjoint`.
- */
-igaparam_status igaparam_mesh_tangent(const igaparam_mesh *mesh,
-                                      size_t size,
-                                      const double *dx_prescribed,
-                                      double *dx);
 
 /**
  * Reads a mesh from a VTK XML unstructured grid (`.vtu`) at `path` (NUL-terminated UTF-8), in
@@ -1899,6 +1843,62 @@ igaparam_status igaparam_partition_relocate(igaparam_partition *part,
                                             const igaparam_exchange *exchange,
                                             const igaparam_relocate_options *options,
                                             igaparam_partition_report *report);
+
+/**
+ * The default relocation options.
+ */
+igaparam_relocate_options igaparam_relocate_options_default(void);
+
+/**
+ * Relocates the free coordinates of the nodes so that every cell is valid and close to its
+ * target shape, keeping the connectivity. `options` may be NULL for the defaults; `report` may
+ * be NULL. On any error or cancellation the mesh is unchanged and `*report` is not written.
+ *
+ * Units: the result does not depend on them. The mesh is optimized in coordinates scaled by
+ * the power of two `2^-k` with `2^k <= L < 2^(k+1)`, L the largest side of the bounding box of
+ * the reference shape's cell nodes, so every tolerance inside (and every option's tolerance,
+ * given relative to a local cell size) is relative to the mesh's size; a mesh scaled by a
+ * power of two relocates to the same result scaled bit for bit, by any other factor to the
+ * same result to round-off. Prescribed coordinates are returned with the bits they were
+ * given.
+ */
+igaparam_status igaparam_mesh_relocate(igaparam_mesh *mesh,
+                                       const igaparam_relocate_options *options,
+                                       igaparam_relocate_report *report);
+
+/**
+ * The adjoint product of the last relocation: `dj_dx` holds the partial derivatives dJ/dx of a
+ * scalar J of the node positions (`size` = 3 × num_nodes doubles, x0 y0 z0 x1 ...);
+ * `dj_dprescribed` (`size` doubles) receives the total derivative of J with respect to every
+ * prescribed coordinate, dJ/dx_p = dJ/dx_p (partial) − H_pf H_ff⁻¹ dJ/dx_f, through the
+ * relocation's dependence of the free coordinates on the prescribed ones (implicit function
+ * theorem at the stationary point; H the Hessian of F), and 0 at the free coordinates.
+ *
+ * Free coordinates: those whose constraint bit is clear, of nodes that belong to a cell
+ * (sliding nodes have both kinds); all others are prescribed, and z of every node of a 2D mesh.
+ * Needs a last relocation with `stationarity_tolerance > 0` that reached it on a valid mesh;
+ * `igaparam_mesh_move_nodes`, `igaparam_mesh_set_fixed`, `igaparam_mesh_reset_reference` and
+ * a new relocation invalidate the state (the call then fails and says why). The factorisation
+ * of H_ff (2D meshes and small 3D ones) is kept on the handle, so further products at one
+ * state cost a solve each; larger 3D meshes solve by preconditioned conjugate gradients.
+ * Uses the thread count of the last relocation.
+ */
+igaparam_status igaparam_mesh_adjoint(const igaparam_mesh *mesh,
+                                      size_t size,
+                                      const double *dj_dx,
+                                      double *dj_dprescribed);
+
+/**
+ * The tangent product of the last relocation (the transpose of `igaparam_mesh_adjoint`):
+ * `dx_prescribed` (`size` = 3 × num_nodes doubles) is a motion of the prescribed coordinates
+ * (its entries at free coordinates are ignored); `dx` (`size` doubles) receives the first-order
+ * motion of every node: the given motion at prescribed coordinates, −H_ff⁻¹ H_fp dx_p at free
+ * ones. Same conditions as `igaparam_mesh_adjoint`.
+ */
+igaparam_status igaparam_mesh_tangent(const igaparam_mesh *mesh,
+                                      size_t size,
+                                      const double *dx_prescribed,
+                                      double *dx);
 
 /**
  * Fits the cubic THB spline space of a built domain's T-mesh to its optimized piecewise

@@ -1,9 +1,11 @@
 //! The boundary helper every entry point runs in: panic catching, status mapping, the thread's
-//! last error message, and checked conversions of raw pointers to slices.
+//! last error message, and checked conversions of raw pointers to slices, paths, options and
+//! optional outputs.
 
 use std::cell::RefCell;
 use std::ffi::{c_char, CStr};
 use std::panic::{catch_unwind, AssertUnwindSafe};
+use std::path::Path;
 
 use crate::error::{Error, ErrorKind, Result};
 
@@ -181,6 +183,44 @@ pub(crate) fn optional_out<'a, T>(ptr: *mut T, needed: usize) -> Option<&'a mut 
     }
     // SAFETY: `ptr` is not NULL and the caller checked that it holds `needed` elements.
     Some(unsafe { std::slice::from_raw_parts_mut(ptr, needed) })
+}
+
+/// The options at `ptr`, or `default` when it is NULL (every entry point's rule for its
+/// `options` argument).
+pub(crate) fn options_or<T: Copy>(ptr: *const T, default: T) -> T {
+    // SAFETY: a non-NULL `ptr` points to a live, properly aligned options struct (documented
+    // contract).
+    match unsafe { ptr.as_ref() } {
+        Some(options) => *options,
+        None => default,
+    }
+}
+
+/// Writes `value` to the optional output `ptr` (a report); NULL skips it.
+pub(crate) fn write_optional<T>(ptr: *mut T, value: T) {
+    // SAFETY: a non-NULL `ptr` points to a live, writable object not aliased during the call
+    // (documented contract).
+    if let Some(out) = unsafe { ptr.as_mut() } {
+        *out = value;
+    }
+}
+
+/// A path from a NUL-terminated C string that must not be NULL.
+pub(crate) fn c_path<'a>(
+    ptr: *const c_char,
+    name: &'static str,
+) -> std::result::Result<&'a Path, Failure> {
+    non_null(ptr, name)?;
+    // SAFETY: `ptr` is not NULL and the caller passes a NUL-terminated string (documented
+    // contract) that outlives the call.
+    let s = unsafe { CStr::from_ptr(ptr) };
+    let s = s
+        .to_str()
+        .map_err(|_| Error::invalid(format!("`{name}` is not valid UTF-8")))?;
+    if s.is_empty() {
+        return Err(Error::invalid(format!("`{name}` is empty")).into());
+    }
+    Ok(Path::new(s))
 }
 
 /// Checks that an output buffer of `len` elements holds `needed`.

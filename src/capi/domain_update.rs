@@ -4,15 +4,14 @@
 
 use std::ffi::{c_char, c_void};
 
-use super::boundary::{non_null, non_null_mut, run, Failure};
-use super::domain::{
-    c_path, c_report, held, igaparam_domain, igaparam_domain_report, optimization_progress,
-    DomainData,
-};
+use super::boundary::{c_path, options_or, run, write_optional, Failure};
+use super::domain::{held, igaparam_domain, Built, DomainData};
+use super::domain_build::{c_report, igaparam_domain_report};
 use super::domain_input::{
     curves_boundary, igaparam_curve, igaparam_surface, planar_file_boundary, polylines_boundary,
     solid_file_boundary, surfaces_boundary, triangulations_boundary,
 };
+use super::progress::optimization_progress;
 use super::{igaparam_progress_fn, igaparam_status};
 use crate::boundary::{BoundaryLoop2, SolidBoundary};
 use crate::domain::{UpdateOptions, UpdateReport};
@@ -288,35 +287,21 @@ pub extern "C" fn igaparam_domain_update(
     run("igaparam_domain_update", || {
         let mut held = held(domain)?;
         let (d, watch) = held.split();
-        let raw = if options.is_null() {
-            igaparam_domain_update_options_default()
-        } else {
-            *non_null(options, "options")?
-        };
+        let raw = options_or(options, igaparam_domain_update_options_default());
         let opts = UpdateOptions {
             max_sweeps: raw.max_sweeps,
             threads: raw.threads as usize,
             refine: raw.refine != 0,
         };
         let mut progress = optimization_progress(raw.progress, raw.progress_user, watch);
-        let r = match d {
-            DomainData::Planar(boundary, Some(built)) => built
-                .update(boundary.clone(), &opts, &mut progress)
-                .map_err(|e| watch.explain(e))?,
-            DomainData::Solid(boundary, Some(built)) => built
-                .update(boundary.as_ref().clone(), &opts, &mut progress)
-                .map_err(|e| watch.explain(e))?,
-            _ => {
-                return Err(Error::invalid(
-                    "the domain has not been built: call igaparam_domain_build before \
-                     igaparam_domain_update",
-                )
-                .into())
+        let r = match d.built_mut()? {
+            Built::Planar((boundary, built)) => {
+                built.update(boundary.clone(), &opts, &mut progress)
             }
-        };
-        if !report.is_null() {
-            *non_null_mut(report, "report")? = c_update_report(&r);
+            Built::Solid((boundary, built)) => built.update(boundary.clone(), &opts, &mut progress),
         }
+        .map_err(|e| watch.explain(e))?;
+        write_optional(report, c_update_report(&r));
         Ok(())
     })
 }

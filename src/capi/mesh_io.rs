@@ -3,8 +3,7 @@
 
 use std::ffi::{c_char, c_int};
 
-use super::boundary::{non_null_mut, run};
-use super::domain::c_path;
+use super::boundary::{c_path, non_null_mut, run};
 use super::igaparam_status;
 use super::mesh::{igaparam_cell_type, igaparam_mesh, with_mesh};
 use crate::error::{Error, Result};

@@ -11,23 +11,31 @@
 
 mod boundary;
 mod domain;
+mod domain_build;
 mod domain_input;
+mod domain_query;
 mod domain_update;
 mod handle;
 mod mesh;
 mod mesh_io;
 mod node_order;
 mod partition;
+mod progress;
+mod relocate;
 mod spline;
 
 pub use boundary::{igaparam_last_error_message, igaparam_status, igaparam_version};
 pub use domain::*;
+pub use domain_build::*;
 pub use domain_input::*;
+pub use domain_query::*;
 pub use domain_update::*;
 pub use mesh::*;
 pub use mesh_io::*;
 pub use node_order::*;
 pub use partition::*;
+pub use progress::*;
+pub use relocate::*;
 pub use spline::*;
 
 /// Major version of the library this header belongs to.

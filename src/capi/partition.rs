@@ -6,10 +6,14 @@
 
 use std::ffi::{c_int, c_void};
 
-use super::boundary::{check_capacity, non_null, non_null_mut, run, slice, slice_mut, Failure};
+use super::boundary::{
+    check_capacity, non_null, non_null_mut, options_or, run, slice, slice_mut, write_optional,
+    Failure,
+};
 use super::handle::{acquire, handle_type, into_raw, release, Guarded};
-use super::mesh::{cell_type, igaparam_relocate_options, igaparam_relocate_report};
-use super::mesh::{
+use super::mesh::cell_type;
+use super::relocate::{igaparam_relocate_options, igaparam_relocate_report};
+use super::relocate::{
     igaparam_relocate_options_default, relocate_options, relocation_progress, report_of,
 };
 use super::{igaparam_cell_type, igaparam_status};
@@ -285,10 +289,7 @@ pub extern "C" fn igaparam_partition_relocate(
     run("igaparam_partition_relocate", || {
         let mut host = host_exchange(exchange)?;
         let mut ranks = Ranks::new(&mut host);
-        let raw = match options.is_null() {
-            true => igaparam_relocate_options_default(),
-            false => *non_null(options, "options")?,
-        };
+        let raw = options_or(options, igaparam_relocate_options_default());
         let opts = relocate_options(&raw);
         let mut held = match acquire(part, "part") {
             Ok(held) => held,
@@ -305,13 +306,14 @@ pub extern "C" fn igaparam_partition_relocate(
         let r = handle
             .relocate(&mut ranks, opts, &mut progress)
             .map_err(|e| watch.explain(e))?;
-        if !report.is_null() {
-            *non_null_mut(report, "report")? = igaparam_partition_report {
+        write_optional(
+            report,
+            igaparam_partition_report {
                 relocation: report_of(&r.relocation),
                 exchange_seconds: r.exchange_seconds,
                 exchanges: r.exchanges,
-            };
-        }
+            },
+        );
         Ok(())
     })
 }

@@ -5,8 +5,11 @@
 
 use std::ffi::c_char;
 
-use super::boundary::{check_capacity, non_null_mut, optional_out, run, slice, slice_mut, Failure};
-use super::domain::{c_path, igaparam_domain};
+use super::boundary::{
+    c_path, check_capacity, non_null_mut, optional_out, run, slice, slice_mut, write_optional,
+    Failure,
+};
+use super::domain::igaparam_domain;
 use super::handle::{acquire, handle_type, into_raw, release, Guarded, Held};
 use super::igaparam_status;
 use crate::error::{Error, Result};
@@ -437,9 +440,7 @@ pub extern "C" fn igaparam_spline_refine(
             AnyMap::Two(m) => refine(m, marked).map(|(m, r)| (AnyMap::Two(m), r))?,
             AnyMap::Three(m) => refine(m, marked).map(|(m, r)| (AnyMap::Three(m), r))?,
         };
-        if !report.is_null() {
-            *non_null_mut(report, "report")? = fit_report(&r);
-        }
+        write_optional(report, fit_report(&r));
         handle.set_map(refined);
         Ok(())
     })

@@ -9,8 +9,13 @@ use super::map::SplineMap;
 use super::untangle::UntangleOptions;
 use super::validity::{ValidityOptions, ValidityReport};
 use crate::domain::{CubeMap, Domain, DomainOptions};
-use crate::error::{Error, Result};
+use crate::error::{Error, ErrorKind, Result};
 use crate::tmesh::MAX_LEVEL;
+
+/// The deepest level the loop refines to (that of a domain's repair; within the tree's
+/// [`MAX_LEVEL`]).
+const MAX_ADAPT_LEVEL: u8 = 16;
+const _: () = assert!(MAX_ADAPT_LEVEL <= MAX_LEVEL);
 
 /// Options of [`adapt`].
 #[derive(Clone, Copy, Debug)]
@@ -40,6 +45,37 @@ impl Default for AdaptOptions {
             validity: ValidityOptions::default(),
             domain: DomainOptions::default(),
         }
+    }
+}
+
+impl AdaptOptions {
+    /// Checks the ranges of every field [`adapt`] uses: `target_quality` finite and in [0, 1),
+    /// `max_level` at most 16, the certification's (see [`ValidityOptions::validate`]) and
+    /// `domain.threads` at most 4096.
+    pub fn validate(&self) -> Result<()> {
+        if !self.target_quality.is_finite() {
+            return Err(Error::new(
+                ErrorKind::NotFinite,
+                format!(
+                    "target_quality is {}, it must be finite",
+                    self.target_quality
+                ),
+            ));
+        }
+        if !(0.0..1.0).contains(&self.target_quality) {
+            return Err(Error::invalid(format!(
+                "target_quality = {} must be in [0, 1)",
+                self.target_quality
+            )));
+        }
+        if self.max_level > MAX_ADAPT_LEVEL {
+            return Err(Error::invalid(format!(
+                "max_level = {} must be at most {MAX_ADAPT_LEVEL}",
+                self.max_level
+            )));
+        }
+        self.validity.validate()?;
+        crate::threads::check(self.domain.threads)
     }
 }
 
@@ -80,7 +116,6 @@ pub struct AdaptReport {
     pub seconds: f64,
 }
 
-/// Checks the options of [`adapt`].
 /// The options of the T-mesh optimization after a refinement: the domain's own build options
 /// (a domain built to keep its boundary, `boundary_offset = 0`, keeps it through the loop), with
 /// the loop's threads and sweep limit.
@@ -90,27 +125,6 @@ pub fn refinement_options(built: &DomainOptions, options: &AdaptOptions) -> Doma
         max_sweeps: options.domain.max_sweeps,
         ..*built
     }
-}
-
-fn check(options: &AdaptOptions) -> Result<()> {
-    if !(0.0..1.0).contains(&options.target_quality) {
-        return Err(Error::invalid(format!(
-            "target_quality = {} must be in [0, 1)",
-            options.target_quality
-        )));
-    }
-    if options.max_level > 16 || options.max_level > MAX_LEVEL {
-        return Err(Error::invalid(format!(
-            "max_level = {} must be at most 16",
-            options.max_level
-        )));
-    }
-    if options.validity.samples < 2 || options.validity.max_depth > 12 {
-        return Err(Error::invalid(
-            "validity: samples must be at least 2 and max_depth at most 12",
-        ));
-    }
-    Ok(())
 }
 
 /// The cells to refine: not certified, or of smallest sampled quality under the target, and
@@ -144,7 +158,7 @@ pub fn adapt<const D: usize, B: CubeMap<D>>(
     progress: &mut dyn FnMut(usize, usize) -> bool,
 ) -> Result<(SplineMap<D>, AdaptReport)> {
     let start = Instant::now();
-    check(options)?;
+    options.validate()?;
     let mut report = AdaptReport::default();
     let mut round = 0u32;
     loop {
@@ -195,6 +209,46 @@ pub fn adapt<const D: usize, B: CubeMap<D>>(
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn validate_refuses_every_field_out_of_range() {
+        assert!(AdaptOptions::default().validate().is_ok());
+        let with = |f: &dyn Fn(&mut AdaptOptions)| {
+            let mut o = AdaptOptions::default();
+            f(&mut o);
+            o.validate().unwrap_err()
+        };
+        assert_eq!(
+            with(&|o| o.target_quality = f64::NAN).kind,
+            ErrorKind::NotFinite
+        );
+        assert_eq!(
+            with(&|o| o.target_quality = 1.0).kind,
+            ErrorKind::InvalidArgument
+        );
+        assert_eq!(
+            with(&|o| o.target_quality = -0.1).kind,
+            ErrorKind::InvalidArgument
+        );
+        assert!(with(&|o| o.max_level = 17)
+            .message
+            .contains("max_level = 17"));
+        assert!(with(&|o| o.validity.samples = 65)
+            .message
+            .contains("samples = 65"));
+        assert!(with(&|o| o.validity.max_depth = 13)
+            .message
+            .contains("max_depth = 13"));
+        assert!(with(&|o| o.domain.threads = 4097)
+            .message
+            .contains("threads = 4097"));
+        let edge = AdaptOptions {
+            max_level: 16,
+            target_quality: 0.0,
+            ..AdaptOptions::default()
+        };
+        assert!(edge.validate().is_ok());
+    }
 
     #[test]
     fn refinements_keep_the_domains_own_boundary_rules() {

@@ -2,14 +2,14 @@
 
 use std::ffi::c_void;
 
-use super::{igaparam_spline, new_recorded_handle};
-use crate::capi::boundary::{non_null, non_null_mut, run};
-use crate::capi::domain::{adapt_domain, igaparam_domain};
-use crate::capi::igaparam_status;
-use crate::capi::mesh::call_progress;
-use crate::capi::{igaparam_progress_fn, igaparam_stage};
-use crate::error::Error;
-use crate::spline::AdaptOptions;
+use super::{igaparam_spline, new_recorded_handle, AnyMap};
+use crate::capi::boundary::{non_null_mut, options_or, run, write_optional, Failure};
+use crate::capi::domain::{current, igaparam_domain, Built};
+use crate::capi::progress::call_progress;
+use crate::capi::{igaparam_progress_fn, igaparam_stage, igaparam_status};
+use crate::domain::{CubeMap, Domain, DomainOptions};
+use crate::error::Result;
+use crate::spline::{adapt, AdaptOptions, AdaptReport, FitRecord, SplineMap};
 
 /// Options of `igaparam_domain_fit_adaptive`; get the defaults from
 /// `igaparam_adapt_options_default`.
@@ -79,6 +79,64 @@ pub extern "C" fn igaparam_adapt_options_default() -> igaparam_adapt_options {
     }
 }
 
+/// The core's options of C options `raw` (a conversion; [`AdaptOptions::validate`] checks the
+/// ranges).
+fn adapt_options(raw: &igaparam_adapt_options) -> AdaptOptions {
+    let defaults = AdaptOptions::default();
+    AdaptOptions {
+        target_quality: raw.target_quality,
+        max_rounds: raw.max_rounds,
+        // A level above 255 becomes 255, which the core refuses as above 16 with the others.
+        max_level: u8::try_from(raw.max_level).unwrap_or(u8::MAX),
+        domain: DomainOptions {
+            max_sweeps: raw.max_sweeps,
+            threads: raw.threads as usize,
+            ..defaults.domain
+        },
+        ..defaults
+    }
+}
+
+/// The adaptive loop on a copy of `domain`, which takes the refined T-mesh on success only.
+fn adapt_copy<const D: usize, B: CubeMap<D>>(
+    domain: &mut Domain<D, B>,
+    options: &AdaptOptions,
+    progress: &mut dyn FnMut(usize, usize) -> bool,
+) -> Result<(SplineMap<D>, AdaptReport, FitRecord)>
+where
+    Domain<D, B>: Clone,
+{
+    let mut copy = domain.clone();
+    let (map, report) = adapt(&mut copy, options, progress)?;
+    let record = map.fit_record(copy.mesh(), copy.positions(), &report.fit)?;
+    *domain = copy;
+    Ok((map, report, record))
+}
+
+/// Runs the adaptive loop on a copy of the built domain and, on success, keeps the refined
+/// T-mesh in the handle (see `igaparam_domain_fit_adaptive`): a failed or cancelled call leaves
+/// the handle as it was. Returns the map, the loop's report and the record of the map's fit.
+fn adapt_domain(
+    domain: *mut igaparam_domain,
+    options: &AdaptOptions,
+    progress: &mut dyn FnMut(usize, usize) -> bool,
+) -> std::result::Result<(AnyMap, AdaptReport, FitRecord), Failure> {
+    let mut held = current(domain)?;
+    let (d, watch) = held.split();
+    let progress = &mut |done, total| progress(done, total) && !watch.requested();
+    let explain = |e| Failure::from(watch.explain(e));
+    Ok(match d.built_mut()? {
+        Built::Planar((_, d)) => {
+            let (map, report, record) = adapt_copy(d, options, progress).map_err(explain)?;
+            (AnyMap::Two(map), report, record)
+        }
+        Built::Solid((_, d)) => {
+            let (map, report, record) = adapt_copy(d, options, progress).map_err(explain)?;
+            (AnyMap::Three(map), report, record)
+        }
+    })
+}
+
 /// The adaptive loop of the method: fits the spline map of the built domain, refines the T-mesh
 /// cells whose spline element is not certified valid or has a sampled mean ratio under
 /// `options->target_quality`, optimizes the T-mesh again and refits, for at most
@@ -98,37 +156,9 @@ pub extern "C" fn igaparam_domain_fit_adaptive(
 ) -> igaparam_status {
     run("igaparam_domain_fit_adaptive", || {
         non_null_mut(out, "out")?;
-        let raw = if options.is_null() {
-            igaparam_adapt_options_default()
-        } else {
-            *non_null(options, "options")?
-        };
-        if !raw.target_quality.is_finite() {
-            return Err(Error::new(
-                crate::error::ErrorKind::NotFinite,
-                format!("target_quality is {}", raw.target_quality),
-            )
-            .into());
-        }
-        if raw.max_level > 16 || raw.threads > 4096 {
-            return Err(Error::invalid(format!(
-                "max_level = {} (at most 16), threads = {} (at most 4096)",
-                raw.max_level, raw.threads
-            ))
-            .into());
-        }
-        let defaults = AdaptOptions::default();
-        let opts = AdaptOptions {
-            target_quality: raw.target_quality,
-            max_rounds: raw.max_rounds,
-            max_level: raw.max_level as u8,
-            domain: crate::domain::DomainOptions {
-                max_sweeps: raw.max_sweeps,
-                threads: raw.threads as usize,
-                ..defaults.domain
-            },
-            ..defaults
-        };
+        let raw = options_or(options, igaparam_adapt_options_default());
+        let opts = adapt_options(&raw);
+        opts.validate()?;
         let mut progress = |done: usize, total: usize| {
             call_progress(
                 raw.progress,
@@ -140,8 +170,9 @@ pub extern "C" fn igaparam_domain_fit_adaptive(
         };
         let (map, mut r, record) = adapt_domain(domain, &opts, &mut progress)?;
         let last = r.rounds.last().copied().unwrap_or_default();
-        if !report.is_null() {
-            *non_null_mut(report, "report")? = igaparam_adapt_report {
+        write_optional(
+            report,
+            igaparam_adapt_report {
                 rounds: r.rounds.len().saturating_sub(1) as u32,
                 reached: r.reached as i32,
                 refined_cells: r.rounds.iter().map(|x| x.refined).sum(),
@@ -153,8 +184,8 @@ pub extern "C" fn igaparam_domain_fit_adaptive(
                 seconds: r.seconds,
                 untangled: r.fit.untangled,
                 boundary_offset: r.fit.boundary_offset,
-            };
-        }
+            },
+        );
         let validity = std::mem::take(&mut r.validity);
         new_recorded_handle(map, Some((opts.validity, validity)), Some(record), out)
     })

@@ -4,16 +4,16 @@
 use std::ffi::{c_int, c_void};
 
 use super::{fit_report, igaparam_fit_report, igaparam_spline, igaparam_validity_options};
-use super::{new_recorded_handle, AnyMap};
-use crate::capi::boundary::{non_null, non_null_mut, run, Failure};
-use crate::capi::domain::{current, igaparam_domain, DomainData};
-use crate::capi::mesh::call_progress;
+use super::{new_recorded_handle, validity_options, AnyMap};
+use crate::capi::boundary::{non_null_mut, options_or, run, write_optional, Failure};
+use crate::capi::domain::{current, igaparam_domain, Built};
+use crate::capi::progress::call_progress;
 use crate::capi::{igaparam_progress_fn, igaparam_stage, igaparam_status};
 use crate::domain::{CubeMap, Domain};
 use crate::error::{Error, Result};
 use crate::spline::{
     FitChoice, FitOptions, FitProgress, FitRecord, FitReport, FitStage, SplineMap, UntangleOptions,
-    ValidityOptions, ValidityReport,
+    ValidityReport,
 };
 
 /// Which fit rule `igaparam_spline_fit_domain_with` uses: one of the `IGAPARAM_FIT_CHOICE_*`
@@ -94,10 +94,7 @@ fn fit_options(raw: &igaparam_fit_options, boundary_offset: f64) -> Result<FitOp
                 )))
             }
         },
-        validity: ValidityOptions {
-            max_depth: raw.validity.max_depth,
-            samples: raw.validity.samples as usize,
-        },
+        validity: validity_options(&raw.validity),
         untangle: UntangleOptions {
             rounds: raw.untangle_rounds,
             sweeps: raw.untangle_sweeps,
@@ -133,17 +130,6 @@ fn fit<const D: usize, B: CubeMap<D>>(
     Ok((map, report, validity, options, record))
 }
 
-/// The options at `options`, or the defaults when it is NULL.
-fn read_options(
-    options: *const igaparam_fit_options,
-) -> std::result::Result<igaparam_fit_options, Failure> {
-    Ok(if options.is_null() {
-        igaparam_fit_options_default()
-    } else {
-        *non_null(options, "options")?
-    })
-}
-
 /// Fits the built `domain` with `raw` and writes the handle to `*out` and, when `report` is not
 /// NULL, the report; nothing is written on failure. The body of both fit entry points.
 pub(super) fn fit_into(
@@ -164,20 +150,17 @@ pub(super) fn fit_into(
         call_progress(raw.progress, raw.progress_user, stage, done, total) && !watch.requested()
     };
     let explain = |e| Failure::from(watch.explain(e));
-    let (map, r, validity, opts, record) = match d {
-        DomainData::Planar(_, Some(d)) => {
+    let (map, r, validity, opts, record) = match d.built()? {
+        Built::Planar((_, d)) => {
             let (m, r, v, o, rec) = fit(d, raw, &mut progress).map_err(explain)?;
             (AnyMap::Two(m), r, v, o, rec)
         }
-        DomainData::Solid(_, Some(d)) => {
+        Built::Solid((_, d)) => {
             let (m, r, v, o, rec) = fit(d, raw, &mut progress).map_err(explain)?;
             (AnyMap::Three(m), r, v, o, rec)
         }
-        _ => return Err(Error::invalid("the domain has not been built").into()),
     };
-    if !report.is_null() {
-        *non_null_mut(report, "report")? = fit_report(&r);
-    }
+    write_optional(report, fit_report(&r));
     new_recorded_handle(map, Some((opts.validity, validity)), Some(record), out)
 }
 
@@ -195,7 +178,7 @@ pub extern "C" fn igaparam_spline_fit_domain_with(
     report: *mut igaparam_fit_report,
 ) -> igaparam_status {
     run("igaparam_spline_fit_domain_with", || {
-        let raw = read_options(options)?;
+        let raw = options_or(options, igaparam_fit_options_default());
         fit_into(domain, &raw, out, report)
     })
 }

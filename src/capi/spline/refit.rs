@@ -2,8 +2,8 @@
 //! T-mesh: `igaparam_spline_refit`, and the rule a spline's control points come from.
 
 use super::{dim, fit_report, igaparam_fit_report, igaparam_spline, AnyMap};
-use crate::capi::boundary::{non_null_mut, run, Failure};
-use crate::capi::domain::{current, igaparam_domain, untangle_options, DomainData};
+use crate::capi::boundary::{non_null_mut, run, write_optional, Failure};
+use crate::capi::domain::{current, igaparam_domain, untangle_options, Built};
 use crate::capi::igaparam_status;
 use crate::domain::{CubeMap, Domain};
 use crate::error::{Error, Result};
@@ -102,9 +102,9 @@ pub extern "C" fn igaparam_spline_refit(
         let s = &mut *held;
         let options = ValidityOptions::default();
         let record = s.fit.as_ref();
-        let (fit, validity, record) = match (&mut s.map, &*d) {
-            (AnyMap::Two(m), DomainData::Planar(_, Some(b))) => refit(m, b, record, &options)?,
-            (AnyMap::Three(m), DomainData::Solid(_, Some(b))) => refit(m, b, record, &options)?,
+        let (fit, validity, record) = match (&mut s.map, d.built()?) {
+            (AnyMap::Two(m), Built::Planar((_, b))) => refit(m, b, record, &options)?,
+            (AnyMap::Three(m), Built::Solid((_, b))) => refit(m, b, record, &options)?,
             (map, _) => {
                 let d = dim(map);
                 return Err(Error::invalid(format!(
@@ -114,8 +114,9 @@ pub extern "C" fn igaparam_spline_refit(
                 .into());
             }
         };
-        if !report.is_null() {
-            *non_null_mut(report, "report")? = igaparam_refit_report {
+        write_optional(
+            report,
+            igaparam_refit_report {
                 fit: fit_report(&fit),
                 rule: record.rule.into(),
                 corrected: corrected(&record, dim(&s.map)),
@@ -123,8 +124,8 @@ pub extern "C" fn igaparam_spline_refit(
                 uncertified: validity.uncertified,
                 min_quality: validity.min_quality,
                 mean_quality: validity.mean_quality,
-            };
-        }
+            },
+        );
         s.validity = Some((options, validity));
         s.fit = Some(record);
         Ok(())

@@ -2,9 +2,8 @@
 //! its report.
 
 use super::{held, igaparam_spline};
-use crate::capi::boundary::{check_capacity, non_null, non_null_mut, run, slice_mut};
+use crate::capi::boundary::{check_capacity, non_null_mut, options_or, run, slice_mut};
 use crate::capi::igaparam_status;
-use crate::error::Error;
 use crate::spline::{ValidityOptions, HISTOGRAM_BINS};
 
 /// Options of `igaparam_spline_check_validity`; get the defaults from
@@ -53,6 +52,15 @@ pub extern "C" fn igaparam_validity_options_default() -> igaparam_validity_optio
     }
 }
 
+/// The core's options of C options `raw` (a conversion; [`ValidityOptions::validate`] checks the
+/// ranges).
+pub(super) fn validity_options(raw: &igaparam_validity_options) -> ValidityOptions {
+    ValidityOptions {
+        max_depth: raw.max_depth,
+        samples: raw.samples as usize,
+    }
+}
+
 /// Certifies the sign of the Jacobian determinant on every element (lower bounds from the
 /// Bernstein coefficients of det J_S, a polynomial of degree 5×5 in 2D and 8×8×8 in 3D per
 /// element, subdividing when inconclusive) and samples the mean ratio; writes the summary to
@@ -74,22 +82,8 @@ pub extern "C" fn igaparam_spline_check_validity(
 ) -> igaparam_status {
     run("igaparam_spline_check_validity", || {
         let s = held(spline)?;
-        let raw = if options.is_null() {
-            igaparam_validity_options_default()
-        } else {
-            *non_null(options, "options")?
-        };
-        if raw.max_depth > 12 || !(2..=64).contains(&raw.samples) {
-            return Err(Error::invalid(format!(
-                "options: max_depth = {} (at most 12), samples = {} (2 to 64)",
-                raw.max_depth, raw.samples
-            ))
-            .into());
-        }
-        let opts = ValidityOptions {
-            max_depth: raw.max_depth,
-            samples: raw.samples as usize,
-        };
+        let opts = validity_options(&options_or(options, igaparam_validity_options_default()));
+        opts.validate()?;
         let out = non_null_mut(report, "report")?;
         // The validity the fit computed, when it used the same options; else compute it.
         let computed;
