@@ -2,7 +2,7 @@
 //! `igaparam_spline_quality_bound`, its options and its report.
 
 use super::{held, igaparam_spline};
-use crate::capi::boundary::{non_null, non_null_mut, run};
+use crate::capi::boundary::{non_null_mut, options_or, run};
 use crate::capi::igaparam_status;
 use crate::spline::QualityBoundOptions;
 
@@ -62,11 +62,7 @@ pub extern "C" fn igaparam_spline_quality_bound(
 ) -> igaparam_status {
     run("igaparam_spline_quality_bound", || {
         let s = held(spline)?;
-        let raw = if options.is_null() {
-            igaparam_quality_bound_options_default()
-        } else {
-            *non_null(options, "options")?
-        };
+        let raw = options_or(options, igaparam_quality_bound_options_default());
         let opts = QualityBoundOptions {
             max_depth: raw.max_depth,
             samples: raw.samples as usize,
