@@ -67,6 +67,11 @@
 
 
 /**
+ * The depth a solid's bound is subdivided to at most, whatever `max_depth` says.
+ */
+#define IGAPARAM_QUALITY_BOUND_MAX_SOLID_DEPTH 3
+
+/**
  * The largest thread count an option accepts (larger ones are refused as invalid).
  */
 #define IGAPARAM_MAX_THREADS 4096
@@ -972,6 +977,48 @@ typedef struct {
    */
   void *progress_user;
 } igaparam_fit_options;
+
+/**
+ * Options of `igaparam_spline_quality_bound`; get the defaults from
+ * `igaparam_quality_bound_options_default`.
+ */
+typedef struct {
+  /**
+   * Largest number of subdivisions of an element where the bound is loose (each halves
+   * every direction; default 5, at most 6; solids use at most 3, 8^3 pieces per element).
+   */
+  uint32_t max_depth;
+  /**
+   * Sample points per direction and element for the sampled minimum (default 5, from 2
+   * to 64).
+   */
+  uint32_t samples;
+  /**
+   * Relative gap in [0, 1) (default 0.05): a piece is not subdivided once its bound is
+   * within this fraction of the map's sampled minimum.
+   */
+  double gap;
+} igaparam_quality_bound_options;
+
+/**
+ * What `igaparam_spline_quality_bound` found: the true smallest mean ratio of the map lies in
+ * `[lower_bound, sampled_min]`.
+ */
+typedef struct {
+  /**
+   * Certified lower bound of the mean ratio `q_S = d·det(J)^(2/d)/‖J‖²` over the whole map
+   * (0 when `det J_S > 0` is not proven somewhere).
+   */
+  double lower_bound;
+  /**
+   * Smallest mean ratio at the samples (an upper bound of the true minimum).
+   */
+  double sampled_min;
+  /**
+   * The element of the smallest bound (index into the map's elements).
+   */
+  size_t element;
+} igaparam_quality_bound_report;
 
 /**
  * What `igaparam_spline_refit` did.
@@ -2035,6 +2082,24 @@ igaparam_status igaparam_spline_fit_domain_with(const igaparam_domain *domain,
                                                 const igaparam_fit_options *options,
                                                 igaparam_spline **out,
                                                 igaparam_fit_report *report);
+
+/**
+ * The default options of `igaparam_spline_quality_bound`.
+ */
+igaparam_quality_bound_options igaparam_quality_bound_options_default(void);
+
+/**
+ * A certified lower bound of the map's mean ratio: on each element `det J_S` and `‖J‖²` in
+ * Bernstein form bound `q_S` from below by `d·(min coefficient of det)^(2/d) / (max
+ * coefficient of ‖J‖²)`, refined by subdivision where it is more than `gap` below the sampled
+ * minimum. The sampled minimum of `igaparam_spline_check_validity` is an upper bound of the
+ * true minimum only (finer samples find lower values); this gives the interval. `options` may
+ * be NULL for the defaults. Errors: `IGAPARAM_STATUS_INVALID_ARGUMENT` for options out of
+ * range, `IGAPARAM_STATUS_NULL_ARGUMENT`.
+ */
+igaparam_status igaparam_spline_quality_bound(const igaparam_spline *spline,
+                                              const igaparam_quality_bound_options *options,
+                                              igaparam_quality_bound_report *report);
 
 /**
  * Evaluates the map at `n` parametric points `params` (`n × d` doubles in [0,1]^d): `points`

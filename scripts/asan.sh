@@ -13,6 +13,7 @@
 set -euo pipefail
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
 export PATH="$PATH:${CARGO_HOME:-$HOME/.cargo}/bin"
+root=$PWD
 
 modes=("$@")
 ((${#modes[@]} > 0)) || modes=(asan valgrind)
@@ -43,7 +44,7 @@ run_all() {
     local out="$dir/$p.out"
     mkdir -p "$dir/$p-files"
     echo "+ $* $p"
-    if ! (cd "$dir" && "$@" "./$p" "$PWD/../../tests/data/boundary" "$PWD/$p-files") \
+    if ! (cd "$dir" && "$@" "./$p" "$root/tests/data/boundary" "$PWD/$p-files") \
       >"$out" 2>&1; then
       status=1
       tail -n 40 "$out" >&2

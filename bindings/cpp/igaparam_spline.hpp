@@ -230,6 +230,15 @@ class Spline {
     return report;
   }
 
+  /// A certified lower bound of the map's mean ratio and the sampled minimum it is refined
+  /// towards: the true minimum lies in `[lower_bound, sampled_min]`.
+  igaparam_quality_bound_report quality_bound(
+      const igaparam_quality_bound_options& options = igaparam_quality_bound_options_default()) const {
+    igaparam_quality_bound_report report{};
+    detail::check(igaparam_spline_quality_bound(spline_, &options, &report));
+    return report;
+  }
+
   /// Writes the map sampled on `samples`^d sub-cells per element as .vtu.
   void write_vtu(const std::string& path, std::uint32_t samples = 4) const {
     detail::check(igaparam_spline_write_vtu(spline_, path.c_str(), samples));

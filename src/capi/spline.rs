@@ -39,6 +39,7 @@ macro_rules! with_map {
 // After `with_map`, which the per-query files use.
 mod adapt;
 mod fit_with;
+mod quality_bound;
 mod query;
 mod refit;
 mod validity;

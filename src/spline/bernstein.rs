@@ -271,11 +271,74 @@ impl<const D: usize> Bernstein<D> {
     pub fn min_coef(&self) -> f64 {
         self.coef.iter().copied().fold(f64::INFINITY, f64::min)
     }
+
+    /// Largest coefficient: an upper bound of the polynomial on [0,1]^d.
+    pub fn max_coef(&self) -> f64 {
+        self.coef.iter().copied().fold(f64::NEG_INFINITY, f64::max)
+    }
+
+    /// The same polynomial in the Bernstein basis of degree `degree` (each at least the
+    /// current one), by repeated degree elevation:
+    /// `c'_i = (i/(n+1))·c_{i−1} + (1 − i/(n+1))·c_i` in the elevated direction.
+    pub fn elevated(&self, degree: [usize; D]) -> Self {
+        let mut p = self.clone();
+        for (k, &target) in degree.iter().enumerate() {
+            while p.degree[k] < target {
+                p = p.elevate(k);
+            }
+        }
+        p
+    }
+
+    /// Degree elevation by one in direction `k`.
+    fn elevate(&self, k: usize) -> Self {
+        let mut degree = self.degree;
+        degree[k] += 1;
+        let n1 = degree[k] as f64;
+        let mut out = Bernstein::zero(degree);
+        let stride = self.strides()[k];
+        for flat in 0..out.coef.len() {
+            let idx = out.multi_index(flat);
+            let i = idx[k];
+            let base: usize = (0..D)
+                .filter(|&m| m != k)
+                .map(|m| idx[m] * self.strides()[m])
+                .sum();
+            let below = if i > 0 {
+                self.coef[base + (i - 1) * stride]
+            } else {
+                0.0
+            };
+            let here = if i < degree[k] {
+                self.coef[base + i * stride]
+            } else {
+                0.0
+            };
+            let t = i as f64 / n1;
+            out.coef[flat] = t * below + (1.0 - t) * here;
+        }
+        out
+    }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn elevation_keeps_the_polynomial() {
+        let p = Bernstein::<2> {
+            degree: [2, 1],
+            coef: vec![1.0, -2.0, 0.5, 3.0, 0.25, -1.0],
+        };
+        let q = p.elevated([4, 3]);
+        assert_eq!(q.degree, [4, 3]);
+        for t in [[0.0, 0.0], [0.3, 0.7], [1.0, 0.2], [0.9, 1.0]] {
+            assert!((p.eval(t) - q.eval(t)).abs() < 1e-14, "{t:?}");
+        }
+        // Elevation narrows the coefficients' range towards the polynomial's.
+        assert!(q.max_coef() <= p.max_coef() && q.min_coef() >= p.min_coef());
+    }
 
     #[test]
     fn extraction_rows_sum_to_bernstein_partition() {

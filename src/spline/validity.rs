@@ -216,16 +216,16 @@ fn piece_samples<const D: usize>(
     (element, histogram)
 }
 
-/// `det J` of the map whose components are the Bernstein `patches` (all of one degree p per
-/// direction) on the box `[lo, hi]` mapped to [0,1]^d, the Jacobian taken with respect to the
-/// box's coordinates: a polynomial of degree `d·p − 1` per direction.
-pub(crate) fn jacobian_determinant<const D: usize>(
+/// The Jacobian entries `J[a][b] = ∂S_a/∂x_b` of the map whose components are the Bernstein
+/// `patches` (all of one degree p per direction) on the box `[lo, hi]` mapped to [0,1]^d, the
+/// derivatives taken with respect to the box's coordinates: degree `p − 1` in direction `b`, `p`
+/// in the others.
+pub(crate) fn jacobian_entries<const D: usize>(
     patches: &[Bernstein<D>],
     lo: [f64; D],
     hi: [f64; D],
-) -> Bernstein<D> {
-    // jac[a][b] = ∂S_a/∂x_b.
-    let jac: Vec<Vec<Bernstein<D>>> = patches
+) -> Vec<Vec<Bernstein<D>>> {
+    patches
         .iter()
         .map(|p| {
             (0..D)
@@ -237,7 +237,18 @@ pub(crate) fn jacobian_determinant<const D: usize>(
                 })
                 .collect()
         })
-        .collect();
+        .collect()
+}
+
+/// `det J` of the map whose components are the Bernstein `patches` (all of one degree p per
+/// direction) on the box `[lo, hi]` mapped to [0,1]^d, the Jacobian taken with respect to the
+/// box's coordinates: a polynomial of degree `d·p − 1` per direction.
+pub(crate) fn jacobian_determinant<const D: usize>(
+    patches: &[Bernstein<D>],
+    lo: [f64; D],
+    hi: [f64; D],
+) -> Bernstein<D> {
+    let jac = jacobian_entries(patches, lo, hi);
     let degree = patches[0].degree.map(|p| D * p - 1);
     let mut total = Bernstein::zero(degree);
     for (perm, sign) in permutations(D) {

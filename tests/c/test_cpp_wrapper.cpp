@@ -117,6 +117,11 @@ void test_spline() {
   CHECK(std::fabs(again[0] - xy[0]) < 1e-9 && std::fabs(again[1] - xy[1]) < 1e-9);
   const igaparam_validity_report v = finer.check_validity();
   CHECK(v.certified_positive == 1 && v.min_quality > 0.2);
+  const igaparam_quality_bound_report qb = finer.quality_bound();
+  CHECK(qb.lower_bound > 0.0 && qb.lower_bound <= qb.sampled_min && qb.sampled_min == v.min_quality);
+  igaparam_quality_bound_options bad = igaparam_quality_bound_options_default();
+  bad.samples = 1;
+  EXPECT_ERROR(IGAPARAM_STATUS_INVALID_ARGUMENT, finer.quality_bound(bad));
 
   EXPECT_ERROR(IGAPARAM_STATUS_INVALID_ARGUMENT, spline.evaluate({0.5, 1.5}));
   EXPECT_ERROR(IGAPARAM_STATUS_INVALID_ARGUMENT, spline.evaluate({0.5}));

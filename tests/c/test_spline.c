@@ -303,6 +303,22 @@ static void test_dense_det(const igaparam_spline *s) {
   printf("dense check: %zu elements x %d^2 points, det J >= %.4g (certified bound %.4g), min q %.4f "
          "(sampled %.4f)\n",
          ne, DENSE, dense_min_det, r.det_lower_bound, dense_min_q, r.min_quality);
+  /* The certified lower bound of q lies under every dense value, near the sampled minimum. */
+  igaparam_quality_bound_report qb;
+  EXPECT(igaparam_spline_quality_bound(s, NULL, &qb), IGAPARAM_STATUS_OK);
+  CHECK(qb.lower_bound <= dense_min_q && qb.lower_bound >= 0.9 * qb.sampled_min &&
+            qb.sampled_min == r.min_quality && qb.element < ne,
+        "quality bound %.6f, dense %.6f, sampled %.6f (validity %.6f), element %zu",
+        qb.lower_bound, dense_min_q, qb.sampled_min, r.min_quality, qb.element);
+  igaparam_quality_bound_options qo = igaparam_quality_bound_options_default();
+  qo.gap = 1.0;
+  igaparam_quality_bound_report untouched = qb;
+  EXPECT(igaparam_spline_quality_bound(s, &qo, &qb), IGAPARAM_STATUS_INVALID_ARGUMENT);
+  char message[512];
+  igaparam_last_error_message(message, sizeof message);
+  CHECK(strstr(message, "gap") && qb.lower_bound == untouched.lower_bound, "%s", message);
+  EXPECT(igaparam_spline_quality_bound(s, NULL, NULL), IGAPARAM_STATUS_NULL_ARGUMENT);
+  printf("quality bound: %.4f <= min q <= %.4f\n", qb.lower_bound, qb.sampled_min);
   free(lower);
   free(quality);
   free(bounds);

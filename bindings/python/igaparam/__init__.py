@@ -27,7 +27,7 @@ from ._capi import CellType, FitChoice, FitRule, Stage, Status
 from ._domain import Domain, DomainReport, UpdateReport
 from ._mesh import IgaparamError, Mesh, RelocateReport, cell_type_code, node_coordinates, nodes_per_cell, version
 from ._refit import RefitReport
-from ._spline import AdaptReport, FitReport, Spline, ValidityReport
+from ._spline import AdaptReport, FitReport, QualityBound, Spline, ValidityReport
 
 __version__ = "0.1.0"
 
@@ -42,6 +42,7 @@ __all__ = [
     "FitRule",
     "IgaparamError",
     "Mesh",
+    "QualityBound",
     "RefitReport",
     "RelocateReport",
     "Spline",

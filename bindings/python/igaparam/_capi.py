@@ -340,6 +340,26 @@ class AdaptReport(ctypes.Structure):
     ]
 
 
+class QualityBoundOptions(ctypes.Structure):
+    """``igaparam_quality_bound_options``."""
+
+    _fields_ = [
+        ("max_depth", ctypes.c_uint32),
+        ("samples", ctypes.c_uint32),
+        ("gap", ctypes.c_double),
+    ]
+
+
+class QualityBoundReport(ctypes.Structure):
+    """``igaparam_quality_bound_report``."""
+
+    _fields_ = [
+        ("lower_bound", ctypes.c_double),
+        ("sampled_min", ctypes.c_double),
+        ("element", ctypes.c_size_t),
+    ]
+
+
 class ValidityReport(ctypes.Structure):
     """``igaparam_validity_report``."""
 
@@ -456,6 +476,11 @@ _PROTOTYPES = {
     "igaparam_domain_write_vtu": (_status, [_domain_p, ctypes.c_char_p]),
     "igaparam_domain_is_built": (_status, [_domain_p, ctypes.POINTER(ctypes.c_int)]),
     "igaparam_validity_options_default": (ValidityOptions, []),
+    "igaparam_quality_bound_options_default": (QualityBoundOptions, []),
+    "igaparam_spline_quality_bound": (
+        _status,
+        [_spline_p, ctypes.POINTER(QualityBoundOptions), ctypes.POINTER(QualityBoundReport)],
+    ),
     "igaparam_spline_fit_domain": (
         _status,
         [_domain_p, ctypes.POINTER(_spline_p), ctypes.POINTER(FitReport)],

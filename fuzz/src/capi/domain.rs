@@ -306,6 +306,7 @@ impl Domains {
         o.max_level = c.pick(&[0, 1, 2, 3, 4, 5, 16, 17, u32::MAX]);
         o.max_cells = c.pick(&[if solid { 600 } else { 4000 }, 400, 16, 0]);
         o.max_sweeps = c.pick(&[0, 1, 10, 50]);
+        o.max_total_sweeps = c.pick(&[300, 1, 0, u32::MAX]);
         o.threads = c.pick(&[0, 1, 2, 4096, 4097, u32::MAX]);
         o.repair_rounds = c.pick(&[0, 1, 2]);
         if c.one_in(3) {
