@@ -8,7 +8,7 @@
 use std::path::{Path, PathBuf};
 
 use igaparam::boundary::{
-    read_gismo_curves, BSplineCurve, BoundaryLoop2, Coastline, CubeFaces, Curve2, SolidBoundary,
+    read_gismo_curves, BoundaryLoop2, Coastline, CubeFaces, Curve2, SolidBoundary,
 };
 use igaparam::domain::{DomainOptions, DomainReport, PlanarDomain, SolidDomain};
 
@@ -20,19 +20,12 @@ fn data(name: &str) -> PathBuf {
 
 /// The puzzle piece's four curves scaled by `s`.
 fn puzzle(s: f64) -> BoundaryLoop2 {
-    let curves = read_gismo_curves(data("puzzle3_bdry.xml")).expect("curves");
+    let mut curves = read_gismo_curves(data("puzzle3_bdry.xml")).expect("curves");
     let scaled: Vec<Curve2> = curves
-        .iter()
+        .iter_mut()
         .map(|c| {
-            let coefs: Vec<f64> = (0..c.num_control_points())
-                .flat_map(|i| c.control_point(i)[..2].to_vec())
-                .map(|v| v * s)
-                .collect();
-            let kv = c.knot_vector();
-            let weights = c.weights().map(<[f64]>::to_vec);
-            let curve = BSplineCurve::new(kv.degree(), kv.knots().to_vec(), 2, coefs, weights)
-                .expect("curve");
-            Curve2::spline(curve).expect("curve")
+            c.scale([s, s, 1.0]).expect("curve");
+            Curve2::spline(c.clone()).expect("curve")
         })
         .collect();
     BoundaryLoop2::from_curves(scaled).expect("boundary")

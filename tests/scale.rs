@@ -6,7 +6,7 @@
 mod common;
 
 use common::{boundary_data, boundary_mask, bump_top, curved_box, grid, MappedCube};
-use igaparam::boundary::{read_gismo_curves, BSplineCurve, BoundaryLoop2, Curve2};
+use igaparam::boundary::{read_gismo_curves, BoundaryLoop2, Curve2};
 use igaparam::domain::{Domain, DomainOptions, PlanarDomain, PlanarOptions, PlanarReport};
 use igaparam::spline::{QuadraticMap, SplineMap, ThbSpace, UntangleOptions, ValidityOptions};
 use igaparam::tmesh::TMesh;
@@ -229,24 +229,12 @@ fn a_valid_reference_mesh_is_valid_at_every_scale() {
 
 /// The puzzle piece's four curves scaled by `s`.
 fn puzzle(s: f64) -> BoundaryLoop2 {
-    let curves = read_gismo_curves(boundary_data("puzzle3_bdry.xml")).unwrap();
+    let mut curves = read_gismo_curves(boundary_data("puzzle3_bdry.xml")).unwrap();
     let scaled: Vec<Curve2> = curves
-        .iter()
+        .iter_mut()
         .map(|c| {
-            let coefs: Vec<f64> = (0..c.num_control_points())
-                .flat_map(|i| c.control_point(i)[..2].to_vec())
-                .map(|v| v * s)
-                .collect();
-            let kv = c.knot_vector();
-            let curve = BSplineCurve::new(
-                kv.degree(),
-                kv.knots().to_vec(),
-                2,
-                coefs,
-                c.weights().map(<[f64]>::to_vec),
-            )
-            .unwrap();
-            Curve2::spline(curve).unwrap()
+            c.scale([s, s, 1.0]).unwrap();
+            Curve2::spline(c.clone()).unwrap()
         })
         .collect();
     BoundaryLoop2::from_curves(scaled).unwrap()

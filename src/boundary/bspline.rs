@@ -312,6 +312,12 @@ impl BSplineCurve {
         p
     }
 
+    /// Multiplies the control points' coordinates by `factors` axis by axis, as
+    /// [`BSplineSurface::scale`] does: the curve becomes exactly its image.
+    pub fn scale(&mut self, factors: Vec3) -> Result<()> {
+        super::scale_points(&mut self.coefs, self.dim, factors)
+    }
+
     /// The weights, if the curve is rational.
     pub fn weights(&self) -> Option<&[f64]> {
         self.weights.as_deref()
@@ -536,13 +542,7 @@ impl BSplineSurface {
     /// weighted average of its control points). An error if a factor is not finite and
     /// positive; then nothing changes.
     pub fn scale(&mut self, factors: Vec3) -> Result<()> {
-        super::check_scale_factors(factors)?;
-        for p in self.coefs.chunks_exact_mut(self.dim) {
-            for (x, f) in p.iter_mut().zip(factors) {
-                *x *= f;
-            }
-        }
-        Ok(())
+        super::scale_points(&mut self.coefs, self.dim, factors)
     }
 }
 

@@ -30,3 +30,19 @@ pub(crate) fn check_scale_factors(factors: Vec3) -> crate::error::Result<()> {
         None => Ok(()),
     }
 }
+
+/// Multiplies points stored one after another (`dim` coordinates each) by `factors`, axis by
+/// axis, after [`check_scale_factors`]; nothing changes on an error.
+pub(crate) fn scale_points(
+    points: &mut [f64],
+    dim: usize,
+    factors: Vec3,
+) -> crate::error::Result<()> {
+    check_scale_factors(factors)?;
+    for p in points.chunks_exact_mut(dim) {
+        for (x, f) in p.iter_mut().zip(factors) {
+            *x *= f;
+        }
+    }
+    Ok(())
+}

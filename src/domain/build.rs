@@ -7,8 +7,8 @@ use std::time::Instant;
 use super::budget::Sweeps;
 use super::frame::{signed_measure, Frame, Framed};
 use super::options::{
-    cells_within, check_options, check_uniform_cells, sweep_options, thread_pool, DomainOptions,
-    DomainReport, StageSeconds,
+    cells_within, check_uniform_cells, sweep_options, thread_pool, DomainOptions, DomainReport,
+    StageSeconds,
 };
 use crate::error::{Error, Result};
 use crate::io::vtu::{DataArray, UnstructuredGrid};
@@ -150,7 +150,7 @@ impl<const D: usize, B: CubeMap<D>> Domain<D, B> {
         progress: &mut dyn FnMut(usize, usize) -> bool,
     ) -> Result<(Self, DomainReport)> {
         let start = Instant::now();
-        check_options(options)?;
+        options.validate()?;
         let swapped = signed_measure(&boundary) < 0.0;
         let frame = Frame::of(&Framed {
             inner: &boundary,

@@ -63,9 +63,53 @@ pub const DEFAULT_MAX_CELLS: usize = 1_000_000;
 pub const DEFAULT_MAX_TOTAL_SWEEPS: u32 = 5_000;
 
 impl DomainOptions {
-    /// Checks the ranges of every field (what [`Domain::build`](super::Domain::build) checks before any work).
+    /// Checks the ranges of every field: what [`Domain::build`](super::Domain::build),
+    /// [`Domain::refine_cells`](super::Domain::refine_cells) and
+    /// [`Domain::update`](super::Domain::update) check before any work.
     pub fn validate(&self) -> Result<()> {
-        check_options(self)
+        for (name, value) in [
+            ("tolerance", self.tolerance),
+            ("boundary_offset", self.boundary_offset),
+            ("stationarity_tolerance", self.stationarity_tolerance),
+        ] {
+            if !value.is_finite() {
+                return Err(Error::new(
+                    ErrorKind::NotFinite,
+                    format!("{name} is {value}, it must be finite"),
+                ));
+            }
+        }
+        crate::threads::check(self.threads)?;
+        if self.tolerance <= 0.0 {
+            return Err(Error::invalid(format!(
+                "tolerance = {} must be positive",
+                self.tolerance
+            )));
+        }
+        if self.min_level > self.max_level || self.max_level > MAX_REPAIR_LEVEL {
+            return Err(Error::invalid(format!(
+            "levels must satisfy min_level <= max_level <= 16, got min_level = {}, max_level = {}",
+            self.min_level, self.max_level
+        )));
+        }
+        if self.max_total_sweeps == 0 {
+            return Err(Error::invalid(
+                "max_total_sweeps = 0: the sweep budget of a build must be at least 1",
+            ));
+        }
+        if self.stationarity_tolerance < 0.0 {
+            return Err(Error::invalid(format!(
+                "stationarity_tolerance = {} must be at least 0",
+                self.stationarity_tolerance
+            )));
+        }
+        if self.boundary_offset < 0.0 {
+            return Err(Error::invalid(format!(
+                "boundary_offset = {} must be at least 0",
+                self.boundary_offset
+            )));
+        }
+        Ok(())
     }
 
     /// The defaults of a solid: [`DomainOptions::default`] with a boundary tolerance of 1e-3
@@ -190,53 +234,6 @@ pub(super) fn cells_within(options: &DomainOptions, cells: usize, stage: &str) -
                 options.max_cells
             ),
         ));
-    }
-    Ok(())
-}
-
-/// Checks the options shared by [`Domain::build`](super::Domain::build) and [`Domain::refine_cells`](super::Domain::refine_cells).
-pub(super) fn check_options(options: &DomainOptions) -> Result<()> {
-    for (name, value) in [
-        ("tolerance", options.tolerance),
-        ("boundary_offset", options.boundary_offset),
-        ("stationarity_tolerance", options.stationarity_tolerance),
-    ] {
-        if !value.is_finite() {
-            return Err(Error::new(
-                ErrorKind::NotFinite,
-                format!("{name} is {value}, it must be finite"),
-            ));
-        }
-    }
-    crate::threads::check(options.threads)?;
-    if options.tolerance <= 0.0 {
-        return Err(Error::invalid(format!(
-            "tolerance = {} must be positive",
-            options.tolerance
-        )));
-    }
-    if options.min_level > options.max_level || options.max_level > MAX_REPAIR_LEVEL {
-        return Err(Error::invalid(format!(
-            "levels must satisfy min_level <= max_level <= 16, got min_level = {}, max_level = {}",
-            options.min_level, options.max_level
-        )));
-    }
-    if options.max_total_sweeps == 0 {
-        return Err(Error::invalid(
-            "max_total_sweeps = 0: the sweep budget of a build must be at least 1",
-        ));
-    }
-    if options.stationarity_tolerance < 0.0 {
-        return Err(Error::invalid(format!(
-            "stationarity_tolerance = {} must be at least 0",
-            options.stationarity_tolerance
-        )));
-    }
-    if options.boundary_offset < 0.0 {
-        return Err(Error::invalid(format!(
-            "boundary_offset = {} must be at least 0",
-            options.boundary_offset
-        )));
     }
     Ok(())
 }

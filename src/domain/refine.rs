@@ -9,8 +9,7 @@ use rayon::ThreadPool;
 
 use super::build::{CubeMap, Domain};
 use super::options::{
-    cells_within, check_options, sweep_options, thread_pool, DomainOptions, DomainReport,
-    MAX_REPAIR_LEVEL,
+    cells_within, sweep_options, thread_pool, DomainOptions, DomainReport, MAX_REPAIR_LEVEL,
 };
 use crate::error::{Error, Result};
 use crate::optimize::motion::optimize_in_place;
@@ -85,7 +84,7 @@ impl<const D: usize, B: CubeMap<D>> Domain<D, B> {
         progress: &mut dyn FnMut(usize, usize) -> bool,
     ) -> Result<DomainReport> {
         let start = Instant::now();
-        check_options(options)?;
+        options.validate()?;
         if let Some(&c) = cells.iter().find(|&&c| c >= self.mesh.cell_count()) {
             return Err(Error::invalid(format!(
                 "cell {c} does not exist: the T-mesh has {} cells",

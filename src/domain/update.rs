@@ -18,7 +18,7 @@ use rayon::ThreadPool;
 use super::budget::Sweeps;
 use super::build::{cell_boundary_error, facet_scale, CubeMap, Domain};
 use super::frame::{signed_measure, Frame, Framed};
-use super::options::{check_options, sweep_options, thread_pool, DomainOptions, DomainReport};
+use super::options::{sweep_options, thread_pool, DomainOptions, DomainReport};
 use crate::error::{Error, ErrorKind, Result};
 use crate::optimize::invalid_cells;
 use crate::optimize::laplace::MeshGraph;
@@ -115,7 +115,7 @@ impl<const D: usize, B: CubeMap<D>> Domain<D, B> {
             threads: options.threads,
             ..self.options
         };
-        check_options(&domain_options)?;
+        domain_options.validate()?;
         let pool = thread_pool(&domain_options)?;
         let anchors = self.boundary_anchors();
         let mut next = Domain {

@@ -18,7 +18,6 @@ use super::map::SplineMap;
 use super::space::SplineSpace;
 use super::validity::{jacobian_determinant, jacobian_entries};
 use crate::error::{Error, Result};
-use crate::optimize::metric::mean_ratio;
 
 /// Options of [`SplineMap::quality_bound`].
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -92,16 +91,10 @@ impl<const D: usize, S: SplineSpace<D>> SplineMap<D, S> {
     /// result does not depend on the number of threads.
     pub fn quality_bound(&self, options: &QualityBoundOptions) -> Result<QualityBound> {
         options.validate()?;
-        let sampled_min = (0..self.element_count())
-            .into_par_iter()
-            .map(|e| {
-                self.piece(e)
-                    .grid_jacobians(options.samples)
-                    .iter()
-                    .map(mean_ratio)
-                    .fold(f64::INFINITY, f64::min)
-            })
-            .reduce(|| f64::INFINITY, f64::min);
+        let sampled_min = self
+            .element_min_quality(options.samples)
+            .into_iter()
+            .fold(f64::INFINITY, f64::min);
         let target = (1.0 - options.gap) * sampled_min;
         let depth = match D {
             2 => options.max_depth,
