@@ -66,8 +66,10 @@ class Header:
     """The declarations of the header, in its order."""
 
     def __init__(self, text):
+        self.text = text
         self.items = []  # (kind, name, data, doc)
         self.kinds = {}  # C type name -> "enum" | "alias" | "opaque" | "struct" | "callback"
+        self.aliases = {}  # typedef name -> the type it names
         self.lines = text.split("\n")
         self.i = 0
         self.doc = ""
@@ -141,6 +143,7 @@ class Header:
             return self.add("opaque", match.group(1), None)
         match = re.fullmatch(r"typedef (\w+) (\w+);", text)
         if match:
+            self.aliases[match.group(2)] = match.group(1)
             return self.add("alias", match.group(2), match.group(1))
         match = re.fullmatch(r"typedef (.+?)\(\*(\w+)\)\((.*)\);", text)
         if match:
@@ -218,7 +221,7 @@ class Writer:
                 raise HeaderError(f"include/igaparam.h: opaque {base} used by value")
             expression, stars = "ctypes.c_void_p", stars - 1
         elif kind in ("enum", "alias"):
-            expression = "ctypes.c_int" if kind == "enum" else self.ctype(self.alias(base))
+            expression = "ctypes.c_int" if kind == "enum" else self.ctype(self.header.aliases[base])
         elif base in self.names:
             expression = self.names[base]
         elif base in SCALARS:
@@ -229,11 +232,8 @@ class Writer:
             expression = f"ctypes.POINTER({expression})"
         return expression
 
-    def alias(self, name):
-        return next(data for kind, item, data, _ in self.header.items if kind == "alias" and item == name)
-
     def source(self):
-        out = [PREAMBLE.format(fingerprint=fingerprint(HEADER_TEXT[0]))]
+        out = [PREAMBLE.format(fingerprint=fingerprint(self.header.text))]
         for kind, name, data, doc in self.header.items:
             method = getattr(self, "write_" + kind)
             out.append(method(name, data, doc))
@@ -300,7 +300,7 @@ class Writer:
             args = ", ".join(self.ctype(t) for t, _ in params)
             documentation = f"{text}\n\n{doc}" if doc else text
             lines.append(f'    "{name}": (\n        {self.ctype(restype)},\n        [{args}],')
-            lines.append(f"        {literal(documentation)},\n    ),")
+            lines.append(f"        {documentation!r},\n    ),")
         lines.append("}")
         return "\n".join(lines)
 
@@ -312,11 +312,6 @@ def common_prefix(names):
         while not name.startswith(prefix):
             prefix = prefix[:-1]
     return prefix[: prefix.rfind("_") + 1]
-
-
-def literal(text):
-    """A Python string literal of ``text``."""
-    return repr(text)
 
 
 def docstring(text):
@@ -351,12 +346,8 @@ import enum
 ABI_FINGERPRINT = {fingerprint:#018x}
 '''
 
-HEADER_TEXT = [""]
-
-
 def generate(text):
     """The module's source for the header text ``text``."""
-    HEADER_TEXT[0] = text
     return Writer(Header(text)).source()
 
 

@@ -38,6 +38,16 @@ def c_name(struct):
     return re.search(r"\(``(\w+)``\)", struct.__doc__).group(1)
 
 
+def enum_members():
+    """[(Python enum, the C names of its members in order)] as the generator parsed them."""
+    header = gen_ffi.Header(HEADER.read_text(encoding="utf-8"))
+    return [
+        (getattr(_ffi, gen_ffi.python_name(name)), [member for member, _, _ in members])
+        for kind, name, members, _ in header.items
+        if kind == "enum"
+    ]
+
+
 def c_facts(tmp_path):
     """{key: value} printed by a C program compiled against the header."""
     compiler = shutil.which(os.environ.get("CC", "cc")) or shutil.which("gcc")
@@ -53,12 +63,9 @@ def c_facts(tmp_path):
         if name != "ABI_FINGERPRINT":
             form, cast = ("%.17g", "double") if isinstance(value, float) else ("%lld", "long long")
             lines.append(f'printf("value {name} {form}\\n", ({cast})IGAPARAM_{name});')
-    for enum in ENUMS:
-        prefix = re.search(r"\(``igaparam_(\w+)``\)", enum.__doc__).group(1).upper()
-        if prefix == "FIT_RULE":
-            prefix = "FIT"
-        for member in enum:
-            lines.append(f'printf("enum {enum.__name__}.{member.name} %d\\n", (int)IGAPARAM_{prefix}_{member.name});')
+    for enum, c_members in enum_members():
+        for member, c_member in zip(enum, c_members):
+            lines.append(f'printf("enum {enum.__name__}.{member.name} %d\\n", (int){c_member});')
     lines += ["return 0;", "}"]
     source = tmp_path / "facts.c"
     source.write_text("\n".join(lines))
