@@ -7,7 +7,7 @@ use super::crossing::first_crossing;
 use super::curve::{distance, Curve2, CurveKind, Point2};
 use super::gismo_xml::read_gismo_curves;
 use crate::error::{Error, ErrorKind, Result};
-use crate::optimize::small::bounding_box;
+use crate::optimize::small_matrix::bounding_box;
 
 /// Refuses a loop that crosses or touches itself: the polygon of the chained curves (a
 /// polyline's own vertices, a spline sampled at 16 points per control point and at least 256)

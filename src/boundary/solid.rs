@@ -16,7 +16,7 @@ use super::face::{Face, MeshFace, Orientation, SplineFace};
 use super::gismo_xml::read_gismo_surfaces;
 use super::trimesh::{signed_areas, CubeFaces, CUBE_FACE_NAMES};
 use crate::error::{Error, ErrorKind, Result};
-use crate::optimize::small::bounding_box;
+use crate::optimize::small_matrix::bounding_box;
 
 /// The boundary of a solid as a map from the boundary of the unit cube \[0,1\]^3: six faces,
 /// each mapping its cube face onto one side of the solid, agreeing on the cube's edges.

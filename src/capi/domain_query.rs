@@ -3,8 +3,8 @@
 
 use std::ffi::c_char;
 
-use super::boundary::{c_path, check_capacity, non_null_mut, optional_out, run, slice_mut};
 use super::domain::{held, igaparam_domain, with_built, BuiltRef};
+use super::ffi::{c_path, check_capacity, non_null_mut, optional_out, run, slice_mut};
 use super::igaparam_status;
 use crate::domain::{CubeMap, Domain};
 

@@ -3,11 +3,11 @@
 
 use std::ffi::c_int;
 
-use super::boundary::{check_capacity, non_null_mut, run, slice, slice_mut, Failure};
+use super::ffi::{check_capacity, non_null_mut, run, slice, slice_mut, Failure};
 use super::handle::{acquire, handle_type, release, Guarded, Held};
 use super::igaparam_status;
 use crate::error::{Error, Result};
-use crate::homesh::{CellType, Mesh};
+use crate::fe_mesh::{CellType, Mesh};
 use crate::optimize::TargetKind;
 
 /// A quadrilateral or hexahedral finite-element mesh with node constraints (opaque).

@@ -9,7 +9,10 @@
 // documented as the caller's contract, which a C caller cannot see as `unsafe` anyway.
 #![allow(clippy::not_unsafe_ptr_arg_deref)]
 
-mod boundary;
+// First (cbindgen writes the entry points in the order of these declarations): the library-wide
+// calls, `igaparam_last_error_message` and `igaparam_version`, open the header's functions.
+mod ffi;
+
 mod domain;
 mod domain_build;
 mod domain_input;
@@ -24,12 +27,12 @@ mod progress;
 mod relocate;
 mod spline;
 
-pub use boundary::{igaparam_last_error_message, igaparam_status, igaparam_version};
 pub use domain::*;
 pub use domain_build::*;
 pub use domain_input::*;
 pub use domain_query::*;
 pub use domain_update::*;
+pub use ffi::{igaparam_last_error_message, igaparam_status, igaparam_version};
 pub use mesh::*;
 pub use mesh_io::*;
 pub use node_order::*;

@@ -4,11 +4,11 @@
 
 use std::ffi::c_int;
 
-use super::boundary::{check_capacity, non_null_mut, run, slice, slice_mut};
+use super::ffi::{check_capacity, non_null_mut, run, slice, slice_mut};
 use super::igaparam_status;
 use super::mesh::{cell_type, igaparam_cell_type, igaparam_mesh, with_mesh};
 use crate::error::{Error, Result};
-use crate::homesh::{Mesh, NodeOrder};
+use crate::fe_mesh::{Mesh, NodeOrder};
 
 /// A local node order: one of the `IGAPARAM_ORDER_*` values.
 ///

@@ -5,11 +5,11 @@
 
 use std::ffi::c_char;
 
-use super::boundary::{
+use super::domain::igaparam_domain;
+use super::ffi::{
     c_path, check_capacity, non_null_mut, optional_out, run, slice, slice_mut, write_optional,
     Failure,
 };
-use super::domain::igaparam_domain;
 use super::handle::{acquire, handle_type, into_raw, release, Guarded, Held};
 use super::igaparam_status;
 use crate::error::{Error, Result};

@@ -14,7 +14,7 @@ use crate::error::{Error, Result};
 use crate::io::vtu::{DataArray, UnstructuredGrid};
 use crate::optimize::laplace::MeshGraph;
 use crate::optimize::motion::{follow_motion, optimize_in_place};
-use crate::optimize::small::{bounding_box, det, Matrix};
+use crate::optimize::small_matrix::{bounding_box, det, Matrix};
 use crate::optimize::{invalid_cells, lattice, Problem, QualitySummary};
 use crate::tmesh::{TMesh, Tree, UNIT};
 

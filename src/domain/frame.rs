@@ -2,7 +2,7 @@
 //! the affine frame, each axis scaled by its own extent, in which the T-mesh is optimized.
 
 use super::build::CubeMap;
-use crate::optimize::small::{bounding_box, det, Matrix};
+use crate::optimize::small_matrix::{bounding_box, det, Matrix};
 
 /// Samples per side of the parametric square or cube face used to measure the boundary.
 const SAMPLES: usize = 16;

@@ -22,7 +22,7 @@ use super::options::{sweep_options, DomainOptions};
 use crate::error::Result;
 use crate::optimize::metric::Term;
 use crate::optimize::motion::optimize_in_place;
-use crate::optimize::small::{clip_to_ball, cofactor, det, dot, mul_vec, Vector};
+use crate::optimize::small_matrix::{clip_to_ball, cofactor, det, dot, mul_vec, Vector};
 use crate::optimize::{invalid_cells, Problem, QualitySummary};
 
 /// The value of `det S` (1 for a cell of its target shape) the relief asks for at the points a

@@ -25,7 +25,7 @@ use super::blocks::{BlockLayout, BlockMatrix};
 use super::csr::Csr;
 use super::lattice;
 use super::problem::Problem;
-use super::small::Vector;
+use super::small_matrix::Vector;
 use super::sparse::{CholeskyPattern, Factor};
 
 /// Stop coarsening below this many unknowns (then factor the level, sparse).

@@ -10,7 +10,7 @@ use rayon::prelude::*;
 use rayon::ThreadPool;
 
 use super::problem::Problem;
-use super::small::{Matrix, Vector};
+use super::small_matrix::{Matrix, Vector};
 
 /// Marks a pair of a cell's nodes that does not couple.
 pub(super) const NONE: u32 = u32::MAX;

@@ -6,7 +6,7 @@
 
 use rayon::ThreadPool;
 
-use super::small::Vector;
+use super::small_matrix::Vector;
 use super::solver::{mask, HessianSolver};
 use crate::error::{Error, Result};
 

@@ -2,7 +2,7 @@
 //! (modified Cholesky) and a backtracking line search that never accepts an increase.
 
 use super::metric::{choose_delta, evaluate, Term};
-use super::small::{dot, solve_spd_modified, Vector};
+use super::small_matrix::{dot, solve_spd_modified, Vector};
 
 /// Stopping rules of the per-node solver.
 #[derive(Clone, Copy, Debug)]
@@ -99,8 +99,8 @@ pub fn minimise<const D: usize>(
         // only when the node's objective still decreased and no point it touches inverts.
         let over: Vector<D> = std::array::from_fn(|k| x0[k] + omega * (x[k] - x0[k]));
         let keeps_signs = terms.iter().all(|t| {
-            let before = super::small::det(&t.jacobian(&x));
-            before <= 0.0 || super::small::det(&t.jacobian(&over)) > 0.0
+            let before = super::small_matrix::det(&t.jacobian(&x));
+            before <= 0.0 || super::small_matrix::det(&t.jacobian(&over)) > 0.0
         });
         if keeps_signs && objective(&over, false).value < start.value {
             return Some(over);

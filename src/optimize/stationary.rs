@@ -14,7 +14,7 @@ use rayon::ThreadPool;
 
 use super::global::{Evaluation, GlobalObjective};
 use super::problem::Problem;
-use super::small::Vector;
+use super::small_matrix::Vector;
 use super::solver::{mask, HessianSolver, Preconditioner, SolverSetup};
 use crate::error::{Error, Result};
 

@@ -6,7 +6,7 @@ use rayon::ThreadPool;
 use super::exact::ExactSum;
 use super::node::{minimise, NodeSolverOptions};
 use super::problem::Problem;
-use super::small::Vector;
+use super::small_matrix::Vector;
 use super::team::{Alone, Team};
 use crate::error::{Error, Result};
 

@@ -17,7 +17,7 @@ pub use exchange::{Exchange, Ranks};
 pub use relocate::PartitionReport;
 
 use crate::error::{check_finite, Error, Result};
-use crate::homesh::CellType;
+use crate::fe_mesh::CellType;
 
 /// A rank's part of a partitioned mesh.
 #[derive(Clone, Debug)]
@@ -197,7 +197,7 @@ impl Partition {
     /// Sets the constraint mask of every local node, in the order given to
     /// [`Partition::new`] (see `Mesh::set_fixed`). A ghost's mask is taken from its owner.
     pub fn set_fixed(&mut self, mask: &[u8]) -> Result<()> {
-        crate::homesh::check_mask(mask, self.node_count())?;
+        crate::fe_mesh::check_mask(mask, self.node_count())?;
         for (i, &m) in mask.iter().enumerate() {
             self.fixed[self.local_of_input[i]] = m;
         }

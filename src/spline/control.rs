@@ -18,7 +18,7 @@ use super::space::SplineSpace;
 use super::thb::ThbSpace;
 use crate::optimize::metric::{mean_ratio, Term};
 use crate::optimize::node::minimise;
-use crate::optimize::small::{add_outer, det, Matrix, Vector};
+use crate::optimize::small_matrix::{add_outer, det, Matrix, Vector};
 use crate::optimize::NodeSolverOptions;
 
 /// One element of a [`Region`]: its functions and, per sample, their gradients.

@@ -7,7 +7,7 @@ use super::space::{BasisValues, SplineSpace};
 use super::thb::ThbSpace;
 use crate::error::{check_finite, Error, Result};
 use crate::optimize::metric::mean_ratio;
-use crate::optimize::small::{bounding_box, det, inverse, Matrix};
+use crate::optimize::small_matrix::{bounding_box, det, inverse, Matrix};
 
 /// A spline space with one control point per basis function.
 #[derive(Clone, Debug)]

@@ -7,7 +7,7 @@ use super::bernstein::{bernstein3, bernstein_blossom, knot, Bernstein};
 use super::map::SplineMap;
 use super::space::SplineSpace;
 use super::validity::jacobian_determinant;
-use crate::optimize::small::Matrix;
+use crate::optimize::small_matrix::Matrix;
 
 /// A polynomial of degree 3 per direction on a box: its tensor Bernstein coefficients there
 /// (`4^d` points, direction 0 fastest).

@@ -12,7 +12,7 @@ use std::collections::BTreeSet;
 use super::map::SplineMap;
 use super::thb::ThbSpace;
 use super::validity::{ValidityOptions, ValidityReport};
-use crate::optimize::small::{bounding_box, Vector};
+use crate::optimize::small_matrix::{bounding_box, Vector};
 use crate::optimize::NodeSolverOptions;
 
 /// What [`SplineMap::smooth`] did.

@@ -21,7 +21,7 @@ use super::map::SplineMap;
 use super::space::SplineSpace;
 use super::thb::ThbSpace;
 use super::validity::{ValidityOptions, ValidityReport};
-use crate::optimize::small::{bounding_box, clip_to_ball, det, Vector};
+use crate::optimize::small_matrix::{bounding_box, clip_to_ball, det, Vector};
 use crate::optimize::NodeSolverOptions;
 
 /// Options of [`SplineMap::untangle`].

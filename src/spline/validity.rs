@@ -13,7 +13,7 @@ use super::map::SplineMap;
 use super::piece::Piece;
 use super::space::SplineSpace;
 use crate::optimize::metric::mean_ratio;
-use crate::optimize::small::det;
+use crate::optimize::small_matrix::det;
 
 /// Number of bins of the quality histogram over [0, 1].
 pub(crate) const HISTOGRAM_BINS: usize = 10;

@@ -2,7 +2,7 @@
 //! basis functions non-zero at a point.
 
 use super::{dim, igaparam_spline, map};
-use crate::capi::boundary::{
+use crate::capi::ffi::{
     check_capacity, non_null_mut, optional_out, run, slice, slice_mut, Failure,
 };
 use crate::capi::igaparam_status;
@@ -159,8 +159,8 @@ pub extern "C" fn igaparam_spline_invert(
             let inverse = m.inverse_map(samples as usize);
             (0..n).map(|i| inverse.locate(point(input, i)).map(|x| x.to_vec())).collect()
         });
-        let out = points_out(params, n, d, "params")?
-            .ok_or(crate::capi::boundary::NullArgument("params"))?;
+        let out =
+            points_out(params, n, d, "params")?.ok_or(crate::capi::ffi::NullArgument("params"))?;
         let flags = if found.is_null() {
             None
         } else {
