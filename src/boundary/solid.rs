@@ -111,7 +111,7 @@ impl SolidBoundary {
     pub fn from_file_scaled(path: impl AsRef<Path>, scale: Option<Vec3>) -> Result<Self> {
         let path = path.as_ref();
         if let Some(factors) = scale {
-            super::check_scale_factors(factors)?;
+            super::scale::check_scale_factors(factors)?;
         }
         let is_xml = path
             .extension()

@@ -410,7 +410,7 @@ impl CubeFaces {
     /// spline map depend on them, not only their physical figures. Shared vertices stay shared.
     /// An error if a factor is not finite and positive; then nothing changes.
     pub fn scale(&mut self, factors: Vec3) -> Result<()> {
-        super::check_scale_factors(factors)?;
+        super::scale::check_scale_factors(factors)?;
         for m in self.faces.iter_mut() {
             for v in m.vertices.iter_mut() {
                 for (x, f) in v.iter_mut().zip(factors) {

@@ -7,7 +7,8 @@ use std::time::Instant;
 
 use rayon::ThreadPool;
 
-use super::build::{CubeMap, Domain};
+use super::build::Domain;
+use super::cube_map::CubeMap;
 use super::options::{
     cells_within, sweep_options, thread_pool, DomainOptions, DomainReport, MAX_REPAIR_LEVEL,
 };

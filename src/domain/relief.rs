@@ -17,7 +17,8 @@
 use rayon::ThreadPool;
 
 use super::budget::Sweeps;
-use super::build::{CubeMap, Domain};
+use super::build::Domain;
+use super::cube_map::CubeMap;
 use super::options::{sweep_options, DomainOptions};
 use crate::error::Result;
 use crate::optimize::metric::Term;

@@ -15,6 +15,7 @@ mod control;
 mod fit;
 mod fit_options;
 mod gismo;
+mod jacobian;
 mod map;
 mod piece;
 mod quality_bound;

@@ -4,9 +4,9 @@
 //! point).
 
 use super::bernstein::{bernstein3, bernstein_blossom, knot, Bernstein};
+use super::jacobian::jacobian_determinant;
 use super::map::SplineMap;
 use super::space::SplineSpace;
-use super::validity::jacobian_determinant;
 use crate::optimize::small_matrix::Matrix;
 
 /// A polynomial of degree 3 per direction on a box: its tensor Bernstein coefficients there

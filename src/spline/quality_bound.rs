@@ -14,9 +14,9 @@
 use rayon::prelude::*;
 
 use super::bernstein::Bernstein;
+use super::jacobian::{jacobian_determinant, jacobian_entries};
 use super::map::SplineMap;
 use super::space::SplineSpace;
-use super::validity::{jacobian_determinant, jacobian_entries};
 use crate::error::{Error, Result};
 
 /// Options of [`SplineMap::quality_bound`].

@@ -7,7 +7,7 @@ use std::collections::HashMap;
 use rayon::prelude::*;
 
 use super::bernstein::Bernstein;
-use super::validity::{jacobian_determinant, lower_bound};
+use super::jacobian::{jacobian_determinant, lower_bound};
 use crate::error::{Error, Result};
 use crate::optimize::lattice;
 use crate::tmesh::TMesh;
