@@ -108,6 +108,21 @@ impl<const D: usize> SplineMap<D, ThbSpace<D>> {
             }
             best = now;
         }
+        let kept = self.keep_best(states, scale, validity, certify, &mut report);
+        (kept, report)
+    }
+
+    /// Keeps the last of the sweeps' `states` (control points in coordinates scaled by `scale`,
+    /// and those moved) that is certified and better than the map given, whose validity is
+    /// `validity`; returns the validity of the map kept.
+    fn keep_best(
+        &mut self,
+        states: Vec<(Vec<Vector<D>>, BTreeSet<usize>)>,
+        scale: f64,
+        validity: ValidityReport,
+        certify: &ValidityOptions,
+        report: &mut SmoothReport,
+    ) -> ValidityReport {
         // The last state that is certified and better than the map given, latest first.
         for (y, moved) in states.into_iter().rev() {
             let mut control = self.control.clone();
@@ -126,9 +141,9 @@ impl<const D: usize> SplineMap<D, ThbSpace<D>> {
                 report.moved = moved.len();
                 report.min_quality_after = after.min_quality;
                 *self = trial;
-                return (after, report);
+                return after;
             }
         }
-        (validity, report)
+        validity
     }
 }

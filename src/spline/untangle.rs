@@ -77,6 +77,19 @@ pub struct UntangleReport {
     pub cancelled: bool,
 }
 
+/// One stage of the untangling, in unit-box coordinates (each axis scaled by the extent of the
+/// control points where it started).
+struct Stage<const D: usize> {
+    /// Per axis, the factor into unit-box coordinates.
+    scale: [f64; D],
+    /// The control points where the stage started.
+    start: Vec<Vector<D>>,
+    /// The control points now.
+    y: Vec<Vector<D>>,
+    /// The control points moved so far.
+    moved: BTreeSet<usize>,
+}
+
 impl<const D: usize> SplineMap<D, ThbSpace<D>> {
     /// Moves control points around the elements `validity` does not certify so that `det J_S`
     /// becomes positive there (see the module documentation): first the inner control points,
@@ -202,41 +215,9 @@ impl<const D: usize> SplineMap<D, ThbSpace<D>> {
         boundary: &BTreeSet<usize>,
         round: &mut dyn FnMut(usize) -> bool,
     ) -> Option<(ValidityReport, usize, f64)> {
-        let cap = options.boundary_offset;
-        // Unit-box coordinates: each axis scaled by the extent of the control points.
-        let (lo, hi) = bounding_box(self.control.iter().copied());
-        let scale: [f64; D] = std::array::from_fn(|k| {
-            let e = hi[k] - lo[k];
-            if e > 0.0 && e.is_finite() {
-                1.0 / e
-            } else {
-                1.0
-            }
-        });
-        let start: Vec<Vector<D>> = self
-            .control
-            .iter()
-            .map(|p| std::array::from_fn(|k| p[k] * scale[k]))
-            .collect();
-        let mut y = start.clone();
+        let mut stage = self.unit_box();
         let mut uncertified: Vec<usize> = marked(&validity);
-        let mut moved = BTreeSet::new();
         let support = self.function_elements();
-        // Newton iterations per control point and sweep, as measured: in 3D 20 lift the duck
-        // B-rep's min q_S from 0.076 (8) to 0.082; in 2D 8 untangle Gran Canaria with its
-        // boundary kept, where 20 leave an element for the boundary stage (1% moves).
-        let solver = NodeSolverOptions {
-            gradient_tolerance: 1e-4,
-            max_iterations: if D == 3 { 20 } else { 8 },
-            relaxation: 1.0,
-        };
-        let constrain = |f: usize, next: Vector<D>| {
-            if self.boundary_sides(f) > 0 {
-                clip_to_ball(next, start[f], cap)
-            } else {
-                next
-            }
-        };
         for r in 0..options.rounds as usize {
             if !round(r) {
                 return None;
@@ -245,32 +226,9 @@ impl<const D: usize> SplineMap<D, ThbSpace<D>> {
                 break;
             }
             let functions = self.free_functions(&uncertified, &support, options.rings, boundary);
-            let mut region = self.region(&functions, &support, options.samples, &y);
-            let progress = |region: &Region<D>, y: &[Vector<D>], moved: &BTreeSet<usize>| {
-                let (folded, smallest, quality) = region.folded();
-                let control = self.unscaled(y, &scale, moved);
-                let open = self.uncertified_count(&uncertified, &control, certify);
-                (folded + open, smallest, quality)
-            };
-            let mut best = progress(&region, &y, &moved);
-            for _ in 0..options.sweeps {
-                let largest = region.sweep(&mut y, &solver, &constrain, &mut moved);
-                let now = progress(&region, &y, &moved);
-                // While samples fold or the round's elements are not certified, a sweep must
-                // lower their count or lift the smallest sampled det J; after, it must lift
-                // the smallest sampled mean ratio by 1%. Otherwise, or when it barely moves,
-                // the round ends.
-                let improved = if now.0 == 0 {
-                    best.0 > 0 || now.2 > 1.01 * best.2
-                } else {
-                    now.0 < best.0 || (now.0 == best.0 && now.1 > best.1)
-                };
-                if !improved || largest < 1e-3 {
-                    break;
-                }
-                best = now;
-            }
-            let control = self.unscaled(&y, &scale, &moved);
+            let mut region = self.region(&functions, &support, options.samples, &stage.y);
+            self.sweep_round(&mut stage, &mut region, &uncertified, certify, options);
+            let control = self.unscaled(&stage.y, &stage.scale, &stage.moved);
             let elements: Vec<usize> = region
                 .order
                 .par_iter()
@@ -285,13 +243,111 @@ impl<const D: usize> SplineMap<D, ThbSpace<D>> {
                 break;
             }
         }
+        Some(self.keep_if_better(stage, validity, certify))
+    }
+
+    /// The start of a stage: the control points in unit-box coordinates, each axis scaled by
+    /// the extent of the control points, none moved yet.
+    fn unit_box(&self) -> Stage<D> {
+        let (lo, hi) = bounding_box(self.control.iter().copied());
+        let scale: [f64; D] = std::array::from_fn(|k| {
+            let e = hi[k] - lo[k];
+            if e > 0.0 && e.is_finite() {
+                1.0 / e
+            } else {
+                1.0
+            }
+        });
+        let start: Vec<Vector<D>> = self
+            .control
+            .iter()
+            .map(|p| std::array::from_fn(|k| p[k] * scale[k]))
+            .collect();
+        Stage {
+            scale,
+            y: start.clone(),
+            start,
+            moved: BTreeSet::new(),
+        }
+    }
+
+    /// One round's sweeps over the free control points of `region`, while they improve the
+    /// `uncertified` elements (the round's) or, once those are open, the sampled mean ratio.
+    fn sweep_round(
+        &self,
+        stage: &mut Stage<D>,
+        region: &mut Region<D>,
+        uncertified: &[usize],
+        certify: &ValidityOptions,
+        options: &UntangleOptions,
+    ) {
+        let cap = options.boundary_offset;
+        // Newton iterations per control point and sweep, as measured: in 3D 20 lift the duck
+        // B-rep's min q_S from 0.076 (8) to 0.082; in 2D 8 untangle Gran Canaria with its
+        // boundary kept, where 20 leave an element for the boundary stage (1% moves).
+        let solver = NodeSolverOptions {
+            gradient_tolerance: 1e-4,
+            max_iterations: if D == 3 { 20 } else { 8 },
+            relaxation: 1.0,
+        };
+        let start = &stage.start;
+        let constrain = |f: usize, next: Vector<D>| {
+            if self.boundary_sides(f) > 0 {
+                clip_to_ball(next, start[f], cap)
+            } else {
+                next
+            }
+        };
+        let scale = &stage.scale;
+        let progress = |region: &Region<D>, y: &[Vector<D>], moved: &BTreeSet<usize>| {
+            let (folded, smallest, quality) = region.folded();
+            let control = self.unscaled(y, scale, moved);
+            let open = self.uncertified_count(uncertified, &control, certify);
+            (folded + open, smallest, quality)
+        };
+        let (y, moved) = (&mut stage.y, &mut stage.moved);
+        let mut best = progress(region, y, moved);
+        for _ in 0..options.sweeps {
+            let largest = region.sweep(y, &solver, &constrain, moved);
+            let now = progress(region, y, moved);
+            // While samples fold or the round's elements are not certified, a sweep must
+            // lower their count or lift the smallest sampled det J; after, it must lift
+            // the smallest sampled mean ratio by 1%. Otherwise, or when it barely moves,
+            // the round ends.
+            let improved = if now.0 == 0 {
+                best.0 > 0 || now.2 > 1.01 * best.2
+            } else {
+                now.0 < best.0 || (now.0 == best.0 && now.1 > best.1)
+            };
+            if !improved || largest < 1e-3 {
+                break;
+            }
+            best = now;
+        }
+    }
+
+    /// The end of a stage: the map with the stage's control points if it is better than the
+    /// one whose validity is `validity`, else the map unchanged. Returns the validity of the map
+    /// kept, the control points moved and the largest move of a boundary one.
+    fn keep_if_better(
+        &mut self,
+        stage: Stage<D>,
+        validity: ValidityReport,
+        certify: &ValidityOptions,
+    ) -> (ValidityReport, usize, f64) {
+        let Stage {
+            scale,
+            start,
+            y,
+            moved,
+        } = stage;
         let trial = SplineMap {
             space: self.space.clone(),
             control: self.unscaled(&y, &scale, &moved),
         };
         let after = trial.validity(certify);
         if !after.is_better_than(&validity) {
-            return Some((validity, 0, 0.0));
+            return (validity, 0, 0.0);
         }
         let offset = moved
             .iter()
@@ -304,7 +360,7 @@ impl<const D: usize> SplineMap<D, ThbSpace<D>> {
             })
             .fold(0.0, f64::max);
         *self = trial;
-        Some((after, moved.len(), offset))
+        (after, moved.len(), offset)
     }
 
     /// How many of the `elements` are not certified for the control points `control` (in
