@@ -46,56 +46,19 @@ impl<const D: usize, B: CubeMap<D>> Domain<D, B> {
     ) -> Result<(Self, DomainReport)> {
         let start = Instant::now();
         options.validate()?;
-        let swapped = signed_measure(&boundary) < 0.0;
-        let frame = Frame::of(&Framed {
-            inner: &boundary,
-            swap: swapped,
-            frame: Frame::IDENTITY,
-        })
-        .ok_or_else(|| {
-            Error::invalid("the boundary has no extent: its bounding box is flat or not finite")
-        })?;
+        let (swapped, frame) = oriented_frame(&boundary)?;
         let framed_boundary = Framed {
             inner: &boundary,
             swap: swapped,
             frame,
         };
-        let limit = options.tolerance * facet_scale::<D>();
-        check_uniform_cells::<D>(options)?;
-        let mut tree = Tree::<D>::new();
-        tree.refine_uniformly(options.min_level)?;
-        let marked = |tree: &Tree<D>, c: usize| {
-            tree.cells()[c].level < options.max_level
-                && cell_boundary_error(tree, c, &framed_boundary) > limit
-        };
-        let within = |cells: usize| cells_within(options, cells, "the adaptation to the boundary");
-        tree.refine_while_bounded(true, marked, &mut |cells| {
-            within(cells)?;
-            // Between rounds: a chance to cancel a long adaptation (0 sweeps so far).
-            match progress(0, 0) {
-                true => Ok(()),
-                false => Err(Error::cancelled()),
-            }
-        })?;
-        within(tree.leaves().len())?;
-        let mesh = TMesh::new(tree)?;
+        let mesh = adapted_mesh(&framed_boundary, options, progress)?;
         let mut stages = StageSeconds {
             adaptation: start.elapsed().as_secs_f64(),
             ..Default::default()
         };
         let clock = Instant::now();
-        let mut x: Vec<[f64; D]> = mesh
-            .parametric()
-            .into_iter()
-            .enumerate()
-            .map(|(v, p)| {
-                if mesh.on_boundary(v) {
-                    framed_boundary.boundary_point(p)
-                } else {
-                    transfinite(&framed_boundary, p)
-                }
-            })
-            .collect();
+        let mut x = placed(&mesh, &framed_boundary);
         let problem = mesh.problem()?;
         let pool = thread_pool(options)?;
         let invalid_after_placement = invalid_cells(&pool, &problem, &x).len();
@@ -253,6 +216,65 @@ impl<const D: usize, B: CubeMap<D>> Domain<D, B> {
         });
         grid
     }
+}
+
+/// Whether the boundary map is left-handed (then its first two parametric coordinates are
+/// swapped), and the frame of the map so oriented; fails on a boundary without extent.
+fn oriented_frame<const D: usize, B: CubeMap<D>>(boundary: &B) -> Result<(bool, Frame<D>)> {
+    let swapped = signed_measure(boundary) < 0.0;
+    let frame = Frame::of(&Framed {
+        inner: boundary,
+        swap: swapped,
+        frame: Frame::IDENTITY,
+    })
+    .ok_or_else(|| {
+        Error::invalid("the boundary has no extent: its bounding box is flat or not finite")
+    })?;
+    Ok((swapped, frame))
+}
+
+/// The T-mesh of the tree adapted to `boundary`: refined uniformly to `min_level`, then where a
+/// cell's boundary error is over the tolerance (up to `max_level`), within the cell budget.
+/// `progress(0, 0)` is called between the refinement rounds; returning false cancels.
+fn adapted_mesh<const D: usize>(
+    boundary: &impl CubeMap<D>,
+    options: &DomainOptions,
+    progress: &mut dyn FnMut(usize, usize) -> bool,
+) -> Result<TMesh<D>> {
+    let limit = options.tolerance * facet_scale::<D>();
+    check_uniform_cells::<D>(options)?;
+    let mut tree = Tree::<D>::new();
+    tree.refine_uniformly(options.min_level)?;
+    let marked = |tree: &Tree<D>, c: usize| {
+        tree.cells()[c].level < options.max_level && cell_boundary_error(tree, c, boundary) > limit
+    };
+    let within = |cells: usize| cells_within(options, cells, "the adaptation to the boundary");
+    tree.refine_while_bounded(true, marked, &mut |cells| {
+        within(cells)?;
+        // Between rounds: a chance to cancel a long adaptation (0 sweeps so far).
+        match progress(0, 0) {
+            true => Ok(()),
+            false => Err(Error::cancelled()),
+        }
+    })?;
+    within(tree.leaves().len())?;
+    TMesh::new(tree)
+}
+
+/// The first positions of the vertices: the boundary ones on the boundary, the inner ones by
+/// transfinite interpolation.
+fn placed<const D: usize>(mesh: &TMesh<D>, boundary: &impl CubeMap<D>) -> Vec<[f64; D]> {
+    mesh.parametric()
+        .into_iter()
+        .enumerate()
+        .map(|(v, p)| {
+            if mesh.on_boundary(v) {
+                boundary.boundary_point(p)
+            } else {
+                transfinite(boundary, p)
+            }
+        })
+        .collect()
 }
 
 /// The first optimization of a build's placed vertices `x`; if cells stay folded, the growth of
