@@ -92,6 +92,7 @@ pub extern "C" fn igaparam_domain_cell_count(
 /// `igaparam_domain_dimension`). Either may be NULL to skip it; `len_each` is the number of
 /// doubles each non-NULL buffer holds (at least `d × num_vertices`). Fails with
 /// `IGAPARAM_STATUS_INVALID_ARGUMENT` if the domain has not been built.
+#[allow(rustdoc::broken_intra_doc_links)]
 #[no_mangle]
 pub extern "C" fn igaparam_domain_copy_vertices(
     domain: *const igaparam_domain,

@@ -4,6 +4,9 @@
 //! are written only on success; arrays are caller-owned, flat, with explicit sizes; a failed call
 //! leaves its handle as it was; `igaparam_last_error_message` gives the calling thread's last
 //! message. No panic crosses this boundary.
+//!
+//! The doc comments of the exported items are the header's comments, plain text: an interval
+//! `[0,1]^d` there is no link, so the items that write one allow rustdoc's link lint.
 #![allow(non_camel_case_types)]
 // Entry points take raw pointers from C by design; each dereference is checked for NULL and
 // documented as the caller's contract, which a C caller cannot see as `unsafe` anyway.

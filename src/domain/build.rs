@@ -19,7 +19,7 @@ use crate::optimize::small_matrix::bounding_box;
 use crate::optimize::{invalid_cells, lattice, Problem, QualitySummary};
 use crate::tmesh::{TMesh, Tree};
 
-/// A domain with its optimized T-mesh: parametric vertices in [0,1]^d, physical ones in the
+/// A domain with its optimized T-mesh: parametric vertices in \[0,1\]^d, physical ones in the
 /// domain.
 #[derive(Clone, Debug)]
 pub struct Domain<const D: usize, B> {

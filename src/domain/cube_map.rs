@@ -7,7 +7,7 @@ use crate::tmesh::{Tree, UNIT};
 /// A map from the boundary of the unit square (d = 2) or cube (d = 3) onto the boundary of a
 /// domain.
 pub trait CubeMap<const D: usize> {
-    /// The image of `p`, a point of the boundary of [0,1]^d (some coordinate is exactly 0 or 1).
+    /// The image of `p`, a point of the boundary of \[0,1\]^d (some coordinate is exactly 0 or 1).
     fn boundary_point(&self, p: [f64; D]) -> [f64; D];
 }
 
@@ -65,7 +65,7 @@ fn facet_error<const D: usize>(corners: &[[f64; D]], centre: [f64; D]) -> f64 {
     }
 }
 
-/// Largest boundary error over the facets of leaf `c` that lie on the boundary of [0,1]^d.
+/// Largest boundary error over the facets of leaf `c` that lie on the boundary of \[0,1\]^d.
 pub(super) fn cell_boundary_error<const D: usize>(
     tree: &Tree<D>,
     c: usize,

@@ -22,7 +22,7 @@ fn grid_point<const D: usize>(p: [f64; D]) -> [u32; D] {
     p.map(|v| (v * UNIT as f64).round() as u32)
 }
 
-/// 1D quadratic Lagrange basis on [0,1] with nodes 0, ½, 1.
+/// 1D quadratic Lagrange basis on \[0,1\] with nodes 0, ½, 1.
 fn lagrange(t: f64) -> [f64; 3] {
     [
         2.0 * (t - 0.5) * (t - 1.0),

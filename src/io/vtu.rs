@@ -6,7 +6,7 @@
 //! Why this is written here rather than taken from a crate: the one VTK crate, vtkio (0.7.0-rc2;
 //! its last release, 0.6.3, is of 2021), reads the base64 storages but refuses appended raw
 //! data — VTK's own default output — because its `Raw` encoding sits behind a cargo feature its
-//! manifest does not declare. So the VTU layout (headers, blocks, offsets; [`block`]) is written
+//! manifest does not declare. So the VTU layout (headers, blocks, offsets; `vtu/block.rs`) is written
 //! here, on the crates that do the general work: roxmltree parses the XML, `base64` and `flate2`
 //! decode and inflate the data.
 

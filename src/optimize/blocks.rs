@@ -104,8 +104,8 @@ impl BlockLayout {
             .map(|i| range.start + i)
     }
 
-    /// The blocks of the ordered pairs of cell `c`'s real nodes (row-major), [`NONE`] where a
-    /// pair does not couple.
+    /// The blocks of the ordered pairs of cell `c`'s real nodes (row-major), `NONE` (`u32::MAX`)
+    /// where a pair does not couple.
     pub fn cell_blocks(&self, c: usize) -> &[u32] {
         &self.cell_blocks[self.first[c]..self.first[c + 1]]
     }

@@ -153,7 +153,7 @@ fn normal_equations<const D: usize, S: SplineSpace<D>>(
     Ok((normal, rhs))
 }
 
-/// The element of each point, in point order; an error for a point outside [0,1]^d.
+/// The element of each point, in point order; an error for a point outside \[0,1\]^d.
 fn elements_of<const D: usize, S: SplineSpace<D>>(
     space: &S,
     points: &[[f64; D]],

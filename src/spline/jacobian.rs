@@ -4,7 +4,7 @@
 
 use super::bernstein::Bernstein;
 
-/// Lower bound of a Bernstein polynomial on [0,1]^d by subdivision, stopping at positive
+/// Lower bound of a Bernstein polynomial on \[0,1\]^d by subdivision, stopping at positive
 /// bounds, at a non-positive corner value (the polynomial's own value there) or at `depth`.
 pub(crate) fn lower_bound<const D: usize>(p: &Bernstein<D>, depth: u32) -> f64 {
     let m = p.min_coef();
@@ -34,7 +34,7 @@ pub(crate) fn lower_bound<const D: usize>(p: &Bernstein<D>, depth: u32) -> f64 {
 }
 
 /// The Jacobian entries `J[a][b] = ∂S_a/∂x_b` of the map whose components are the Bernstein
-/// `patches` (all of one degree p per direction) on the box `[lo, hi]` mapped to [0,1]^d, the
+/// `patches` (all of one degree p per direction) on the box `[lo, hi]` mapped to \[0,1\]^d, the
 /// derivatives taken with respect to the box's coordinates: degree `p − 1` in direction `b`, `p`
 /// in the others.
 pub(crate) fn jacobian_entries<const D: usize>(
@@ -58,7 +58,7 @@ pub(crate) fn jacobian_entries<const D: usize>(
 }
 
 /// `det J` of the map whose components are the Bernstein `patches` (all of one degree p per
-/// direction) on the box `[lo, hi]` mapped to [0,1]^d, the Jacobian taken with respect to the
+/// direction) on the box `[lo, hi]` mapped to \[0,1\]^d, the Jacobian taken with respect to the
 /// box's coordinates: a polynomial of degree `d·p − 1` per direction.
 pub(crate) fn jacobian_determinant<const D: usize>(
     patches: &[Bernstein<D>],

@@ -1,4 +1,4 @@
-//! Spline maps of [0,1]^d over the T-mesh: cubic truncated hierarchical B-splines (THB) on the
+//! Spline maps of \[0,1\]^d over the T-mesh: cubic truncated hierarchical B-splines (THB) on the
 //! tree levels, their Bézier extraction, Greville interpolation of the T-mesh's piecewise
 //! quadratic map, queries (values, Jacobians, inverse), h-refinement, certified validity of the
 //! Jacobian determinant, and output (`.vtu` samples, G+Smo XML).

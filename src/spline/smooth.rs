@@ -1,5 +1,5 @@
 //! Smoothing of a certified spline map: every inner control point (of a function vanishing on
-//! the boundary of [0,1]^d, so the map's boundary is kept) moves to the minimum of the
+//! the boundary of \[0,1\]^d, so the map's boundary is kept) moves to the minimum of the
 //! regularised mean-ratio distortion of `J_S` at the sample points of its support, in coloured
 //! Gauss–Seidel sweeps ([`Region::sweep`](super::control::Region)). The distortion grows without
 //! bound as `det J_S → 0`, so its minimisation keeps the map away from folds and raises its worst

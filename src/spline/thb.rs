@@ -259,7 +259,7 @@ impl<const D: usize> SplineSpace<D> for ThbSpace<D> {
     /// The Greville points, except where those of functions of different levels coincide (near
     /// a level change; the collocation matrix would be singular): the finest function keeps the
     /// point, each coarser one (level `l`) takes, among the points `{¼, ½, ¾}^d` of the level-`l`
-    /// leaves in its support (a coordinate on the boundary of [0,1]^d stays there), the free one
+    /// leaves in its support (a coordinate on the boundary of \[0,1\]^d stays there), the free one
     /// where it is largest.
     fn interpolation_points(&self) -> Vec<[f64; D]> {
         let cells = self.tree.cells();

@@ -4,7 +4,7 @@
 //! objective and per-node Newton solver, applied to control points. `J_S` at a point is affine
 //! in each control point (`J_S = A + P_i ∇N_iᵀ`), exactly the form of a T-mesh node's terms.
 //!
-//! First only the control points of functions that vanish on the boundary of [0,1]^d move: the
+//! First only the control points of functions that vanish on the boundary of \[0,1\]^d move: the
 //! boundary of the map does not change. If elements stay uncertified and `boundary_offset` is
 //! positive, those of the boundary functions move too, each at most `boundary_offset` (in
 //! coordinates that map the control points' bounding box onto a unit box) from where it was:
@@ -37,7 +37,7 @@ pub struct UntangleOptions {
     pub samples: usize,
     /// Rings of elements around the uncertified ones whose control points move too.
     pub rings: u32,
-    /// Largest move of a control point of a function non-zero on the boundary of [0,1]^d, in
+    /// Largest move of a control point of a function non-zero on the boundary of \[0,1\]^d, in
     /// coordinates that map the control points' bounding box onto a unit box; 0 keeps the boundary of the map. The boundary moves only
     /// when moving the inner control points alone leaves elements uncertified. Default 1e-2,
     /// as [`DomainOptions::boundary_offset`](crate::domain::DomainOptions::boundary_offset).
@@ -153,7 +153,7 @@ impl<const D: usize> SplineMap<D, ThbSpace<D>> {
     }
 
     /// The boundary functions non-zero on an uncertified element whose `det J_S` is not
-    /// positive at a sample on two or more sides of [0,1]^d (a corner of the square, an edge of
+    /// positive at a sample on two or more sides of \[0,1\]^d (a corner of the square, an edge of
     /// the cube), in 3D also on an element in the support of one of those: at such a sample every
     /// column of `J_S` is a tangent of the boundary, so `det J_S` depends on the boundary
     /// control points alone and no inner one can lift it.
@@ -377,7 +377,7 @@ impl<const D: usize> SplineMap<D, ThbSpace<D>> {
             .count()
     }
 
-    /// The number of sides of [0,1]^d function `f` is non-zero on.
+    /// The number of sides of \[0,1\]^d function `f` is non-zero on.
     pub(super) fn boundary_sides(&self, f: usize) -> usize {
         let (level, index) = self.space.functions()[f];
         let last = super::bernstein::function_count(level) as u32 - 1;
@@ -442,7 +442,7 @@ mod tests {
     use super::*;
     use crate::tmesh::Tree;
 
-    /// The identity of [0,1]^d on the uniform space of `level` (control points at the Greville
+    /// The identity of \[0,1\]^d on the uniform space of `level` (control points at the Greville
     /// points), with the inner control point `moved` displaced by `by`.
     fn folded<const D: usize>(level: u8, moved: usize, by: [f64; D]) -> SplineMap<D> {
         let mut tree = Tree::<D>::new();

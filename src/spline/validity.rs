@@ -82,7 +82,7 @@ impl ValidityReport {
 }
 
 impl<const D: usize, S: SplineSpace<D>> SplineMap<D, S> {
-    /// `det J_S` on element `e` as a Bernstein polynomial on the element mapped to [0,1]^d,
+    /// `det J_S` on element `e` as a Bernstein polynomial on the element mapped to \[0,1\]^d,
     /// the Jacobian taken with respect to the parametric coordinates.
     pub fn det_polynomial(&self, e: usize) -> Bernstein<D> {
         self.piece(e).det_polynomial()
