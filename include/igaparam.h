@@ -187,17 +187,6 @@ typedef enum {
 } igaparam_fit_rule;
 
 /**
- * How a `.vtu` file stores its arrays.
- */
-typedef struct Encoding Encoding;
-
-/**
- * The storage of a written `.vtu` file: an [`Encoding`] and, for the binary ones, zlib
- * compression (`compressor="vtkZLibDataCompressor"`).
- */
-typedef struct Format Format;
-
-/**
  * A planar domain bounded by four curves or a solid bounded by six surfaces, and once built
  * its T-mesh parameterization (opaque). Create a planar one with
  * `igaparam_domain_new_from_file` or `igaparam_domain_new_from_polylines`, a solid with
@@ -1234,6 +1223,14 @@ typedef struct {
 #ifdef __cplusplus
 extern "C" {
 #endif // __cplusplus
+
+/**
+ * The fingerprint of the declarations of the header this library was built with: a 64-bit
+ * hash of `include/igaparam.h` without its comments. Bindings generated from a header (the
+ * Python package's declarations carry the same number) compare it before their first call,
+ * so that they refuse a library of another layout instead of calling it with wrong structs.
+ */
+uint64_t igaparam_abi_fingerprint(void);
 
 /**
  * Copies the message of the calling thread's latest call into `buf` (at most `len` bytes including the

@@ -1,6 +1,10 @@
-//! The checked-in C header must match what cbindgen generates from the sources.
+//! The checked-in C header must match what cbindgen generates from the sources, and the
+//! checked-in Python declarations (`bindings/python/igaparam/_ffi.py`) what
+//! `bindings/python/gen_ffi.py` generates from the header. `IGAPARAM_BLESS=1` regenerates both,
+//! the header first.
 
 use std::path::Path;
+use std::process::Command;
 
 #[test]
 fn header_is_current() {
@@ -15,14 +19,35 @@ fn header_is_current() {
         .write(&mut generated);
     let generated = String::from_utf8(generated).unwrap();
     let path = root.join("include/igaparam.h");
-    if std::env::var_os("IGAPARAM_BLESS").is_some() {
+    let bless = std::env::var_os("IGAPARAM_BLESS").is_some();
+    if bless {
         std::fs::write(&path, &generated).unwrap();
-        return;
+    } else {
+        let current = std::fs::read_to_string(&path).unwrap_or_default();
+        assert!(
+            current == generated,
+            "include/igaparam.h is stale: regenerate it with `IGAPARAM_BLESS=1 cargo test --test header`"
+        );
     }
-    let current = std::fs::read_to_string(&path).unwrap_or_default();
+    python_declarations(root, bless);
+}
+
+/// Runs the Python generator on the (blessed or checked) header: writes the declarations when
+/// blessing, otherwise fails when they are stale.
+fn python_declarations(root: &Path, bless: bool) {
+    let python = std::env::var("PYTHON").unwrap_or_else(|_| "python3".into());
+    let mut command = Command::new(&python);
+    command.arg(root.join("bindings/python/gen_ffi.py"));
+    if !bless {
+        command.arg("--check");
+    }
+    let output = command
+        .output()
+        .unwrap_or_else(|e| panic!("cannot run `{python}` (set PYTHON to a Python 3.9+): {e}"));
     assert!(
-        current == generated,
-        "include/igaparam.h is stale: regenerate it with `IGAPARAM_BLESS=1 cargo test --test header`"
+        output.status.success(),
+        "bindings/python/gen_ffi.py: {}",
+        String::from_utf8_lossy(&output.stderr)
     );
 }
 

@@ -97,10 +97,37 @@ struct ProgressTrampoline {
   }
 };
 
+/// Owner of one C handle of type `T`, released with `Free` (which accepts NULL) when the owner
+/// is destroyed or assigned. Move-only; the base of Mesh, Domain and Spline.
+template <typename T, void (*Free)(T*)>
+class Handle {
+ public:
+  explicit Handle(T* handle = nullptr) noexcept : handle_(handle) {}
+  ~Handle() { Free(handle_); }
+  Handle(const Handle&) = delete;
+  Handle& operator=(const Handle&) = delete;
+  Handle(Handle&& other) noexcept : handle_(std::exchange(other.handle_, nullptr)) {}
+  Handle& operator=(Handle&& other) noexcept {
+    if (this != &other) {
+      Free(handle_);
+      handle_ = std::exchange(other.handle_, nullptr);
+    }
+    return *this;
+  }
+
+  /// The C handle (still owned by this object).
+  T* get() const noexcept { return handle_; }
+  /// Gives up ownership of the C handle.
+  T* release() noexcept { return std::exchange(handle_, nullptr); }
+
+ protected:
+  T* handle_ = nullptr;
+};
+
 }  // namespace detail
 
 /// A quadrilateral or hexahedral mesh (owner of an igaparam_mesh*). Move-only.
-class Mesh {
+class Mesh : public detail::Handle<igaparam_mesh, igaparam_mesh_free> {
  public:
   /// Builds a mesh from `xyz` (3 coordinates per node, flat) and `connectivity` (nodes_per_cell(type)
   /// indices per cell, each cell's nodes in `order`: IGAPARAM_ORDER_VTK or IGAPARAM_ORDER_GMSH).
@@ -114,7 +141,7 @@ class Mesh {
                     "igaparam::Mesh: connectivity must hold " + std::to_string(per_cell) + " indices per cell");
     const std::size_t cells = per_cell == 0 ? 0 : connectivity.size() / per_cell;
     detail::check(
-        igaparam_mesh_new_ordered(type, order, xyz.size() / 3, xyz.data(), cells, connectivity.data(), &mesh_));
+        igaparam_mesh_new_ordered(type, order, xyz.size() / 3, xyz.data(), cells, connectivity.data(), &handle_));
   }
 
   /// Reads a mesh and its prescribed motion (point arrays fixed_components, moved) from a .vtu file
@@ -127,29 +154,11 @@ class Mesh {
 
   /// Writes the mesh to a .vtu file in `format` (IGAPARAM_VTU_*; default zlib-compressed base64).
   void write_vtu(const std::string& path, igaparam_vtu_format format = IGAPARAM_VTU_DEFAULT) const {
-    detail::check(igaparam_mesh_write_vtu_format(mesh_, path.c_str(), format));
+    detail::check(igaparam_mesh_write_vtu_format(handle_, path.c_str(), format));
   }
 
   /// Takes ownership of a handle from igaparam_mesh_new (may be NULL).
-  explicit Mesh(igaparam_mesh* handle) noexcept : mesh_(handle) {}
-
-  ~Mesh() { igaparam_mesh_free(mesh_); }
-
-  Mesh(const Mesh&) = delete;
-  Mesh& operator=(const Mesh&) = delete;
-  Mesh(Mesh&& other) noexcept : mesh_(std::exchange(other.mesh_, nullptr)) {}
-  Mesh& operator=(Mesh&& other) noexcept {
-    if (this != &other) {
-      igaparam_mesh_free(mesh_);
-      mesh_ = std::exchange(other.mesh_, nullptr);
-    }
-    return *this;
-  }
-
-  /// The C handle (still owned by this object).
-  igaparam_mesh* get() const noexcept { return mesh_; }
-  /// Gives up ownership of the C handle.
-  igaparam_mesh* release() noexcept { return std::exchange(mesh_, nullptr); }
+  explicit Mesh(igaparam_mesh* handle) noexcept : Handle(handle) {}
 
   std::size_t node_count() const { return query<std::size_t>(igaparam_mesh_node_count); }
   std::size_t cell_count() const { return query<std::size_t>(igaparam_mesh_cell_count); }
@@ -164,28 +173,28 @@ class Mesh {
 
   /// Sets every node's constraint mask (bit 0 keeps x, bit 1 y, bit 2 z); one entry per node.
   void set_fixed(const std::vector<std::uint8_t>& mask) {
-    detail::check(igaparam_mesh_set_fixed(mesh_, mask.size(), mask.data()));
+    detail::check(igaparam_mesh_set_fixed(handle_, mask.size(), mask.data()));
   }
 
   /// Moves node indices[i] to xyz[3i..3i+3].
   void move_nodes(const std::vector<std::int64_t>& indices, const std::vector<double>& xyz) {
     detail::require(xyz.size() == 3 * indices.size(), "igaparam::Mesh::move_nodes: xyz must hold 3 values per index");
-    detail::check(igaparam_mesh_move_nodes(mesh_, indices.size(), indices.data(), xyz.data()));
+    detail::check(igaparam_mesh_move_nodes(handle_, indices.size(), indices.data(), xyz.data()));
   }
 
   /// Moves nodes 0..xyz.size()/3-1 to xyz.
   void move_nodes(const std::vector<double>& xyz) {
     detail::require(xyz.size() % 3 == 0, "igaparam::Mesh::move_nodes: xyz must hold 3 values per node");
-    detail::check(igaparam_mesh_move_nodes(mesh_, xyz.size() / 3, nullptr, xyz.data()));
+    detail::check(igaparam_mesh_move_nodes(handle_, xyz.size() / 3, nullptr, xyz.data()));
   }
 
   /// Makes the current positions the reference shape of the targets.
-  void reset_reference() { detail::check(igaparam_mesh_reset_reference(mesh_)); }
+  void reset_reference() { detail::check(igaparam_mesh_reset_reference(handle_)); }
 
   /// Relocates the free nodes; `options.progress` (a C callback) is used as given.
   igaparam_relocate_report relocate(const igaparam_relocate_options& options = default_options()) {
     igaparam_relocate_report report{};
-    detail::check(igaparam_mesh_relocate(mesh_, &options, &report));
+    detail::check(igaparam_mesh_relocate(handle_, &options, &report));
     return report;
   }
 
@@ -196,7 +205,7 @@ class Mesh {
     options.progress = &detail::ProgressTrampoline::call;
     options.progress_user = &trampoline;
     igaparam_relocate_report report{};
-    const igaparam_status status = igaparam_mesh_relocate(mesh_, &options, &report);
+    const igaparam_status status = igaparam_mesh_relocate(handle_, &options, &report);
     if (trampoline.exception) {
       std::rethrow_exception(trampoline.exception);
     }
@@ -208,7 +217,7 @@ class Mesh {
   /// last relocation, given dJ/dx at every node (3 per node); see igaparam_mesh_adjoint.
   std::vector<double> adjoint(const std::vector<double>& dj_dx) const {
     std::vector<double> out(dj_dx.size());
-    detail::check(igaparam_mesh_adjoint(mesh_, dj_dx.size(), dj_dx.data(), out.data()));
+    detail::check(igaparam_mesh_adjoint(handle_, dj_dx.size(), dj_dx.data(), out.data()));
     return out;
   }
 
@@ -216,28 +225,28 @@ class Mesh {
   /// node) through the last relocation; see igaparam_mesh_tangent.
   std::vector<double> tangent(const std::vector<double>& dx_prescribed) const {
     std::vector<double> out(dx_prescribed.size());
-    detail::check(igaparam_mesh_tangent(mesh_, dx_prescribed.size(), dx_prescribed.data(), out.data()));
+    detail::check(igaparam_mesh_tangent(handle_, dx_prescribed.size(), dx_prescribed.data(), out.data()));
     return out;
   }
 
   /// Current node positions, 3 per node (x0 y0 z0 x1 ...).
   std::vector<double> positions() const {
     std::vector<double> xyz(3 * node_count());
-    detail::check(igaparam_mesh_copy_positions(mesh_, xyz.data(), xyz.size()));
+    detail::check(igaparam_mesh_copy_positions(handle_, xyz.data(), xyz.size()));
     return xyz;
   }
 
   /// Reference positions (the shape of the targets), 3 per node.
   std::vector<double> reference() const {
     std::vector<double> xyz(3 * node_count());
-    detail::check(igaparam_mesh_copy_reference(mesh_, xyz.data(), xyz.size()));
+    detail::check(igaparam_mesh_copy_reference(handle_, xyz.data(), xyz.size()));
     return xyz;
   }
 
   /// Constraint mask of every node (bit 0 x, bit 1 y, bit 2 z fixed).
   std::vector<std::uint8_t> fixed() const {
     std::vector<std::uint8_t> mask(node_count());
-    detail::check(igaparam_mesh_copy_fixed(mesh_, mask.data(), mask.size()));
+    detail::check(igaparam_mesh_copy_fixed(handle_, mask.data(), mask.size()));
     return mask;
   }
 
@@ -245,14 +254,14 @@ class Mesh {
   std::vector<std::int64_t> connectivity() const { return connectivity(order()); }
   std::vector<std::int64_t> connectivity(igaparam_node_order order) const {
     std::vector<std::int64_t> cells(cell_count() * nodes_per_cell(cell_type()));
-    detail::check(igaparam_mesh_copy_connectivity(mesh_, order, cells.data(), cells.size()));
+    detail::check(igaparam_mesh_copy_connectivity(handle_, order, cells.data(), cells.size()));
     return cells;
   }
 
   /// Quality of every cell against `target` (IGAPARAM_TARGET_*): in (0, 1], 0 for an invalid cell.
   std::vector<double> cell_quality(igaparam_target target = IGAPARAM_TARGET_INITIAL) const {
     std::vector<double> quality(cell_count());
-    detail::check(igaparam_mesh_copy_cell_quality(mesh_, target, quality.data(), quality.size()));
+    detail::check(igaparam_mesh_copy_cell_quality(handle_, target, quality.data(), quality.size()));
     return quality;
   }
 
@@ -261,11 +270,10 @@ class Mesh {
   template <typename T>
   T query(igaparam_status (*getter)(const igaparam_mesh*, T*)) const {
     T value{};
-    detail::check(getter(mesh_, &value));
+    detail::check(getter(handle_, &value));
     return value;
   }
 
-  igaparam_mesh* mesh_ = nullptr;
 };
 
 /// A B-spline or NURBS curve of the plane given by arrays (see igaparam_curve).
@@ -353,7 +361,7 @@ struct Polylines {
 
 /// A planar domain or a solid and its T-mesh parameterization (owner of an igaparam_domain*).
 /// Move-only.
-class Domain {
+class Domain : public detail::Handle<igaparam_domain, igaparam_domain_free> {
  public:
   /// A planar domain from a G+Smo XML B-rep (.xml, four curves) or a coastline (.txt).
   static Domain planar_from_file(const std::string& path) {
@@ -417,26 +425,12 @@ class Domain {
   }
 
   /// Takes ownership of a handle from igaparam_domain_new_* (may be NULL).
-  explicit Domain(igaparam_domain* handle) noexcept : domain_(handle) {}
-  ~Domain() { igaparam_domain_free(domain_); }
-  Domain(const Domain&) = delete;
-  Domain& operator=(const Domain&) = delete;
-  Domain(Domain&& other) noexcept : domain_(std::exchange(other.domain_, nullptr)) {}
-  Domain& operator=(Domain&& other) noexcept {
-    if (this != &other) {
-      igaparam_domain_free(domain_);
-      domain_ = std::exchange(other.domain_, nullptr);
-    }
-    return *this;
-  }
-
-  /// The C handle (still owned by this object).
-  igaparam_domain* get() const noexcept { return domain_; }
+  explicit Domain(igaparam_domain* handle) noexcept : Handle(handle) {}
 
   /// 2 for a planar domain, 3 for a solid.
   std::size_t dimension() const {
     std::size_t d = 0;
-    detail::check(igaparam_domain_dimension(domain_, &d));
+    detail::check(igaparam_domain_dimension(handle_, &d));
     return d;
   }
 
@@ -444,7 +438,7 @@ class Domain {
   /// (igaparam_domain_options_default, or igaparam_domain_options_default_solid for a solid).
   igaparam_domain_report build() {
     igaparam_domain_report report{};
-    detail::check(igaparam_domain_build(domain_, nullptr, &report));
+    detail::check(igaparam_domain_build(handle_, nullptr, &report));
     return report;
   }
 
@@ -452,7 +446,7 @@ class Domain {
   /// default_options()).
   igaparam_domain_report build(const igaparam_domain_options& options) {
     igaparam_domain_report report{};
-    detail::check(igaparam_domain_build(domain_, &options, &report));
+    detail::check(igaparam_domain_build(handle_, &options, &report));
     return report;
   }
 
@@ -460,37 +454,37 @@ class Domain {
   /// (igaparam_domain_set_boundary_curves); the T-mesh moves onto it with update().
   void set_boundary(const std::vector<Curve>& curves) {
     const std::vector<igaparam_curve> c = detail::c_curves(curves);
-    detail::check(igaparam_domain_set_boundary_curves(domain_, c.size(), c.data()));
+    detail::check(igaparam_domain_set_boundary_curves(handle_, c.size(), c.data()));
   }
 
   /// Replaces the boundary of a solid by six surfaces (igaparam_domain_set_boundary_surfaces).
   void set_boundary(const std::vector<Surface>& surfaces) {
     const std::vector<igaparam_surface> c = detail::c_surfaces(surfaces);
-    detail::check(igaparam_domain_set_boundary_surfaces(domain_, c.size(), c.data()));
+    detail::check(igaparam_domain_set_boundary_surfaces(handle_, c.size(), c.data()));
   }
 
   /// Replaces the boundary of a planar domain by four polylines.
   void set_boundary_polylines(const std::vector<std::vector<double>>& polylines) {
     detail::Polylines p(polylines);
-    detail::check(igaparam_domain_set_boundary_polylines(domain_, p.counts, p.points));
+    detail::check(igaparam_domain_set_boundary_polylines(handle_, p.counts, p.points));
   }
 
   /// Replaces the boundary of a solid by six triangulated faces.
   void set_boundary_triangulations(const std::vector<std::vector<double>>& xyz,
                                    const std::vector<std::vector<std::uint32_t>>& triangles) {
     detail::Triangulations t(xyz, triangles);
-    detail::check(igaparam_domain_set_boundary_triangulations(domain_, t.nv, t.points, t.nt, t.tris));
+    detail::check(igaparam_domain_set_boundary_triangulations(handle_, t.nv, t.points, t.nt, t.tris));
   }
 
   /// Replaces the boundary by the one of a file (a planar domain's or a solid's, as the
   /// constructors read them).
   void set_boundary_from_file(const std::string& path) {
-    detail::check(igaparam_domain_set_boundary_from_file(domain_, path.c_str()));
+    detail::check(igaparam_domain_set_boundary_from_file(handle_, path.c_str()));
   }
 
   /// Replaces the boundary of a solid by the one of a file, scaled axis by axis first.
   void set_boundary_from_file(const std::string& path, const std::array<double, 3>& scale) {
-    detail::check(igaparam_domain_set_boundary_from_file_scaled(domain_, path.c_str(), scale.data()));
+    detail::check(igaparam_domain_set_boundary_from_file_scaled(handle_, path.c_str(), scale.data()));
   }
 
   /// Moves the built T-mesh onto the current boundary, keeping its tree
@@ -498,7 +492,7 @@ class Domain {
   igaparam_domain_update_report update(
       const igaparam_domain_update_options& options = igaparam_domain_update_options_default()) {
     igaparam_domain_update_report report{};
-    detail::check(igaparam_domain_update(domain_, &options, &report));
+    detail::check(igaparam_domain_update(handle_, &options, &report));
     return report;
   }
 
@@ -516,52 +510,51 @@ class Domain {
   /// Quality of every cell.
   std::vector<double> cell_quality() const {
     std::vector<double> q(cell_count());
-    detail::check(igaparam_domain_copy_cell_quality(domain_, q.data(), q.size()));
+    detail::check(igaparam_domain_copy_cell_quality(handle_, q.data(), q.size()));
     return q;
   }
 
   /// Level of every cell.
   std::vector<std::uint8_t> cell_levels() const {
     std::vector<std::uint8_t> levels(cell_count());
-    detail::check(igaparam_domain_copy_cells(domain_, levels.data(), nullptr, levels.size()));
+    detail::check(igaparam_domain_copy_cells(handle_, levels.data(), nullptr, levels.size()));
     return levels;
   }
 
   /// Corner vertices of every cell, 2^dimension() per cell (VTK quad / hexahedron order).
   std::vector<std::size_t> cell_corners() const {
     std::vector<std::size_t> corners(cell_count() << dimension());
-    detail::check(igaparam_domain_copy_cell_corners(domain_, corners.data(), corners.size()));
+    detail::check(igaparam_domain_copy_cell_corners(handle_, corners.data(), corners.size()));
     return corners;
   }
 
   /// Writes the T-mesh as a .vtu file.
   void write_vtu(const std::string& path) const {
-    detail::check(igaparam_domain_write_vtu(domain_, path.c_str()));
+    detail::check(igaparam_domain_write_vtu(handle_, path.c_str()));
   }
 
   /// Number of vertices of the built T-mesh, hanging ones included.
   std::size_t vertex_count() const {
     std::size_t n = 0;
-    detail::check(igaparam_domain_vertex_count(domain_, &n));
+    detail::check(igaparam_domain_vertex_count(handle_, &n));
     return n;
   }
 
   /// Number of cells of the built T-mesh.
   std::size_t cell_count() const {
     std::size_t n = 0;
-    detail::check(igaparam_domain_cell_count(domain_, &n));
+    detail::check(igaparam_domain_cell_count(handle_, &n));
     return n;
   }
 
  private:
   std::vector<double> vertices(bool parametric) const {
     std::vector<double> out(vertex_count() * dimension());
-    detail::check(igaparam_domain_copy_vertices(domain_, parametric ? out.data() : nullptr,
+    detail::check(igaparam_domain_copy_vertices(handle_, parametric ? out.data() : nullptr,
                                                 parametric ? nullptr : out.data(), out.size()));
     return out;
   }
 
-  igaparam_domain* domain_ = nullptr;
 };
 
 }  // namespace igaparam

@@ -30,7 +30,7 @@ struct BasisValues {
 
 /// A cubic THB-spline map S: [0,1]^d → Ω (owner of an igaparam_spline*). Move-only; clone() copies.
 /// Points are flat arrays, d doubles each.
-class Spline {
+class Spline : public detail::Handle<igaparam_spline, igaparam_spline_free> {
  public:
   /// Fits the spline map of a built domain; `report` may be NULL.
   static Spline fit(const igaparam_domain* domain, igaparam_fit_report* report = nullptr) {
@@ -91,28 +91,14 @@ class Spline {
   }
 
   /// Takes ownership of a handle (may be NULL).
-  explicit Spline(igaparam_spline* handle) noexcept : spline_(handle) {}
-  ~Spline() { igaparam_spline_free(spline_); }
-  Spline(const Spline&) = delete;
-  Spline& operator=(const Spline&) = delete;
-  Spline(Spline&& other) noexcept : spline_(std::exchange(other.spline_, nullptr)) {}
-  Spline& operator=(Spline&& other) noexcept {
-    if (this != &other) {
-      igaparam_spline_free(spline_);
-      spline_ = std::exchange(other.spline_, nullptr);
-    }
-    return *this;
-  }
+  explicit Spline(igaparam_spline* handle) noexcept : Handle(handle) {}
 
   /// An independent copy.
   Spline clone() const {
     igaparam_spline* handle = nullptr;
-    detail::check(igaparam_spline_clone(spline_, &handle));
+    detail::check(igaparam_spline_clone(handle_, &handle));
     return Spline(handle);
   }
-
-  /// The C handle (still owned by this object).
-  igaparam_spline* get() const noexcept { return spline_; }
 
   std::size_t dimension() const { return query(igaparam_spline_dimension); }
   std::size_t basis_count() const { return query(igaparam_spline_basis_count); }
@@ -131,7 +117,7 @@ class Spline {
   /// Level of every element.
   std::vector<std::uint8_t> element_levels() const {
     std::vector<std::uint8_t> levels(element_count());
-    detail::check(igaparam_spline_copy_elements(spline_, levels.data(), nullptr, levels.size()));
+    detail::check(igaparam_spline_copy_elements(handle_, levels.data(), nullptr, levels.size()));
     return levels;
   }
 
@@ -139,16 +125,16 @@ class Spline {
   std::vector<double> element_bounds() const {
     const std::size_t n = element_count();
     std::vector<double> bounds(2 * dimension() * n);
-    detail::check(igaparam_spline_copy_elements(spline_, nullptr, bounds.data(), n));
+    detail::check(igaparam_spline_copy_elements(handle_, nullptr, bounds.data(), n));
     return bounds;
   }
 
   /// The Bézier extraction of element `e`.
   Extraction extraction(std::size_t e) const {
     std::size_t m = 0;
-    detail::check(igaparam_spline_element_function_count(spline_, e, &m));
+    detail::check(igaparam_spline_element_function_count(handle_, e, &m));
     Extraction x{std::vector<std::size_t>(m), std::vector<double>(m * bernstein_count())};
-    detail::check(igaparam_spline_copy_element_extraction(spline_, e, x.functions.data(), m, x.op.data(),
+    detail::check(igaparam_spline_copy_element_extraction(handle_, e, x.functions.data(), m, x.op.data(),
                                                           x.op.size()));
     return x;
   }
@@ -159,7 +145,7 @@ class Spline {
     const std::size_t d = dimension(), n = count(params, d);
     std::vector<double> points(n * d);
     if (jacobians) jacobians->assign(n * d * d, 0.0);
-    detail::check(igaparam_spline_evaluate(spline_, n, params.data(), points.data(),
+    detail::check(igaparam_spline_evaluate(handle_, n, params.data(), points.data(),
                                            jacobians ? jacobians->data() : nullptr));
     return points;
   }
@@ -168,7 +154,7 @@ class Spline {
   std::vector<double> mean_ratio(const std::vector<double>& params) const {
     const std::size_t n = count(params, dimension());
     std::vector<double> q(n);
-    detail::check(igaparam_spline_mean_ratio(spline_, n, params.data(), q.data()));
+    detail::check(igaparam_spline_mean_ratio(handle_, n, params.data(), q.data()));
     return q;
   }
 
@@ -178,7 +164,7 @@ class Spline {
     const std::size_t d = dimension(), n = count(points, d);
     std::vector<double> params(n * d);
     if (found) found->assign(n, 0);
-    detail::check(igaparam_spline_invert(spline_, n, points.data(), samples, params.data(),
+    detail::check(igaparam_spline_invert(handle_, n, points.data(), samples, params.data(),
                                          found ? found->data() : nullptr));
     return params;
   }
@@ -188,9 +174,9 @@ class Spline {
     const std::size_t d = dimension();
     detail::require(param.size() == d, "igaparam::Spline::basis_at: param must hold d values");
     std::size_t m = 0;
-    detail::check(igaparam_spline_basis_count_at(spline_, param.data(), &m));
+    detail::check(igaparam_spline_basis_count_at(handle_, param.data(), &m));
     BasisValues b{std::vector<std::size_t>(m), std::vector<double>(m), std::vector<double>(m * d)};
-    detail::check(igaparam_spline_basis_at(spline_, param.data(), &m, b.functions.data(), b.values.data(),
+    detail::check(igaparam_spline_basis_at(handle_, param.data(), &m, b.functions.data(), b.values.data(),
                                            b.gradients.data(), m));
     return b;
   }
@@ -199,21 +185,21 @@ class Spline {
   /// space and by the rule of the first fit (igaparam_spline_refit).
   igaparam_refit_report refit(const Domain& domain) {
     igaparam_refit_report report{};
-    detail::check(igaparam_spline_refit(spline_, domain.get(), &report));
+    detail::check(igaparam_spline_refit(handle_, domain.get(), &report));
     return report;
   }
 
   /// The rule the control points come from (that of the first fit).
   igaparam_fit_rule fit_rule() const {
     igaparam_fit_rule rule = IGAPARAM_FIT_INTERPOLATION;
-    detail::check(igaparam_spline_fit_rule(spline_, &rule));
+    detail::check(igaparam_spline_fit_rule(handle_, &rule));
     return rule;
   }
 
   /// Refines the marked elements (all when empty), the map staying the same.
   igaparam_fit_report refine(const std::vector<std::size_t>& elements = {}) {
     igaparam_fit_report report{};
-    detail::check(igaparam_spline_refine(spline_, elements.size(), elements.empty() ? nullptr : elements.data(),
+    detail::check(igaparam_spline_refine(handle_, elements.size(), elements.empty() ? nullptr : elements.data(),
                                          &report));
     return report;
   }
@@ -225,7 +211,7 @@ class Spline {
     igaparam_validity_report report{};
     const std::size_t n = element_quality ? element_count() : 0;
     if (element_quality) element_quality->assign(n, 0.0);
-    detail::check(igaparam_spline_check_validity(spline_, &options, &report, nullptr,
+    detail::check(igaparam_spline_check_validity(handle_, &options, &report, nullptr,
                                                  element_quality ? element_quality->data() : nullptr, n));
     return report;
   }
@@ -235,28 +221,28 @@ class Spline {
   igaparam_quality_bound_report quality_bound(
       const igaparam_quality_bound_options& options = igaparam_quality_bound_options_default()) const {
     igaparam_quality_bound_report report{};
-    detail::check(igaparam_spline_quality_bound(spline_, &options, &report));
+    detail::check(igaparam_spline_quality_bound(handle_, &options, &report));
     return report;
   }
 
   /// Writes the map sampled on `samples`^d sub-cells per element as .vtu.
   void write_vtu(const std::string& path, std::uint32_t samples = 4) const {
-    detail::check(igaparam_spline_write_vtu(spline_, path.c_str(), samples));
+    detail::check(igaparam_spline_write_vtu(handle_, path.c_str(), samples));
   }
 
   /// Writes the map as G+Smo XML.
-  void write_gismo(const std::string& path) const { detail::check(igaparam_spline_write_gismo(spline_, path.c_str())); }
+  void write_gismo(const std::string& path) const { detail::check(igaparam_spline_write_gismo(handle_, path.c_str())); }
 
  private:
   std::size_t query(igaparam_status (*getter)(const igaparam_spline*, std::size_t*)) const {
     std::size_t value = 0;
-    detail::check(getter(spline_, &value));
+    detail::check(getter(handle_, &value));
     return value;
   }
 
   std::vector<double> copied(std::size_t n, igaparam_status (*copy)(const igaparam_spline*, double*, std::size_t)) const {
     std::vector<double> values(n);
-    detail::check(copy(spline_, values.data(), values.size()));
+    detail::check(copy(handle_, values.data(), values.size()));
     return values;
   }
 
@@ -267,7 +253,6 @@ class Spline {
     return points.size() / d;
   }
 
-  igaparam_spline* spline_ = nullptr;
 };
 
 }  // namespace igaparam

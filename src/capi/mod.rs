@@ -50,3 +50,25 @@ pub const IGAPARAM_VERSION_MAJOR: u32 = 0;
 pub const IGAPARAM_VERSION_MINOR: u32 = 1;
 /// Patch version of the library this header belongs to.
 pub const IGAPARAM_VERSION_PATCH: u32 = 0;
+
+/// The fingerprint of the declarations of the header this library was built with: a 64-bit
+/// hash of `include/igaparam.h` without its comments. Bindings generated from a header (the
+/// Python package's declarations carry the same number) compare it before their first call,
+/// so that they refuse a library of another layout instead of calling it with wrong structs.
+#[no_mangle]
+pub extern "C" fn igaparam_abi_fingerprint() -> u64 {
+    const FINGERPRINT: u64 = decimal(env!("IGAPARAM_ABI_FINGERPRINT"));
+    FINGERPRINT
+}
+
+/// The value of a decimal number known at compile time.
+const fn decimal(text: &str) -> u64 {
+    let bytes = text.as_bytes();
+    let mut value = 0u64;
+    let mut i = 0;
+    while i < bytes.len() {
+        value = value * 10 + (bytes[i] - b'0') as u64;
+        i += 1;
+    }
+    value
+}

@@ -1,4 +1,5 @@
-"""The Python example of README.md, extracted from it and run (see tests/readme/)."""
+"""The Python examples of README.md and docs/loops.md, extracted and run, and the links of
+README.md and docs/*.md checked (see tests/readme/)."""
 
 import importlib.util
 import os
@@ -52,3 +53,22 @@ def test_readme_markers():
     assert set(found) == {"c", "cloop", "cpp", "cmake", "python", "pyloop"}
     with pytest.raises(ValueError):
         readme_examples.examples("<!-- example: c -->\nno block\n")
+
+
+def test_readme_and_docs_links_resolve():
+    broken = readme_examples.broken_links()
+    assert not broken, "broken links:\n" + "\n".join(broken)
+
+
+def test_link_check_finds_broken_links(tmp_path):
+    (tmp_path / "there.md").write_text("# A heading\n")
+    page = tmp_path / "page.md"
+    page.write_text(
+        "[ok](there.md) [ok](there.md#a-heading) [ok](#top) [web](https://example.org/x)\n"
+        "# Top\n"
+        "[gone](missing.md) ![gone](missing.png) [bad anchor](there.md#no-such) `[code](skipped.md)`\n"
+        "```\n[fenced](skipped.md)\n```\n"
+    )
+    broken = readme_examples.broken_links([page])
+    assert [b.split(": ", 1)[1] for b in broken] == [
+        "missing.md (no such file)", "missing.png (no such file)", "there.md#no-such (no such heading)"]

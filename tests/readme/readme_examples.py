@@ -1,15 +1,20 @@
-"""The code examples of README.md, extracted and run, so that the README cannot go stale.
+"""The code examples of README.md and of the docs/ pages, extracted and run, so that the
+documentation cannot go stale; and the check that their relative links resolve.
 
-An example is a fenced code block right after a marker line ``<!-- example: NAME -->``; NAME is
-one of ``c`` and ``cloop`` (C programs), ``cpp``, ``cmake`` (a CMakeLists.txt building the ``c``
-example as ``main.c``), ``python`` and ``pyloop``. Examples run in a work directory holding a link ``tests`` to the repository's
-``tests`` directory, so they read the bundled data by the paths the README shows.
+An example is a fenced code block right after a marker line ``<!-- example: NAME -->``, in
+README.md or a docs/*.md page (names are unique across all of them); NAME is one of ``c`` and
+``cloop`` (C programs; cloop is in docs/loops.md), ``cpp``, ``cmake`` (a CMakeLists.txt building
+the ``c`` example as ``main.c``), ``python`` and ``pyloop`` (docs/loops.md). Examples run in a
+work directory holding a link ``tests`` to the repository's ``tests`` directory, so they read the
+bundled data by the paths the pages show.
 
     python3 readme_examples.py --build-dir BUILD --work-dir DIR NAME...   # c, cpp, cmake
 
 Each compiled example's output is checked (check_output: the figures it prints and, for c and
 cmake, the T-mesh file it writes, read back), not only its exit code. The Python example is run
-by tests/python/test_readme.py (it needs the virtual environment).
+by tests/python/test_readme.py (it needs the virtual environment), which also runs
+broken_links(): every relative link and image of these pages must name an existing file, and
+every #anchor a heading of its page.
 """
 
 import argparse
@@ -22,14 +27,28 @@ from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[2]
 README = ROOT / "README.md"
+DOCS = ROOT / "docs"
 MARKER = re.compile(r"^<!-- example: ([a-z+]+) -->\s*$")
 FENCE = re.compile(r"^```")
 
 
-def examples(text=None):
-    """{name: code} of the README's marked blocks."""
+def pages():
+    """The pages whose examples and links are checked: README.md, then docs/*.md."""
+    return [README, *sorted(DOCS.glob("*.md"))]
+
+
+def examples(text=None, source="README.md"):
+    """{name: code} of the marked blocks of `text`, or of README.md and every docs/ page when
+    `text` is None (a name given twice, in one page or in two, is an error)."""
     if text is None:
-        text = README.read_text(encoding="utf-8")
+        found = {}
+        for page in pages():
+            name = page.relative_to(ROOT).as_posix()
+            for key, code in examples(page.read_text(encoding="utf-8"), name).items():
+                if key in found:
+                    raise ValueError(f"{name}: an example named `{key}` is already in another page")
+                found[key] = code
+        return found
     lines = text.splitlines()
     found = {}
     for i, line in enumerate(lines):
@@ -38,15 +57,65 @@ def examples(text=None):
             continue
         start = i + 1
         if start >= len(lines) or not FENCE.match(lines[start]):
-            raise ValueError(f"README.md line {i + 1}: marker `{match.group(1)}` not followed by a ``` block")
+            raise ValueError(f"{source} line {i + 1}: marker `{match.group(1)}` not followed by a ``` block")
         end = next((k for k in range(start + 1, len(lines)) if FENCE.match(lines[k])), None)
         if end is None:
-            raise ValueError(f"README.md line {start + 1}: unterminated ``` block")
+            raise ValueError(f"{source} line {start + 1}: unterminated ``` block")
         name = match.group(1)
         if name in found:
-            raise ValueError(f"README.md: two examples named `{name}`")
+            raise ValueError(f"{source}: two examples named `{name}`")
         found[name] = "\n".join(lines[start + 1 : end]) + "\n"
     return found
+
+
+LINK = re.compile(r"!?\[[^\]]*\]\(([^()\s]+)\)")
+CODE_SPAN = re.compile(r"`[^`]*`")
+
+
+def prose_lines(text):
+    """(line number, line) of `text` outside fenced code blocks, with inline code removed."""
+    inside = False
+    for number, line in enumerate(text.splitlines(), 1):
+        if FENCE.match(line):
+            inside = not inside
+        elif not inside:
+            yield number, CODE_SPAN.sub("", line)
+
+
+def anchors(text):
+    """The #anchors of a page's headings, as GitHub makes them (lower case, punctuation dropped,
+    spaces to hyphens, -1, -2, ... for repeats)."""
+    seen = {}
+    for _, line in prose_lines(text.replace("`", "")):
+        heading = re.match(r"^#{1,6}\s+(.*?)\s*#*\s*$", line)
+        if heading:
+            slug = re.sub(r"[^\w\- ]", "", heading.group(1).lower()).replace(" ", "-")
+            count = seen.get(slug, 0)
+            seen[slug] = count + 1
+            yield slug if count == 0 else f"{slug}-{count}"
+
+
+def broken_links(files=None):
+    """["page:line: target (why)", ...] for every relative link or image of the pages (README.md
+    and docs/*.md unless `files` is given) that names no existing file, or an #anchor that is no
+    heading of its target page."""
+    broken = []
+    for page in files or pages():
+        text = page.read_text(encoding="utf-8")
+        for number, line in prose_lines(text):
+            for target in LINK.findall(line):
+                if re.match(r"^[a-z][a-z0-9+.-]*:", target):  # http:, https:, mailto:
+                    continue
+                path, _, anchor = target.partition("#")
+                resolved = (page.parent / path).resolve() if path else page
+                name = page.relative_to(ROOT).as_posix() if page.is_relative_to(ROOT) else str(page)
+                where = f"{name}:{number}: {target}"
+                if not resolved.exists():
+                    broken.append(f"{where} (no such file)")
+                elif anchor and resolved.suffix == ".md" and \
+                        anchor not in set(anchors(resolved.read_text(encoding="utf-8"))):
+                    broken.append(f"{where} (no such heading)")
+    return broken
 
 
 def work_directory(path):
@@ -147,7 +216,7 @@ def main():
     found = examples()
     for name in args.names:
         if name not in found or (name == "cmake" and "c" not in found):
-            raise SystemExit(f"readme_examples: README.md has no `<!-- example: {name} -->` block")
+            raise SystemExit(f"readme_examples: README.md and docs/*.md have no `<!-- example: {name} -->` block")
         work = work_directory(Path(args.work_dir) / name)
         if name == "cmake":
             stdout = run_cmake(found["cmake"], found["c"], args, work)
