@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
-# Builds everything and runs all tests: the Rust tests (cargo test --release), then the C/C++
-# tests and example runs (ctest), then the Python bindings' tests (pytest, in the virtual
-# environment build/venv). Runs every suite, and exits non-zero if any test failed.
+# Builds everything and runs all tests: the lints (cargo fmt --check, cargo clippy, cargo doc,
+# warnings as errors), the Rust tests (cargo test --release), then the C/C++ tests and example
+# runs (ctest), then the Python bindings' tests (pytest, in the virtual environment build/venv).
+# Runs every suite, and exits non-zero if any of them failed.
 set -euo pipefail
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
 
@@ -14,6 +15,44 @@ bash scripts/build.sh
 export PATH="$PATH:${CARGO_HOME:-$HOME/.cargo}/bin"  # where rustup puts cargo
 
 status=0
+
+# A cargo subcommand of a rustup component (rustfmt for `cargo fmt`, clippy for `cargo clippy`):
+# added through rustup when it is missing, else an error naming what to install.
+component() {
+  local name=$1 subcommand=$2
+  cargo "$subcommand" --version >/dev/null 2>&1 && return 0
+  if command -v rustup >/dev/null 2>&1; then
+    echo "+ rustup component add $name"
+    rustup component add "$name" && cargo "$subcommand" --version >/dev/null 2>&1 && return 0
+  fi
+  echo "test.sh: cargo $subcommand is not available: install the $name component" \
+    "(rustup component add $name)" >&2
+  return 1
+}
+
+# Lints, before the tests, each failing on any warning: the formatting, clippy on every target
+# (release profile, as the tests), and the API docs (broken or private links). The docs are
+# built in the release profile too, so that they reuse the dependencies' metadata clippy made.
+lints() {
+  local failed=0
+  if component rustfmt fmt; then
+    echo "+ cargo fmt --check"
+    cargo fmt --check || failed=1
+  else
+    failed=1
+  fi
+  if component clippy clippy; then
+    echo "+ cargo clippy --release --all-targets -- -D warnings"
+    cargo clippy --release --all-targets -- -D warnings || failed=1
+  else
+    failed=1
+  fi
+  echo "+ RUSTDOCFLAGS=\"-D warnings\" cargo doc --release --no-deps"
+  RUSTDOCFLAGS="-D warnings" cargo doc --release --no-deps || failed=1
+  return "$failed"
+}
+lints || { status=1; echo "test.sh: lints failed" >&2; }
+
 echo "+ cargo test --release --no-fail-fast"
 cargo test --release --no-fail-fast || { status=1; echo "test.sh: cargo test failed" >&2; }
 echo "+ ctest --test-dir build --output-on-failure"

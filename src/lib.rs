@@ -8,7 +8,7 @@ pub mod boundary;
 pub mod capi;
 pub mod domain;
 pub mod error;
-pub mod homesh;
+pub mod fe_mesh;
 pub mod io;
 pub mod optimize;
 pub mod partition;
@@ -18,7 +18,7 @@ pub mod threads;
 pub mod tmesh;
 
 pub use error::{Error, ErrorKind, Result};
-pub use homesh::{
+pub use fe_mesh::{
     CellType, Mesh, Method, NodeOrder, Placement, RelocateOptions, RelocateReport, Stage,
 };
 pub use optimize::TargetKind;

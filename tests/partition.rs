@@ -4,7 +4,7 @@
 
 use std::sync::{Arc, Barrier, Mutex};
 
-use igaparam::homesh::{CellType, Mesh, Method, RelocateOptions};
+use igaparam::fe_mesh::{CellType, Mesh, Method, RelocateOptions};
 use igaparam::partition::{Exchange, PartInput, Partition, Ranks};
 use igaparam::Result;
 

@@ -471,7 +471,7 @@ fn check_cell_certification<const D: usize>(seed: u64, jitter: f64) -> (usize, u
                     jac[i][b] = (-3.0 * f0[i] + 4.0 * f1[i] - f2[i]) / (2.0 * step);
                 }
             }
-            let det = igaparam::optimize::small::det(&jac);
+            let det = igaparam::optimize::small_matrix::det(&jac);
             let value = poly.eval(t);
             assert!(
                 (value - det).abs() <= 1e-7 * (1.0 + det.abs()),

@@ -315,7 +315,7 @@ impl BSplineCurve {
     /// Multiplies the control points' coordinates by `factors` axis by axis, as
     /// [`BSplineSurface::scale`] does: the curve becomes exactly its image.
     pub fn scale(&mut self, factors: Vec3) -> Result<()> {
-        super::scale_points(&mut self.coefs, self.dim, factors)
+        super::scale::scale_points(&mut self.coefs, self.dim, factors)
     }
 
     /// The weights, if the curve is rational.
@@ -542,7 +542,7 @@ impl BSplineSurface {
     /// weighted average of its control points). An error if a factor is not finite and
     /// positive; then nothing changes.
     pub fn scale(&mut self, factors: Vec3) -> Result<()> {
-        super::scale_points(&mut self.coefs, self.dim, factors)
+        super::scale::scale_points(&mut self.coefs, self.dim, factors)
     }
 }
 

@@ -7,7 +7,7 @@ use super::crossing::first_crossing;
 use super::curve::{distance, Curve2, CurveKind, Point2};
 use super::gismo_xml::read_gismo_curves;
 use crate::error::{Error, ErrorKind, Result};
-use crate::optimize::small::bounding_box;
+use crate::optimize::small_matrix::bounding_box;
 
 /// Refuses a loop that crosses or touches itself: the polygon of the chained curves (a
 /// polyline's own vertices, a spline sampled at 16 points per control point and at least 256)
@@ -116,6 +116,144 @@ fn fmt_point(p: Point2) -> String {
     format!("({:.6}, {:.6})", p[0], p[1])
 }
 
+/// Checks that there are four curves and that the options are finite, the tolerance
+/// non-negative.
+fn check_loop_input(curves: &[Curve2], options: &LoopOptions) -> Result<()> {
+    if curves.len() != 4 {
+        return Err(Error::invalid(format!(
+            "a boundary loop needs exactly 4 curves, got {}",
+            curves.len()
+        )));
+    }
+    if !(options.rel_tol.is_finite()
+        && options.rel_tol >= 0.0
+        && options.max_corner_angle_deg.is_finite())
+    {
+        return Err(Error::new(
+            ErrorKind::InvalidArgument,
+            "loop options must be finite and the tolerance non-negative",
+        ));
+    }
+    Ok(())
+}
+
+/// The diagonal of the bounding box of the curves' samples (the scale of the tolerance); fails
+/// on a non-finite sample.
+fn sampled_diagonal(curves: &[Curve2]) -> Result<f64> {
+    let samples: Vec<Point2> = curves.iter().flat_map(|c| c.sample(64)).collect();
+    if samples
+        .iter()
+        .any(|p| !(p[0].is_finite() && p[1].is_finite()))
+    {
+        return Err(Error::new(
+            ErrorKind::NotFinite,
+            "a boundary curve evaluates to a non-finite point",
+        ));
+    }
+    let (lo, hi) = bounding_box(samples.iter().copied());
+    Ok(distance(lo, hi))
+}
+
+/// The curves chained head to tail (each with its index as given), starting with curve 0 as
+/// given, each next one the curve with the nearest end, reversed where needed; fails where an
+/// end meets no curve within `tol` or the chain does not close.
+fn chain_curves(curves: Vec<Curve2>, tol: f64) -> Result<Vec<(usize, Curve2)>> {
+    let mut slots: Vec<Option<Curve2>> = curves.into_iter().map(Some).collect();
+    let mut chain: Vec<(usize, Curve2)> = vec![(0, slots[0].take().unwrap())];
+    while chain.len() < 4 {
+        let (last_index, last) = chain.last().unwrap();
+        let end = last.end();
+        let mut best: Option<(f64, usize, bool)> = None;
+        for (j, slot) in slots.iter().enumerate() {
+            if let Some(c) = slot {
+                for (d, rev) in [
+                    (distance(c.start(), end), false),
+                    (distance(c.end(), end), true),
+                ] {
+                    if best.is_none_or(|b| d < b.0) {
+                        best = Some((d, j, rev));
+                    }
+                }
+            }
+        }
+        let (d, j, rev) = best.unwrap();
+        if d > tol {
+            return Err(Error::invalid(format!(
+                "boundary loop is open: the end {} of curve {last_index} meets no other curve \
+                 (nearest end point at distance {d:.3e}, tolerance {tol:.3e})",
+                fmt_point(end)
+            )));
+        }
+        let c = slots[j].take().unwrap();
+        chain.push((j, if rev { c.reversed() } else { c }));
+    }
+    let gap = distance(chain[3].1.end(), chain[0].1.start());
+    if gap > tol {
+        return Err(Error::invalid(format!(
+            "boundary loop is not closed: curve {} ends at {} but curve {} starts at {} \
+             (gap {gap:.3e}, tolerance {tol:.3e})",
+            chain[3].0,
+            fmt_point(chain[3].1.end()),
+            chain[0].0,
+            fmt_point(chain[0].1.start())
+        )));
+    }
+    Ok(chain)
+}
+
+/// The closed chain turned counter-clockwise (by the signed area of the sampled loop) and
+/// rotated so that the first given curve comes last: `[v=0, u=1, v=1 backwards, u=0
+/// backwards]`. Fails on a loop of no area (relative to the diagonal `diag`).
+fn counter_clockwise(mut chain: Vec<(usize, Curve2)>, diag: f64) -> Result<Vec<(usize, Curve2)>> {
+    let pts: Vec<Point2> = chain.iter().flat_map(|(_, c)| c.sample(256)).collect();
+    let mut area = 0.0;
+    for i in 0..pts.len() {
+        let (a, b) = (pts[i], pts[(i + 1) % pts.len()]);
+        area += a[0] * b[1] - a[1] * b[0];
+    }
+    area *= 0.5;
+    if area.abs() <= 1e-12 * diag * diag {
+        return Err(Error::invalid(
+            "boundary loop encloses no area (degenerate or self-overlapping curves)",
+        ));
+    }
+    if area < 0.0 {
+        chain = chain
+            .into_iter()
+            .rev()
+            .map(|(i, c)| (i, c.reversed()))
+            .collect();
+    }
+    let k = chain.iter().position(|(i, _)| *i == 0).unwrap();
+    chain.rotate_left((k + 1) % 4);
+    Ok(chain)
+}
+
+/// The interior angle in degrees at each corner k of the counter-clockwise chain (where
+/// `chain[k-1]` ends and `chain[k]` starts); fails at a corner that is not convex or reaches
+/// `max_angle`.
+fn corner_angles(chain: &[(usize, Curve2)], max_angle: f64) -> Result<[f64; 4]> {
+    let mut corner_angles = [0.0; 4];
+    for k in 0..4 {
+        let din = chain[(k + 3) % 4].1.end_direction(true);
+        let dout = chain[k].1.end_direction(false);
+        let cross = din[0] * dout[1] - din[1] * dout[0];
+        let dotp = din[0] * dout[0] + din[1] * dout[1];
+        let interior = 180.0 - cross.atan2(dotp).to_degrees();
+        corner_angles[k] = interior;
+        if interior >= max_angle || interior <= 0.0 {
+            let names = ["(0,0)", "(1,0)", "(1,1)", "(0,1)"];
+            return Err(Error::invalid(format!(
+                "corner {} of the boundary loop, at {}, has an interior angle of {interior:.2}°; \
+                 each corner must be convex (interior angle between 0° and {max_angle}°)",
+                names[k],
+                fmt_point(chain[k].1.start()),
+            )));
+        }
+    }
+    Ok(corner_angles)
+}
+
 impl BoundaryLoop2 {
     /// [`from_curves_with`](Self::from_curves_with) with default options.
     pub fn from_curves(curves: Vec<Curve2>) -> Result<Self> {
@@ -131,122 +269,12 @@ impl BoundaryLoop2 {
     /// position and angle), a loop that crosses or touches itself (naming the curves and the
     /// point). Non-finite coordinates are refused when the curves are built (`NotFinite`).
     pub fn from_curves_with(curves: Vec<Curve2>, options: LoopOptions) -> Result<Self> {
-        if curves.len() != 4 {
-            return Err(Error::invalid(format!(
-                "a boundary loop needs exactly 4 curves, got {}",
-                curves.len()
-            )));
-        }
-        if !(options.rel_tol.is_finite()
-            && options.rel_tol >= 0.0
-            && options.max_corner_angle_deg.is_finite())
-        {
-            return Err(Error::new(
-                ErrorKind::InvalidArgument,
-                "loop options must be finite and the tolerance non-negative",
-            ));
-        }
-        // Bounding box of all samples, for the tolerance.
-        let samples: Vec<Point2> = curves.iter().flat_map(|c| c.sample(64)).collect();
-        if samples
-            .iter()
-            .any(|p| !(p[0].is_finite() && p[1].is_finite()))
-        {
-            return Err(Error::new(
-                ErrorKind::NotFinite,
-                "a boundary curve evaluates to a non-finite point",
-            ));
-        }
-        let (lo, hi) = bounding_box(samples.iter().copied());
-        let diag = distance(lo, hi);
+        check_loop_input(&curves, &options)?;
+        let diag = sampled_diagonal(&curves)?;
         let tol = options.rel_tol * diag;
-
-        // Chain the curves head to tail, starting with curve 0 as given.
-        let mut slots: Vec<Option<Curve2>> = curves.into_iter().map(Some).collect();
-        let mut chain: Vec<(usize, Curve2)> = vec![(0, slots[0].take().unwrap())];
-        while chain.len() < 4 {
-            let (last_index, last) = chain.last().unwrap();
-            let end = last.end();
-            let mut best: Option<(f64, usize, bool)> = None;
-            for (j, slot) in slots.iter().enumerate() {
-                if let Some(c) = slot {
-                    for (d, rev) in [
-                        (distance(c.start(), end), false),
-                        (distance(c.end(), end), true),
-                    ] {
-                        if best.is_none_or(|b| d < b.0) {
-                            best = Some((d, j, rev));
-                        }
-                    }
-                }
-            }
-            let (d, j, rev) = best.unwrap();
-            if d > tol {
-                return Err(Error::invalid(format!(
-                    "boundary loop is open: the end {} of curve {last_index} meets no other curve \
-                     (nearest end point at distance {d:.3e}, tolerance {tol:.3e})",
-                    fmt_point(end)
-                )));
-            }
-            let c = slots[j].take().unwrap();
-            chain.push((j, if rev { c.reversed() } else { c }));
-        }
-        let gap = distance(chain[3].1.end(), chain[0].1.start());
-        if gap > tol {
-            return Err(Error::invalid(format!(
-                "boundary loop is not closed: curve {} ends at {} but curve {} starts at {} \
-                 (gap {gap:.3e}, tolerance {tol:.3e})",
-                chain[3].0,
-                fmt_point(chain[3].1.end()),
-                chain[0].0,
-                fmt_point(chain[0].1.start())
-            )));
-        }
-
-        // Orientation from the signed area of the sampled loop.
-        let pts: Vec<Point2> = chain.iter().flat_map(|(_, c)| c.sample(256)).collect();
-        let mut area = 0.0;
-        for i in 0..pts.len() {
-            let (a, b) = (pts[i], pts[(i + 1) % pts.len()]);
-            area += a[0] * b[1] - a[1] * b[0];
-        }
-        area *= 0.5;
-        if area.abs() <= 1e-12 * diag * diag {
-            return Err(Error::invalid(
-                "boundary loop encloses no area (degenerate or self-overlapping curves)",
-            ));
-        }
-        if area < 0.0 {
-            chain = chain
-                .into_iter()
-                .rev()
-                .map(|(i, c)| (i, c.reversed()))
-                .collect();
-        }
-        // Put the first given curve last: chain = [v=0, u=1, v=1 backwards, u=0 backwards].
-        let k = chain.iter().position(|(i, _)| *i == 0).unwrap();
-        chain.rotate_left((k + 1) % 4);
-
-        // Corner k is where chain[k-1] ends and chain[k] starts.
-        let mut corner_angles = [0.0; 4];
-        for k in 0..4 {
-            let din = chain[(k + 3) % 4].1.end_direction(true);
-            let dout = chain[k].1.end_direction(false);
-            let cross = din[0] * dout[1] - din[1] * dout[0];
-            let dotp = din[0] * dout[0] + din[1] * dout[1];
-            let interior = 180.0 - cross.atan2(dotp).to_degrees();
-            corner_angles[k] = interior;
-            if interior >= options.max_corner_angle_deg || interior <= 0.0 {
-                let names = ["(0,0)", "(1,0)", "(1,1)", "(0,1)"];
-                return Err(Error::invalid(format!(
-                    "corner {} of the boundary loop, at {}, has an interior angle of {interior:.2}°; \
-                     each corner must be convex (interior angle between 0° and {}°)",
-                    names[k],
-                    fmt_point(chain[k].1.start()),
-                    options.max_corner_angle_deg
-                )));
-            }
-        }
+        let chain = chain_curves(curves, tol)?;
+        let chain = counter_clockwise(chain, diag)?;
+        let corner_angles = corner_angles(&chain, options.max_corner_angle_deg)?;
         check_simple(&chain)?;
         let mut it = chain.into_iter().map(|(_, c)| c);
         let v0 = it.next().unwrap();

@@ -8,6 +8,7 @@ pub mod curve;
 mod face;
 pub mod gismo_xml;
 pub mod loop2d;
+mod scale;
 mod solid;
 pub mod trimesh;
 
@@ -19,30 +20,3 @@ pub use gismo_xml::{
 pub use loop2d::{BoundaryLoop2, Coastline, LoopOptions, Side};
 pub use solid::SolidBoundary;
 pub use trimesh::{floater_parameterize, signed_areas, CubeFaces, TriMesh, CUBE_FACE_NAMES};
-
-/// Checks per-axis scale factors: each must be finite and positive (an `InvalidArgument` error
-/// naming the first bad one otherwise).
-pub(crate) fn check_scale_factors(factors: Vec3) -> crate::error::Result<()> {
-    match factors.iter().find(|f| !(f.is_finite() && **f > 0.0)) {
-        Some(f) => Err(crate::error::Error::invalid(format!(
-            "scale factors must be finite and positive, got {f} in {factors:?}"
-        ))),
-        None => Ok(()),
-    }
-}
-
-/// Multiplies points stored one after another (`dim` coordinates each) by `factors`, axis by
-/// axis, after [`check_scale_factors`]; nothing changes on an error.
-pub(crate) fn scale_points(
-    points: &mut [f64],
-    dim: usize,
-    factors: Vec3,
-) -> crate::error::Result<()> {
-    check_scale_factors(factors)?;
-    for p in points.chunks_exact_mut(dim) {
-        for (x, f) in p.iter_mut().zip(factors) {
-            *x *= f;
-        }
-    }
-    Ok(())
-}

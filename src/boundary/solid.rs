@@ -16,7 +16,7 @@ use super::face::{Face, MeshFace, Orientation, SplineFace};
 use super::gismo_xml::read_gismo_surfaces;
 use super::trimesh::{signed_areas, CubeFaces, CUBE_FACE_NAMES};
 use crate::error::{Error, ErrorKind, Result};
-use crate::optimize::small::bounding_box;
+use crate::optimize::small_matrix::bounding_box;
 
 /// The boundary of a solid as a map from the boundary of the unit cube \[0,1\]^3: six faces,
 /// each mapping its cube face onto one side of the solid, agreeing on the cube's edges.
@@ -60,6 +60,170 @@ const EDGE_SAMPLES: usize = 21;
 
 /// The relative tolerance (to the bounding-box diagonal) of the constructors' checks.
 const REL_TOL: f64 = 1e-9;
+
+/// Checks that there are six surfaces, all in 3D.
+fn check_surfaces(surfaces: &[BSplineSurface]) -> Result<()> {
+    if surfaces.len() != 6 {
+        return Err(Error::invalid(format!(
+            "a solid boundary needs 6 surfaces, got {}",
+            surfaces.len()
+        )));
+    }
+    for (i, s) in surfaces.iter().enumerate() {
+        if s.dim() != 3 {
+            return Err(Error::invalid(format!(
+                "surface {i} is {}D, a solid boundary needs 3D surfaces",
+                s.dim()
+            )));
+        }
+    }
+    Ok(())
+}
+
+/// The surfaces' corner points (s, t) ∈ {0,1}^2 clustered within `tol`: the clusters'
+/// representatives, and per surface the cluster of its corner `s + 2t`. Fails unless there are
+/// the 8 of a cube.
+fn corner_clusters(surfaces: &[BSplineSurface], tol: f64) -> Result<(Vec<Vec3>, [[usize; 4]; 6])> {
+    let unit = |s: &BSplineSurface, a: f64, b: f64| {
+        SplineFace {
+            surface: s.clone(),
+            orientation: Orientation {
+                swap: false,
+                flip_s: false,
+                flip_t: false,
+            },
+        }
+        .eval(a, b)
+    };
+    let mut reps: Vec<Vec3> = Vec::new();
+    let mut cid = [[0usize; 4]; 6];
+    for (f, s) in surfaces.iter().enumerate() {
+        for c in 0..4 {
+            let p = unit(s, (c & 1) as f64, (c >> 1) as f64);
+            if p.iter().any(|x| !x.is_finite()) {
+                return Err(Error::new(
+                    ErrorKind::NotFinite,
+                    format!("surface {f}: corner {c} evaluates to {p:?}"),
+                ));
+            }
+            cid[f][c] = match reps.iter().position(|&q| dist3(p, q) <= tol) {
+                Some(k) => k,
+                None => {
+                    reps.push(p);
+                    reps.len() - 1
+                }
+            };
+        }
+    }
+    if reps.len() != 8 {
+        return Err(Error::mesh(format!(
+            "the surfaces' corners form {} distinct points, a cube has 8: the surfaces do not share edges",
+            reps.len()
+        )));
+    }
+    Ok((reps, cid))
+}
+
+/// The surface opposite each one (the first that shares no corner with it), from the corner
+/// clusters `cid`; fails where two surfaces share other than 0 or 2 corners.
+fn opposite_surfaces(cid: &[[usize; 4]; 6]) -> Result<[usize; 6]> {
+    let shared = |f: usize, g: usize| cid[f].iter().filter(|c| cid[g].contains(c)).count();
+    let mut opposite = [usize::MAX; 6];
+    for f in 0..6 {
+        for g in 0..6 {
+            if g == f {
+                continue;
+            }
+            match shared(f, g) {
+                0 if opposite[f] == usize::MAX => opposite[f] = g,
+                2 => {}
+                n => {
+                    return Err(Error::mesh(format!(
+                        "surfaces {f} and {g} share {n} corners; faces of a cube share 2 (adjacent) or 0 (opposite, one each)"
+                    )))
+                }
+            }
+        }
+        if opposite[f] == usize::MAX {
+            return Err(Error::mesh(format!(
+                "surface {f} touches all the others: the surfaces do not bound a cube"
+            )));
+        }
+    }
+    Ok(opposite)
+}
+
+/// The surface of each cube face (`order[face] = surface`): G+Smo's side order when the
+/// surfaces are in it, else the first free surface and its opposite per axis.
+fn face_order(opposite: &[usize; 6]) -> [usize; 6] {
+    if opposite[0] == 1 && opposite[2] == 3 && opposite[4] == 5 {
+        return [0, 1, 2, 3, 4, 5];
+    }
+    let mut order = [0usize; 6];
+    let mut used = [false; 6];
+    for axis in 0..3 {
+        let f = (0..6).find(|&f| !used[f]).expect("a free surface");
+        order[2 * axis] = f;
+        order[2 * axis + 1] = opposite[f];
+        used[f] = true;
+        used[opposite[f]] = true;
+    }
+    order
+}
+
+/// The corner cluster of each cube corner (i, j, k): the one shared by the faces x = i, y = j,
+/// z = k.
+fn cube_corner_clusters(order: &[usize; 6], cid: &[[usize; 4]; 6]) -> Result<[usize; 8]> {
+    let mut corner_cluster = [0usize; 8];
+    for c in 0..8 {
+        let fs = [order[c & 1], order[2 + ((c >> 1) & 1)], order[4 + (c >> 2)]];
+        let common: Vec<usize> = (0..8)
+            .filter(|k| fs.iter().all(|&f| cid[f].contains(k)))
+            .collect();
+        if common.len() != 1 {
+            return Err(Error::mesh(format!(
+                "surfaces {fs:?} share {} corners, expected exactly one",
+                common.len()
+            )));
+        }
+        corner_cluster[c] = common[0];
+    }
+    Ok(corner_cluster)
+}
+
+/// The faces x = 0, ..., z = 1: each cube face's surface, oriented so that its corners land on
+/// the cube face's corners.
+fn oriented_faces(
+    surfaces: &[BSplineSurface],
+    order: &[usize; 6],
+    cid: &[[usize; 4]; 6],
+    corner_cluster: &[usize; 8],
+) -> Result<Vec<Face>> {
+    let mut faces: Vec<Face> = Vec::with_capacity(6);
+    for face in 0..6 {
+        let sidx = order[face];
+        let orientation = Orientation::all().find(|o| {
+            (0..4).all(|c| {
+                let (a, b) = ((c & 1) as f64, (c >> 1) as f64);
+                let p = cube_point(face, a, b);
+                let cube = p[0] as usize + 2 * p[1] as usize + 4 * p[2] as usize;
+                let (s, t) = o.apply(a, b);
+                cid[sidx][s as usize + 2 * t as usize] == corner_cluster[cube]
+            })
+        });
+        let orientation = orientation.ok_or_else(|| {
+            Error::mesh(format!(
+                "surface {sidx}: its corners are not those of cube face {}",
+                CUBE_FACE_NAMES[face]
+            ))
+        })?;
+        faces.push(Face::Spline(SplineFace {
+            surface: surfaces[sidx].clone(),
+            orientation,
+        }));
+    }
+    Ok(faces)
+}
 
 impl SolidBoundary {
     /// Reads a G+Smo XML B-rep of exactly six 3D `TensorBSpline2` surfaces bounding a solid.
@@ -111,7 +275,7 @@ impl SolidBoundary {
     pub fn from_file_scaled(path: impl AsRef<Path>, scale: Option<Vec3>) -> Result<Self> {
         let path = path.as_ref();
         if let Some(factors) = scale {
-            super::check_scale_factors(factors)?;
+            super::scale::check_scale_factors(factors)?;
         }
         let is_xml = path
             .extension()
@@ -131,140 +295,18 @@ impl SolidBoundary {
 
     /// Builds the map from six B-spline surfaces, as [`SolidBoundary::from_gismo_file`] does.
     pub fn from_surfaces(surfaces: Vec<BSplineSurface>) -> Result<Self> {
-        if surfaces.len() != 6 {
-            return Err(Error::invalid(format!(
-                "a solid boundary needs 6 surfaces, got {}",
-                surfaces.len()
-            )));
-        }
-        for (i, s) in surfaces.iter().enumerate() {
-            if s.dim() != 3 {
-                return Err(Error::invalid(format!(
-                    "surface {i} is {}D, a solid boundary needs 3D surfaces",
-                    s.dim()
-                )));
-            }
-        }
+        check_surfaces(&surfaces)?;
         let cps = surfaces.iter().flat_map(|s| {
             let (nu, nv) = s.num_control_points();
             (0..nv).flat_map(move |j| (0..nu).map(move |i| s.control_point(i, j)))
         });
         let bbox = bounding_box(cps);
         let tol = REL_TOL * dist3(bbox.0, bbox.1);
-        // Corner points (s, t) ∈ {0,1}^2 at index s + 2t, and their clusters.
-        let unit = |s: &BSplineSurface, a: f64, b: f64| {
-            SplineFace {
-                surface: s.clone(),
-                orientation: Orientation {
-                    swap: false,
-                    flip_s: false,
-                    flip_t: false,
-                },
-            }
-            .eval(a, b)
-        };
-        let mut reps: Vec<Vec3> = Vec::new();
-        let mut cid = [[0usize; 4]; 6];
-        for (f, s) in surfaces.iter().enumerate() {
-            for c in 0..4 {
-                let p = unit(s, (c & 1) as f64, (c >> 1) as f64);
-                if p.iter().any(|x| !x.is_finite()) {
-                    return Err(Error::new(
-                        ErrorKind::NotFinite,
-                        format!("surface {f}: corner {c} evaluates to {p:?}"),
-                    ));
-                }
-                cid[f][c] = match reps.iter().position(|&q| dist3(p, q) <= tol) {
-                    Some(k) => k,
-                    None => {
-                        reps.push(p);
-                        reps.len() - 1
-                    }
-                };
-            }
-        }
-        if reps.len() != 8 {
-            return Err(Error::mesh(format!(
-                "the surfaces' corners form {} distinct points, a cube has 8: the surfaces do not share edges",
-                reps.len()
-            )));
-        }
-        let shared = |f: usize, g: usize| cid[f].iter().filter(|c| cid[g].contains(c)).count();
-        let mut opposite = [usize::MAX; 6];
-        for f in 0..6 {
-            for g in 0..6 {
-                if g == f {
-                    continue;
-                }
-                match shared(f, g) {
-                    0 if opposite[f] == usize::MAX => opposite[f] = g,
-                    2 => {}
-                    n => {
-                        return Err(Error::mesh(format!(
-                            "surfaces {f} and {g} share {n} corners; faces of a cube share 2 (adjacent) or 0 (opposite, one each)"
-                        )))
-                    }
-                }
-            }
-            if opposite[f] == usize::MAX {
-                return Err(Error::mesh(format!(
-                    "surface {f} touches all the others: the surfaces do not bound a cube"
-                )));
-            }
-        }
-        // order[face] = surface.
-        let order: [usize; 6] = if opposite[0] == 1 && opposite[2] == 3 && opposite[4] == 5 {
-            [0, 1, 2, 3, 4, 5]
-        } else {
-            let mut order = [0usize; 6];
-            let mut used = [false; 6];
-            for axis in 0..3 {
-                let f = (0..6).find(|&f| !used[f]).expect("a free surface");
-                order[2 * axis] = f;
-                order[2 * axis + 1] = opposite[f];
-                used[f] = true;
-                used[opposite[f]] = true;
-            }
-            order
-        };
-        // Cube corner (i, j, k) = the cluster shared by the faces x = i, y = j, z = k.
-        let mut corner_cluster = [0usize; 8];
-        for c in 0..8 {
-            let fs = [order[c & 1], order[2 + ((c >> 1) & 1)], order[4 + (c >> 2)]];
-            let common: Vec<usize> = (0..8)
-                .filter(|k| fs.iter().all(|&f| cid[f].contains(k)))
-                .collect();
-            if common.len() != 1 {
-                return Err(Error::mesh(format!(
-                    "surfaces {fs:?} share {} corners, expected exactly one",
-                    common.len()
-                )));
-            }
-            corner_cluster[c] = common[0];
-        }
-        let mut faces: Vec<Face> = Vec::with_capacity(6);
-        for face in 0..6 {
-            let sidx = order[face];
-            let orientation = Orientation::all().find(|o| {
-                (0..4).all(|c| {
-                    let (a, b) = ((c & 1) as f64, (c >> 1) as f64);
-                    let p = cube_point(face, a, b);
-                    let cube = p[0] as usize + 2 * p[1] as usize + 4 * p[2] as usize;
-                    let (s, t) = o.apply(a, b);
-                    cid[sidx][s as usize + 2 * t as usize] == corner_cluster[cube]
-                })
-            });
-            let orientation = orientation.ok_or_else(|| {
-                Error::mesh(format!(
-                    "surface {sidx}: its corners are not those of cube face {}",
-                    CUBE_FACE_NAMES[face]
-                ))
-            })?;
-            faces.push(Face::Spline(SplineFace {
-                surface: surfaces[sidx].clone(),
-                orientation,
-            }));
-        }
+        let (reps, cid) = corner_clusters(&surfaces, tol)?;
+        let opposite = opposite_surfaces(&cid)?;
+        let order = face_order(&opposite);
+        let corner_cluster = cube_corner_clusters(&order, &cid)?;
+        let faces = oriented_faces(&surfaces, &order, &cid, &corner_cluster)?;
         let corners = corner_cluster.map(|k| reps[k]);
         Self::finish(faces, corners, bbox)
     }

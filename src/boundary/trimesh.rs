@@ -204,6 +204,29 @@ pub(crate) const SLIVER: f64 = 1e-7;
 /// M-matrix) is solved by a sparse LU. Returns the (u, v) of every vertex.
 pub fn floater_parameterize(mesh: &TriMesh, corners: [usize; 4]) -> Result<Vec<Point2>> {
     let lp = mesh.boundary_loop()?;
+    let cpos = corner_positions(&lp, corners)?;
+    let (mut uv, fixed) = boundary_by_chord_length(mesh, &lp, cpos)?;
+    let weights = mean_value_weights(mesh, &fixed)?;
+    solve_mean_value(&weights, &fixed, &mut uv)?;
+    // Floater's theorem makes the map one-to-one; where the triangles are so thin that their
+    // angles round to 0 or π, the computed one can fold: say so rather than return it.
+    let folded = signed_areas(mesh, &uv)
+        .iter()
+        .filter(|&&a| a.is_nan() || a <= 0.0)
+        .count();
+    if folded > 0 {
+        return Err(Error::mesh(format!(
+            "the mean-value map folds {folded} of {} triangles (degenerate triangles: angles \
+             that round to 0 or π)",
+            mesh.triangles.len()
+        )));
+    }
+    Ok(uv)
+}
+
+/// The places of the `corners` along the boundary loop `lp`; fails unless they are distinct
+/// and in that cyclic order.
+fn corner_positions(lp: &[usize], corners: [usize; 4]) -> Result<[usize; 4]> {
     let pos: HashMap<usize, usize> = lp.iter().enumerate().map(|(k, &v)| (v, k)).collect();
     let mut cpos = [0usize; 4];
     for k in 0..4 {
@@ -221,6 +244,17 @@ pub fn floater_parameterize(mesh: &TriMesh, corners: [usize; 4]) -> Result<Vec<P
             "corners {corners:?} are not distinct and in order along the boundary loop"
         )));
     }
+    Ok(cpos)
+}
+
+/// The start of the map: the boundary vertices between two corners (at `cpos` along the loop
+/// `lp`) placed on the square's side by chord length and marked fixed, the others at the centre.
+fn boundary_by_chord_length(
+    mesh: &TriMesh,
+    lp: &[usize],
+    cpos: [usize; 4],
+) -> Result<(Vec<Point2>, Vec<bool>)> {
+    let n = lp.len();
     let square = [[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]];
     let nv = mesh.vertices.len();
     let mut uv = vec![[0.5, 0.5]; nv];
@@ -247,7 +281,12 @@ pub fn floater_parameterize(mesh: &TriMesh, corners: [usize; 4]) -> Result<Vec<P
             fixed[v] = true;
         }
     }
-    // Mean-value weights, as triplets (duplicates add up in the sparse matrix).
+    Ok((uv, fixed))
+}
+
+/// The mean-value weights of the free vertices, as triplets `(i, j, w_ij)` (duplicates add up in
+/// the sparse matrix); fails on a triangle with a zero-length edge or a sliver.
+fn mean_value_weights(mesh: &TriMesh, fixed: &[bool]) -> Result<Vec<(usize, usize, f64)>> {
     let mut weights: Vec<(usize, usize, f64)> = Vec::new();
     for tri in &mesh.triangles {
         for k in 0..3 {
@@ -284,21 +323,7 @@ pub fn floater_parameterize(mesh: &TriMesh, corners: [usize; 4]) -> Result<Vec<P
             weights.push((i, l, half_tan / nl));
         }
     }
-    solve_mean_value(&weights, &fixed, &mut uv)?;
-    // Floater's theorem makes the map one-to-one; where the triangles are so thin that their
-    // angles round to 0 or π, the computed one can fold: say so rather than return it.
-    let folded = signed_areas(mesh, &uv)
-        .iter()
-        .filter(|&&a| a.is_nan() || a <= 0.0)
-        .count();
-    if folded > 0 {
-        return Err(Error::mesh(format!(
-            "the mean-value map folds {folded} of {} triangles (degenerate triangles: angles \
-             that round to 0 or π)",
-            mesh.triangles.len()
-        )));
-    }
-    Ok(uv)
+    Ok(weights)
 }
 
 /// Solves the mean-value system for the free vertices: `Σ_j w_ij (uv_i − uv_j) = 0` for every
@@ -391,6 +416,53 @@ fn key(p: Vec3) -> [u64; 3] {
     p.map(|x| if x == 0.0 { 0 } else { x.to_bits() })
 }
 
+/// The corners of face `f` (mesh `m`, boundary loop `lp`): its loop vertices shared with two
+/// other faces (`owners` telling which faces hold each point), each with its square coordinates
+/// in the face's in-plane axes `(a, b)`. Fails unless there are four that sit at cube corners.
+fn face_corners(
+    m: &TriMesh,
+    f: usize,
+    (a, b): (usize, usize),
+    lp: &[usize],
+    owners: &HashMap<[u64; 3], u8>,
+) -> Result<Vec<(usize, [usize; 2])>> {
+    let name = CUBE_FACE_NAMES[f];
+    let mut corners: Vec<(usize, [usize; 2])> = Vec::new();
+    for &v in lp {
+        let mask = owners[&key(m.vertices[v])];
+        if (mask & !(1 << f)).count_ones() != 2 {
+            continue;
+        }
+        let mut sq = [usize::MAX; 2];
+        for g in 0..6 {
+            if mask & (1 << g) != 0 && g != f {
+                let gaxis = g / 2;
+                let k = if gaxis == a {
+                    0
+                } else if gaxis == b {
+                    1
+                } else {
+                    usize::MAX
+                };
+                if k == usize::MAX || sq[k] != usize::MAX {
+                    return Err(Error::mesh(format!(
+                        "face {name}: vertex {v} is shared with faces that do not meet at a cube corner"
+                    )));
+                }
+                sq[k] = g % 2;
+            }
+        }
+        corners.push((v, sq));
+    }
+    if corners.len() != 4 {
+        return Err(Error::mesh(format!(
+            "face {name} has {} vertices shared with two other faces, expected 4 corners",
+            corners.len()
+        )));
+    }
+    Ok(corners)
+}
+
 impl CubeFaces {
     /// Reads `xmin.obj`, `xmax.obj`, ..., `zmax.obj` from a folder.
     pub fn read_dir(dir: impl AsRef<Path>) -> Result<Self> {
@@ -410,7 +482,7 @@ impl CubeFaces {
     /// spline map depend on them, not only their physical figures. Shared vertices stay shared.
     /// An error if a factor is not finite and positive; then nothing changes.
     pub fn scale(&mut self, factors: Vec3) -> Result<()> {
-        super::check_scale_factors(factors)?;
+        super::scale::check_scale_factors(factors)?;
         for m in self.faces.iter_mut() {
             for v in m.vertices.iter_mut() {
                 for (x, f) in v.iter_mut().zip(factors) {
@@ -435,86 +507,58 @@ impl CubeFaces {
             }
         }
         let mut out: Vec<Vec<Vec3>> = Vec::with_capacity(6);
-        for (f, m) in self.faces.iter().enumerate() {
-            let name = CUBE_FACE_NAMES[f];
-            let axis = f / 2;
-            let (a, b) = match axis {
-                0 => (1, 2),
-                1 => (0, 2),
-                _ => (0, 1),
-            };
-            let lp = m.boundary_loop()?;
-            // Corners with their square coordinates in the face's (a, b) axes.
-            let mut corners: Vec<(usize, [usize; 2])> = Vec::new();
-            for &v in &lp {
-                let mask = owners[&key(m.vertices[v])];
-                if (mask & !(1 << f)).count_ones() != 2 {
-                    continue;
-                }
-                let mut sq = [usize::MAX; 2];
-                for g in 0..6 {
-                    if mask & (1 << g) != 0 && g != f {
-                        let gaxis = g / 2;
-                        let k = if gaxis == a {
-                            0
-                        } else if gaxis == b {
-                            1
-                        } else {
-                            usize::MAX
-                        };
-                        if k == usize::MAX || sq[k] != usize::MAX {
-                            return Err(Error::mesh(format!(
-                                "face {name}: vertex {v} is shared with faces that do not meet at a cube corner"
-                            )));
-                        }
-                        sq[k] = g % 2;
-                    }
-                }
-                corners.push((v, sq));
-            }
-            if corners.len() != 4 {
-                return Err(Error::mesh(format!(
-                    "face {name} has {} vertices shared with two other faces, expected 4 corners",
-                    corners.len()
-                )));
-            }
-            let find = |s: [usize; 2]| -> Result<usize> {
-                corners
-                    .iter()
-                    .find(|c| c.1 == s)
-                    .map(|c| c.0)
-                    .ok_or_else(|| {
-                        Error::mesh(format!(
-                            "face {name} has no corner at square position {s:?}"
-                        ))
-                    })
-            };
-            let (c00, c10, c11, c01) = (find([0, 0])?, find([1, 0])?, find([1, 1])?, find([0, 1])?);
-            // Along the loop after c00 comes c10 (counter-clockwise) or c01 (then swap axes).
-            let pos = |v: usize| lp.iter().position(|&x| x == v).unwrap();
-            let n = lp.len();
-            let d = |v: usize| (pos(v) + n - pos(c00)) % n;
-            let swap = d(c01) < d(c10);
-            let uv = if swap {
-                floater_parameterize(m, [c00, c01, c11, c10])?
-                    .into_iter()
-                    .map(|p| [p[1], p[0]])
-                    .collect::<Vec<_>>()
-            } else {
-                floater_parameterize(m, [c00, c10, c11, c01])?
-            };
-            out.push(
-                uv.into_iter()
-                    .map(|p| {
-                        let mut x = [0.0; 3];
-                        x[axis] = (f % 2) as f64;
-                        x[a] = p[0];
-                        x[b] = p[1];
-                        x
-                    })
-                    .collect(),
-            );
+        for f in 0..6 {
+            out.push(self.parameterize_face(f, &owners)?);
         }
         Ok(out.try_into().expect("six faces"))
+    }
+
+    /// Face `f` mapped onto its cube face, `owners` telling which faces hold each point.
+    fn parameterize_face(&self, f: usize, owners: &HashMap<[u64; 3], u8>) -> Result<Vec<Vec3>> {
+        let m = &self.faces[f];
+        let name = CUBE_FACE_NAMES[f];
+        let axis = f / 2;
+        let (a, b) = match axis {
+            0 => (1, 2),
+            1 => (0, 2),
+            _ => (0, 1),
+        };
+        let lp = m.boundary_loop()?;
+        let corners = face_corners(m, f, (a, b), &lp, owners)?;
+        let find = |s: [usize; 2]| -> Result<usize> {
+            corners
+                .iter()
+                .find(|c| c.1 == s)
+                .map(|c| c.0)
+                .ok_or_else(|| {
+                    Error::mesh(format!(
+                        "face {name} has no corner at square position {s:?}"
+                    ))
+                })
+        };
+        let (c00, c10, c11, c01) = (find([0, 0])?, find([1, 0])?, find([1, 1])?, find([0, 1])?);
+        // Along the loop after c00 comes c10 (counter-clockwise) or c01 (then swap axes).
+        let pos = |v: usize| lp.iter().position(|&x| x == v).unwrap();
+        let n = lp.len();
+        let d = |v: usize| (pos(v) + n - pos(c00)) % n;
+        let swap = d(c01) < d(c10);
+        let uv = if swap {
+            floater_parameterize(m, [c00, c01, c11, c10])?
+                .into_iter()
+                .map(|p| [p[1], p[0]])
+                .collect::<Vec<_>>()
+        } else {
+            floater_parameterize(m, [c00, c10, c11, c01])?
+        };
+        Ok(uv
+            .into_iter()
+            .map(|p| {
+                let mut x = [0.0; 3];
+                x[axis] = (f % 2) as f64;
+                x[a] = p[0];
+                x[b] = p[1];
+                x
+            })
+            .collect())
     }
 }

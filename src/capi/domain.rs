@@ -5,7 +5,7 @@
 
 use std::ffi::c_int;
 
-use super::boundary::{non_null_mut, run, Failure};
+use super::ffi::{non_null_mut, run, Failure};
 use super::handle::{acquire, handle_type, release, Guarded, Held};
 use super::igaparam_status;
 use crate::boundary::{BoundaryLoop2, SolidBoundary};

@@ -2,8 +2,8 @@
 
 use std::ffi::{c_int, c_void};
 
-use super::boundary::{options_or, run, write_optional};
 use super::domain::{held, igaparam_domain, DomainData};
+use super::ffi::{options_or, run, write_optional};
 use super::progress::optimization_progress;
 use super::{igaparam_progress_fn, igaparam_status};
 use crate::domain::{DomainReport, PlanarDomain, PlanarOptions, SolidDomain, SolidOptions};

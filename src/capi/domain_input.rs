@@ -5,8 +5,8 @@
 use std::ffi::c_char;
 use std::path::Path;
 
-use super::boundary::{c_path, non_null_mut, run, slice, Failure};
 use super::domain::{igaparam_domain, DomainData};
+use super::ffi::{c_path, non_null_mut, run, slice, Failure};
 use super::igaparam_status;
 use crate::boundary::{
     BSplineCurve, BSplineSurface, BoundaryLoop2, Coastline, CubeFaces, Curve2, Point2,

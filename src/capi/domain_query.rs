@@ -3,8 +3,8 @@
 
 use std::ffi::c_char;
 
-use super::boundary::{c_path, check_capacity, non_null_mut, optional_out, run, slice_mut};
 use super::domain::{held, igaparam_domain, with_built, BuiltRef};
+use super::ffi::{c_path, check_capacity, non_null_mut, optional_out, run, slice_mut};
 use super::igaparam_status;
 use crate::domain::{CubeMap, Domain};
 
@@ -92,6 +92,7 @@ pub extern "C" fn igaparam_domain_cell_count(
 /// `igaparam_domain_dimension`). Either may be NULL to skip it; `len_each` is the number of
 /// doubles each non-NULL buffer holds (at least `d × num_vertices`). Fails with
 /// `IGAPARAM_STATUS_INVALID_ARGUMENT` if the domain has not been built.
+#[allow(rustdoc::broken_intra_doc_links)]
 #[no_mangle]
 pub extern "C" fn igaparam_domain_copy_vertices(
     domain: *const igaparam_domain,

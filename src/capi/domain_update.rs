@@ -4,13 +4,13 @@
 
 use std::ffi::{c_char, c_void};
 
-use super::boundary::{c_path, options_or, run, write_optional, Failure};
 use super::domain::{held, igaparam_domain, Built, DomainData};
 use super::domain_build::{c_report, igaparam_domain_report};
 use super::domain_input::{
     curves_boundary, igaparam_curve, igaparam_surface, planar_file_boundary, polylines_boundary,
     solid_file_boundary, surfaces_boundary, triangulations_boundary,
 };
+use super::ffi::{c_path, options_or, run, write_optional, Failure};
 use super::progress::optimization_progress;
 use super::{igaparam_progress_fn, igaparam_status};
 use crate::boundary::{BoundaryLoop2, SolidBoundary};

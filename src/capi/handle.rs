@@ -13,7 +13,7 @@ use std::marker::PhantomData;
 use std::ops::{Deref, DerefMut};
 use std::sync::atomic::{AtomicU8, Ordering};
 
-use super::boundary::{non_null, Failure};
+use super::ffi::{non_null, Failure};
 use crate::error::{Error, ErrorKind};
 
 const IDLE: u8 = 0;

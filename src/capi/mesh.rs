@@ -3,11 +3,11 @@
 
 use std::ffi::c_int;
 
-use super::boundary::{check_capacity, non_null_mut, run, slice, slice_mut, Failure};
+use super::ffi::{check_capacity, non_null_mut, run, slice, slice_mut, Failure};
 use super::handle::{acquire, handle_type, release, Guarded, Held};
 use super::igaparam_status;
 use crate::error::{Error, Result};
-use crate::homesh::{CellType, Mesh};
+use crate::fe_mesh::{CellType, Mesh, NodeOrder};
 use crate::optimize::TargetKind;
 
 /// A quadrilateral or hexahedral finite-element mesh with node constraints (opaque).
@@ -79,16 +79,50 @@ pub extern "C" fn igaparam_mesh_new(
     connectivity: *const i64,
     out: *mut *mut igaparam_mesh,
 ) -> igaparam_status {
-    super::node_order::new_mesh(
+    new_mesh(
         "igaparam_mesh_new",
         cell_type_code,
-        super::node_order::IGAPARAM_ORDER_VTK,
+        Ok(NodeOrder::Vtk),
         num_nodes,
         xyz,
         num_cells,
         connectivity,
         out,
     )
+}
+
+/// The body of `igaparam_mesh_new` and `igaparam_mesh_new_ordered`, named `function` in messages
+/// (the arguments of the entry points, passed on; `order` is the node order the caller read, or
+/// why it could not, reported after the checks of `out` and the cell type).
+#[allow(clippy::too_many_arguments)]
+pub(super) fn new_mesh(
+    function: &str,
+    cell_type_code: igaparam_cell_type,
+    order: Result<NodeOrder>,
+    num_nodes: usize,
+    xyz: *const f64,
+    num_cells: usize,
+    connectivity: *const i64,
+    out: *mut *mut igaparam_mesh,
+) -> igaparam_status {
+    run(function, || {
+        let out = non_null_mut(out, "out")?;
+        let ct = cell_type(cell_type_code)?;
+        let order = order?;
+        let len = |n: usize, per: usize, what: &str| {
+            n.checked_mul(per)
+                .ok_or_else(|| Error::invalid(format!("{what} is too large")))
+        };
+        let xyz = slice(xyz, len(num_nodes, 3, "num_nodes")?, "xyz")?;
+        let conn = slice(
+            connectivity,
+            len(num_cells, ct.node_count(), "num_cells")?,
+            "connectivity",
+        )?;
+        let mesh = Mesh::new_ordered(ct, xyz, conn, order)?;
+        *out = super::handle::into_raw::<igaparam_mesh>(mesh);
+        Ok(())
+    })
 }
 
 /// Releases a mesh. NULL is a no-op. Called on a mesh in use (from the progress callback of

@@ -3,11 +3,11 @@
 
 use std::ffi::{c_char, c_int};
 
-use super::boundary::{c_path, non_null_mut, run};
+use super::ffi::{c_path, non_null_mut, run};
 use super::igaparam_status;
 use super::mesh::{igaparam_cell_type, igaparam_mesh, with_mesh};
 use crate::error::{Error, Result};
-use crate::homesh::Mesh;
+use crate::fe_mesh::Mesh;
 use crate::io::vtu::{Encoding, Format};
 
 /// The storage of a written `.vtu` file: one of `IGAPARAM_VTU_ASCII`, `IGAPARAM_VTU_BINARY`,

@@ -4,12 +4,18 @@
 //! are written only on success; arrays are caller-owned, flat, with explicit sizes; a failed call
 //! leaves its handle as it was; `igaparam_last_error_message` gives the calling thread's last
 //! message. No panic crosses this boundary.
+//!
+//! The doc comments of the exported items are the header's comments, plain text: an interval
+//! `[0,1]^d` there is no link, so the items that write one allow rustdoc's link lint.
 #![allow(non_camel_case_types)]
 // Entry points take raw pointers from C by design; each dereference is checked for NULL and
 // documented as the caller's contract, which a C caller cannot see as `unsafe` anyway.
 #![allow(clippy::not_unsafe_ptr_arg_deref)]
 
-mod boundary;
+// First (cbindgen writes the entry points in the order of these declarations): the library-wide
+// calls, `igaparam_last_error_message` and `igaparam_version`, open the header's functions.
+mod ffi;
+
 mod domain;
 mod domain_build;
 mod domain_input;
@@ -24,12 +30,12 @@ mod progress;
 mod relocate;
 mod spline;
 
-pub use boundary::{igaparam_last_error_message, igaparam_status, igaparam_version};
 pub use domain::*;
 pub use domain_build::*;
 pub use domain_input::*;
 pub use domain_query::*;
 pub use domain_update::*;
+pub use ffi::{igaparam_last_error_message, igaparam_status, igaparam_version};
 pub use mesh::*;
 pub use mesh_io::*;
 pub use node_order::*;

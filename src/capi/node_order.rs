@@ -4,11 +4,11 @@
 
 use std::ffi::c_int;
 
-use super::boundary::{check_capacity, non_null_mut, run, slice, slice_mut};
+use super::ffi::{check_capacity, non_null_mut, run, slice_mut};
 use super::igaparam_status;
-use super::mesh::{cell_type, igaparam_cell_type, igaparam_mesh, with_mesh};
+use super::mesh::{cell_type, igaparam_cell_type, igaparam_mesh, new_mesh, with_mesh};
 use crate::error::{Error, Result};
-use crate::homesh::{Mesh, NodeOrder};
+use crate::fe_mesh::NodeOrder;
 
 /// A local node order: one of the `IGAPARAM_ORDER_*` values.
 ///
@@ -49,39 +49,6 @@ fn order_code(order: NodeOrder) -> igaparam_node_order {
     }
 }
 
-/// The body of `igaparam_mesh_new` and `igaparam_mesh_new_ordered`, named `function` in messages
-/// (the arguments of the entry points, passed on).
-#[allow(clippy::too_many_arguments)]
-pub(super) fn new_mesh(
-    function: &str,
-    cell_type_code: igaparam_cell_type,
-    order: igaparam_node_order,
-    num_nodes: usize,
-    xyz: *const f64,
-    num_cells: usize,
-    connectivity: *const i64,
-    out: *mut *mut igaparam_mesh,
-) -> igaparam_status {
-    run(function, || {
-        let out = non_null_mut(out, "out")?;
-        let ct = cell_type(cell_type_code)?;
-        let order = node_order(order)?;
-        let len = |n: usize, per: usize, what: &str| {
-            n.checked_mul(per)
-                .ok_or_else(|| Error::invalid(format!("{what} is too large")))
-        };
-        let xyz = slice(xyz, len(num_nodes, 3, "num_nodes")?, "xyz")?;
-        let conn = slice(
-            connectivity,
-            len(num_cells, ct.node_count(), "num_cells")?,
-            "connectivity",
-        )?;
-        let mesh = Mesh::new_ordered(ct, xyz, conn, order)?;
-        *out = super::handle::into_raw::<igaparam_mesh>(mesh);
-        Ok(())
-    })
-}
-
 /// `igaparam_mesh_new` for a connectivity whose cells list their nodes in `order` (an
 /// `IGAPARAM_ORDER_*` value, see `igaparam_node_order` for the tables). The mesh keeps the order:
 /// `igaparam_mesh_copy_connectivity` gives the cells back in it. A mesh every cell of which is
@@ -101,7 +68,7 @@ pub extern "C" fn igaparam_mesh_new_ordered(
     new_mesh(
         "igaparam_mesh_new_ordered",
         cell_type_code,
-        order,
+        node_order(order),
         num_nodes,
         xyz,
         num_cells,

@@ -6,7 +6,7 @@
 
 use std::ffi::{c_int, c_void};
 
-use super::boundary::{
+use super::ffi::{
     check_capacity, non_null, non_null_mut, options_or, run, slice, slice_mut, write_optional,
     Failure,
 };
@@ -136,7 +136,7 @@ fn failed(f: Failure) -> Error {
 }
 
 /// The error of a NULL argument, to agree on.
-fn null(e: super::boundary::NullArgument) -> Error {
+fn null(e: super::ffi::NullArgument) -> Error {
     failed(e.into())
 }
 

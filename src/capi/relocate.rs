@@ -3,12 +3,12 @@
 
 use std::ffi::{c_int, c_void};
 
-use super::boundary::{options_or, run, slice, slice_mut, write_optional};
+use super::ffi::{options_or, run, slice, slice_mut, write_optional};
 use super::mesh::{igaparam_mesh, target, with_mesh, IGAPARAM_TARGET_INITIAL};
 use super::progress::call_progress;
 use super::{igaparam_progress_fn, igaparam_stage, igaparam_status, igaparam_target};
 use crate::error::{Error, Result};
-use crate::homesh::{Method, Placement, RelocateOptions, Stage};
+use crate::fe_mesh::{Method, Placement, RelocateOptions, Stage};
 
 /// Where free nodes start: one of the `IGAPARAM_PLACEMENT_*` values.
 pub type igaparam_placement = c_int;
@@ -223,7 +223,7 @@ pub(super) fn relocation_progress(
 }
 
 /// The C form of a relocation's report.
-pub(super) fn report_of(r: &crate::homesh::RelocateReport) -> igaparam_relocate_report {
+pub(super) fn report_of(r: &crate::fe_mesh::RelocateReport) -> igaparam_relocate_report {
     igaparam_relocate_report {
         cells: r.cells,
         nodes: r.nodes,

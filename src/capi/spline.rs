@@ -5,11 +5,11 @@
 
 use std::ffi::c_char;
 
-use super::boundary::{
+use super::domain::igaparam_domain;
+use super::ffi::{
     c_path, check_capacity, non_null_mut, optional_out, run, slice, slice_mut, write_optional,
     Failure,
 };
-use super::domain::igaparam_domain;
 use super::handle::{acquire, handle_type, into_raw, release, Guarded, Held};
 use super::igaparam_status;
 use crate::error::{Error, Result};
@@ -54,6 +54,7 @@ pub use validity::*;
 /// `igaparam_spline_free`. Parametric points are `d` doubles in [0,1]^d, physical points `d`
 /// doubles; arrays of points are flat, `n × d` (x0 y0 x1 y1 ... in 2D). One call at a time
 /// (see `IGAPARAM_STATUS_BUSY`).
+#[allow(rustdoc::broken_intra_doc_links)]
 pub struct igaparam_spline(Guarded<SplineData>);
 handle_type!(igaparam_spline, SplineData, "spline");
 
@@ -302,6 +303,7 @@ pub extern "C" fn igaparam_spline_copy_control_points(
 /// Greville point lies inside (0,1)^d vanishes on the boundary of the parametric domain (the
 /// knots are clamped): the functions with a Greville point on the boundary (some coordinate 0 or
 /// 1) are the degrees of freedom a Dirichlet condition sets.
+#[allow(rustdoc::broken_intra_doc_links)]
 #[no_mangle]
 pub extern "C" fn igaparam_spline_copy_greville_points(
     spline: *const igaparam_spline,
@@ -388,6 +390,7 @@ fn check_element(count: usize, element: usize) -> Result<()> {
 /// `N_functions[i] = Σ_k C[i][k] B_k` on the element, with `B_k` the tensor Bernstein
 /// polynomials of degree 3 on the element's box mapped to [0,1]^d, `k = k0 + 4 k1 (+ 16 k2)`.
 /// Either buffer may be NULL to skip it.
+#[allow(rustdoc::broken_intra_doc_links)]
 #[no_mangle]
 pub extern "C" fn igaparam_spline_copy_element_extraction(
     spline: *const igaparam_spline,

@@ -5,6 +5,7 @@
 use std::time::Instant;
 
 use super::budget::Sweeps;
+use super::cube_map::{cell_boundary_error, facet_scale, transfinite, CubeMap};
 use super::frame::{signed_measure, Frame, Framed};
 use super::options::{
     cells_within, check_uniform_cells, sweep_options, thread_pool, DomainOptions, DomainReport,
@@ -14,18 +15,11 @@ use crate::error::{Error, Result};
 use crate::io::vtu::{DataArray, UnstructuredGrid};
 use crate::optimize::laplace::MeshGraph;
 use crate::optimize::motion::{follow_motion, optimize_in_place};
-use crate::optimize::small::{bounding_box, det, Matrix};
+use crate::optimize::small_matrix::bounding_box;
 use crate::optimize::{invalid_cells, lattice, Problem, QualitySummary};
-use crate::tmesh::{TMesh, Tree, UNIT};
+use crate::tmesh::{TMesh, Tree};
 
-/// A map from the boundary of the unit square (d = 2) or cube (d = 3) onto the boundary of a
-/// domain.
-pub trait CubeMap<const D: usize> {
-    /// The image of `p`, a point of the boundary of [0,1]^d (some coordinate is exactly 0 or 1).
-    fn boundary_point(&self, p: [f64; D]) -> [f64; D];
-}
-
-/// A domain with its optimized T-mesh: parametric vertices in [0,1]^d, physical ones in the
+/// A domain with its optimized T-mesh: parametric vertices in \[0,1\]^d, physical ones in the
 /// domain.
 #[derive(Clone, Debug)]
 pub struct Domain<const D: usize, B> {
@@ -42,105 +36,6 @@ pub struct Domain<const D: usize, B> {
     pub(super) quality: Vec<f64>,
 }
 
-/// The transfinite interpolation of the boundary at `p` (Coons patch in 2D, Boolean sum of the
-/// six faces minus the twelve edges plus the eight corners in 3D): with `P_k` the linear
-/// interpolation between the two boundary values along coordinate `k`, the Boolean sum
-/// `Σ_{∅≠S} (−1)^{|S|+1} Π_{k∈S} P_k`. Reproduces the boundary on the boundary.
-pub fn transfinite<const D: usize>(boundary: &impl CubeMap<D>, p: [f64; D]) -> [f64; D] {
-    let mut x = [0.0; D];
-    for subset in 1..1usize << D {
-        let dims: Vec<usize> = (0..D).filter(|&k| subset >> k & 1 == 1).collect();
-        let sign = if dims.len() % 2 == 1 { 1.0 } else { -1.0 };
-        for choice in 0..1usize << dims.len() {
-            let mut q = p;
-            let mut weight = sign;
-            for (i, &k) in dims.iter().enumerate() {
-                let one = choice >> i & 1 == 1;
-                weight *= if one { p[k] } else { 1.0 - p[k] };
-                q[k] = if one { 1.0 } else { 0.0 };
-            }
-            if weight != 0.0 {
-                let b = boundary.boundary_point(q);
-                for k in 0..D {
-                    x[k] += weight * b[k];
-                }
-            }
-        }
-    }
-    x
-}
-
-/// Measure of the boundary error of one boundary facet, given the images of its corners in cyclic
-/// order (2 in 2D, 4 in 3D) and of its centre.
-fn facet_error<const D: usize>(corners: &[[f64; D]], centre: [f64; D]) -> f64 {
-    let simplex = |points: &[[f64; D]]| -> f64 {
-        let m: Matrix<D> =
-            std::array::from_fn(|i| std::array::from_fn(|k| points[i + 1][k] - points[0][k]));
-        det(&m).abs()
-    };
-    match D {
-        2 => 0.5 * simplex(&[corners[0], corners[1], centre]),
-        _ => {
-            (0..4)
-                .map(|i| {
-                    simplex(&[
-                        corners[i],
-                        corners[(i + 1) % 4],
-                        corners[(i + 2) % 4],
-                        centre,
-                    ])
-                })
-                .sum::<f64>()
-                / 6.0
-        }
-    }
-}
-
-/// Largest boundary error over the facets of leaf `c` that lie on the boundary of [0,1]^d.
-pub(super) fn cell_boundary_error<const D: usize>(
-    tree: &Tree<D>,
-    c: usize,
-    boundary: &impl CubeMap<D>,
-) -> f64 {
-    let cell = tree.cells()[c];
-    let lo = cell.lower.map(|v| v as f64 / UNIT as f64);
-    let h = cell.side() as f64 / UNIT as f64;
-    let point =
-        |l: [usize; D]| -> [f64; D] { std::array::from_fn(|k| lo[k] + 0.5 * h * l[k] as f64) };
-    let mut worst = 0.0f64;
-    for k in 0..D {
-        for end in [0usize, 2] {
-            let at = if end == 0 { lo[k] } else { lo[k] + h };
-            if at != 0.0 && at != 1.0 {
-                continue;
-            }
-            // The facet's lattice points: coordinate k fixed, the others cycling round.
-            let others: Vec<usize> = (0..D).filter(|&j| j != k).collect();
-            let ring: &[[usize; 2]] = if D == 2 {
-                &[[0, 0], [2, 0]]
-            } else {
-                &[[0, 0], [2, 0], [2, 2], [0, 2]]
-            };
-            let lattice_at = |a: usize, b: usize| -> [usize; D] {
-                let mut l = [0; D];
-                l[k] = end;
-                l[others[0]] = a;
-                if D == 3 {
-                    l[others[1]] = b;
-                }
-                l
-            };
-            let corners: Vec<[f64; D]> = ring
-                .iter()
-                .map(|&[a, b]| boundary.boundary_point(point(lattice_at(a, b))))
-                .collect();
-            let centre = boundary.boundary_point(point(lattice_at(1, 1)));
-            worst = worst.max(facet_error(&corners, centre));
-        }
-    }
-    worst
-}
-
 impl<const D: usize, B: CubeMap<D>> Domain<D, B> {
     /// Adapts a T-mesh to the boundary, places its vertices and optimizes them.
     /// `progress(sweeps, 0)` is called after every sweep; returning false cancels.
@@ -151,56 +46,19 @@ impl<const D: usize, B: CubeMap<D>> Domain<D, B> {
     ) -> Result<(Self, DomainReport)> {
         let start = Instant::now();
         options.validate()?;
-        let swapped = signed_measure(&boundary) < 0.0;
-        let frame = Frame::of(&Framed {
-            inner: &boundary,
-            swap: swapped,
-            frame: Frame::IDENTITY,
-        })
-        .ok_or_else(|| {
-            Error::invalid("the boundary has no extent: its bounding box is flat or not finite")
-        })?;
+        let (swapped, frame) = oriented_frame(&boundary)?;
         let framed_boundary = Framed {
             inner: &boundary,
             swap: swapped,
             frame,
         };
-        let limit = options.tolerance * facet_scale::<D>();
-        check_uniform_cells::<D>(options)?;
-        let mut tree = Tree::<D>::new();
-        tree.refine_uniformly(options.min_level)?;
-        let marked = |tree: &Tree<D>, c: usize| {
-            tree.cells()[c].level < options.max_level
-                && cell_boundary_error(tree, c, &framed_boundary) > limit
-        };
-        let within = |cells: usize| cells_within(options, cells, "the adaptation to the boundary");
-        tree.refine_while_bounded(true, marked, &mut |cells| {
-            within(cells)?;
-            // Between rounds: a chance to cancel a long adaptation (0 sweeps so far).
-            match progress(0, 0) {
-                true => Ok(()),
-                false => Err(Error::cancelled()),
-            }
-        })?;
-        within(tree.leaves().len())?;
-        let mesh = TMesh::new(tree)?;
+        let mesh = adapted_mesh(&framed_boundary, options, progress)?;
         let mut stages = StageSeconds {
             adaptation: start.elapsed().as_secs_f64(),
             ..Default::default()
         };
         let clock = Instant::now();
-        let mut x: Vec<[f64; D]> = mesh
-            .parametric()
-            .into_iter()
-            .enumerate()
-            .map(|(v, p)| {
-                if mesh.on_boundary(v) {
-                    framed_boundary.boundary_point(p)
-                } else {
-                    transfinite(&framed_boundary, p)
-                }
-            })
-            .collect();
+        let mut x = placed(&mesh, &framed_boundary);
         let problem = mesh.problem()?;
         let pool = thread_pool(options)?;
         let invalid_after_placement = invalid_cells(&pool, &problem, &x).len();
@@ -360,10 +218,63 @@ impl<const D: usize, B: CubeMap<D>> Domain<D, B> {
     }
 }
 
-/// `√d^d`: the measure of a facet error equal to the tolerance, in frame coordinates (the
-/// diagonal of the unit box to the power d).
-pub(super) fn facet_scale<const D: usize>() -> f64 {
-    (D as f64).powf(D as f64 / 2.0)
+/// Whether the boundary map is left-handed (then its first two parametric coordinates are
+/// swapped), and the frame of the map so oriented; fails on a boundary without extent.
+fn oriented_frame<const D: usize, B: CubeMap<D>>(boundary: &B) -> Result<(bool, Frame<D>)> {
+    let swapped = signed_measure(boundary) < 0.0;
+    let frame = Frame::of(&Framed {
+        inner: boundary,
+        swap: swapped,
+        frame: Frame::IDENTITY,
+    })
+    .ok_or_else(|| {
+        Error::invalid("the boundary has no extent: its bounding box is flat or not finite")
+    })?;
+    Ok((swapped, frame))
+}
+
+/// The T-mesh of the tree adapted to `boundary`: refined uniformly to `min_level`, then where a
+/// cell's boundary error is over the tolerance (up to `max_level`), within the cell budget.
+/// `progress(0, 0)` is called between the refinement rounds; returning false cancels.
+fn adapted_mesh<const D: usize>(
+    boundary: &impl CubeMap<D>,
+    options: &DomainOptions,
+    progress: &mut dyn FnMut(usize, usize) -> bool,
+) -> Result<TMesh<D>> {
+    let limit = options.tolerance * facet_scale::<D>();
+    check_uniform_cells::<D>(options)?;
+    let mut tree = Tree::<D>::new();
+    tree.refine_uniformly(options.min_level)?;
+    let marked = |tree: &Tree<D>, c: usize| {
+        tree.cells()[c].level < options.max_level && cell_boundary_error(tree, c, boundary) > limit
+    };
+    let within = |cells: usize| cells_within(options, cells, "the adaptation to the boundary");
+    tree.refine_while_bounded(true, marked, &mut |cells| {
+        within(cells)?;
+        // Between rounds: a chance to cancel a long adaptation (0 sweeps so far).
+        match progress(0, 0) {
+            true => Ok(()),
+            false => Err(Error::cancelled()),
+        }
+    })?;
+    within(tree.leaves().len())?;
+    TMesh::new(tree)
+}
+
+/// The first positions of the vertices: the boundary ones on the boundary, the inner ones by
+/// transfinite interpolation.
+fn placed<const D: usize>(mesh: &TMesh<D>, boundary: &impl CubeMap<D>) -> Vec<[f64; D]> {
+    mesh.parametric()
+        .into_iter()
+        .enumerate()
+        .map(|(v, p)| {
+            if mesh.on_boundary(v) {
+                boundary.boundary_point(p)
+            } else {
+                transfinite(boundary, p)
+            }
+        })
+        .collect()
 }
 
 /// The first optimization of a build's placed vertices `x`; if cells stay folded, the growth of

@@ -1,8 +1,8 @@
 //! Where a domain's boundary map sits: its orientation (the sign of the volume it encloses) and
 //! the affine frame, each axis scaled by its own extent, in which the T-mesh is optimized.
 
-use super::build::CubeMap;
-use crate::optimize::small::{bounding_box, det, Matrix};
+use super::cube_map::CubeMap;
+use crate::optimize::small_matrix::{bounding_box, det, Matrix};
 
 /// Samples per side of the parametric square or cube face used to measure the boundary.
 const SAMPLES: usize = 16;

@@ -5,6 +5,7 @@
 
 mod budget;
 mod build;
+mod cube_map;
 mod frame;
 mod options;
 mod planar;
@@ -15,7 +16,8 @@ mod repair;
 mod solid;
 mod update;
 
-pub use build::{transfinite, CubeMap, Domain};
+pub use build::Domain;
+pub use cube_map::{transfinite, CubeMap};
 pub use frame::Frame;
 pub use options::{
     DomainOptions, DomainReport, StageSeconds, DEFAULT_MAX_CELLS, DEFAULT_MAX_TOTAL_SWEEPS,

@@ -32,8 +32,8 @@ pub struct DomainOptions {
     pub repair_rounds: u32,
     /// Largest distance, in coordinates that map the bounding box onto a unit box (see
     /// [`Frame`](super::Frame)), by which a boundary vertex may leave the boundary to open a cell that stays
-    /// folded with every boundary vertex on the boundary (see [`MARGIN`](super::relief::MARGIN)
-    /// and the seam relief); 0 keeps every boundary vertex on the boundary. Default 1e-2: the
+    /// folded with every boundary vertex on the boundary (the seam relief, `MARGIN` in
+    /// `domain/relief.rs`); 0 keeps every boundary vertex on the boundary. Default 1e-2: the
     /// jagged terrain edge of the Jacksboro block needs offsets near it, the jittered duck faces
     /// 1e-3 with a few more levels of refinement.
     pub boundary_offset: f64,

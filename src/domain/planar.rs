@@ -1,6 +1,7 @@
 //! Planar domains bounded by four curves.
 
-use super::build::{CubeMap, Domain};
+use super::build::Domain;
+use super::cube_map::CubeMap;
 use super::options::{DomainOptions, DomainReport};
 use crate::boundary::{BoundaryLoop2, Side};
 

@@ -18,7 +18,8 @@ use std::sync::Arc;
 
 use rayon::ThreadPool;
 
-use super::build::{CubeMap, Domain};
+use super::build::Domain;
+use super::cube_map::CubeMap;
 use super::options::DomainOptions;
 use crate::error::Result;
 use crate::optimize::blocks::BlockLayout;

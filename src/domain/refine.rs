@@ -7,7 +7,8 @@ use std::time::Instant;
 
 use rayon::ThreadPool;
 
-use super::build::{CubeMap, Domain};
+use super::build::Domain;
+use super::cube_map::CubeMap;
 use super::options::{
     cells_within, sweep_options, thread_pool, DomainOptions, DomainReport, MAX_REPAIR_LEVEL,
 };
@@ -21,7 +22,7 @@ fn grid_point<const D: usize>(p: [f64; D]) -> [u32; D] {
     p.map(|v| (v * UNIT as f64).round() as u32)
 }
 
-/// 1D quadratic Lagrange basis on [0,1] with nodes 0, ½, 1.
+/// 1D quadratic Lagrange basis on \[0,1\] with nodes 0, ½, 1.
 fn lagrange(t: f64) -> [f64; 3] {
     [
         2.0 * (t - 0.5) * (t - 1.0),

@@ -17,12 +17,13 @@
 use rayon::ThreadPool;
 
 use super::budget::Sweeps;
-use super::build::{CubeMap, Domain};
+use super::build::Domain;
+use super::cube_map::CubeMap;
 use super::options::{sweep_options, DomainOptions};
 use crate::error::Result;
 use crate::optimize::metric::Term;
 use crate::optimize::motion::optimize_in_place;
-use crate::optimize::small::{clip_to_ball, cofactor, det, dot, mul_vec, Vector};
+use crate::optimize::small_matrix::{clip_to_ball, cofactor, det, dot, mul_vec, Vector};
 use crate::optimize::{invalid_cells, Problem, QualitySummary};
 
 /// The value of `det S` (1 for a cell of its target shape) the relief asks for at the points a

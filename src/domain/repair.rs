@@ -6,7 +6,8 @@
 use rayon::ThreadPool;
 
 use super::budget::Sweeps;
-use super::build::{CubeMap, Domain};
+use super::build::Domain;
+use super::cube_map::CubeMap;
 use super::options::{DomainOptions, MAX_REPAIR_LEVEL};
 use crate::error::Result;
 use crate::tmesh::TMesh;

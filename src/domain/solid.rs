@@ -1,6 +1,7 @@
 //! Solids bounded by six surfaces mapped onto the faces of the unit cube.
 
-use super::build::{CubeMap, Domain};
+use super::build::Domain;
+use super::cube_map::CubeMap;
 use super::options::{DomainOptions, DomainReport};
 use crate::boundary::SolidBoundary;
 

@@ -16,7 +16,8 @@ use std::time::Instant;
 use rayon::ThreadPool;
 
 use super::budget::Sweeps;
-use super::build::{cell_boundary_error, facet_scale, CubeMap, Domain};
+use super::build::Domain;
+use super::cube_map::{cell_boundary_error, facet_scale, CubeMap};
 use super::frame::{signed_measure, Frame, Framed};
 use super::options::{sweep_options, thread_pool, DomainOptions, DomainReport};
 use crate::error::{Error, ErrorKind, Result};

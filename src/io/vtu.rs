@@ -6,20 +6,16 @@
 //! Why this is written here rather than taken from a crate: the one VTK crate, vtkio (0.7.0-rc2;
 //! its last release, 0.6.3, is of 2021), reads the base64 storages but refuses appended raw
 //! data — VTK's own default output — because its `Raw` encoding sits behind a cargo feature its
-//! manifest does not declare. So the VTU layout (headers, blocks, offsets; [`block`]) is written
+//! manifest does not declare. So the VTU layout (headers, blocks, offsets; `vtu/block.rs`) is written
 //! here, on the crates that do the general work: roxmltree parses the XML, `base64` and `flate2`
 //! decode and inflate the data.
-
-use std::path::Path;
-
-use crate::error::{Error, Result};
 
 mod block;
 mod read;
 mod write;
 
-pub use read::parse;
-pub use write::to_bytes;
+pub use read::{parse, read};
+pub use write::{to_bytes, write, write_as};
 
 /// How a `.vtu` file stores its arrays.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -115,25 +111,6 @@ impl UnstructuredGrid {
     pub fn point_count(&self) -> usize {
         self.points.len() / 3
     }
-}
-
-/// Reads a `.vtu` file in any of the storages listed in the [module docs](self).
-pub fn read(path: &Path) -> Result<UnstructuredGrid> {
-    let bytes = std::fs::read(path)
-        .map_err(|e| Error::io(format!("cannot read {}: {e}", path.display())))?;
-    parse(&bytes).map_err(|e| Error::new(e.kind, format!("{}: {}", path.display(), e.message)))
-}
-
-/// Writes a grid as a `.vtu` file in the default [`Format`] (zlib-compressed base64).
-pub fn write(path: &Path, grid: &UnstructuredGrid) -> Result<()> {
-    write_as(path, grid, Format::default())
-}
-
-/// Writes a grid as a `.vtu` file in format `format`.
-pub fn write_as(path: &Path, grid: &UnstructuredGrid, format: Format) -> Result<()> {
-    let bytes = to_bytes(grid, format)?;
-    std::fs::write(path, bytes)
-        .map_err(|e| Error::io(format!("cannot write {}: {e}", path.display())))
 }
 
 #[cfg(test)]

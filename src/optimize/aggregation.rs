@@ -4,7 +4,7 @@
 //! aggregate (orthonormalised per aggregate) as its coarse functions.
 
 use super::csr::Csr;
-use super::small::Vector;
+use super::small_matrix::Vector;
 
 /// Strength threshold of the aggregation: `‖A_ij‖ ≥ θ √(‖A_ii‖‖A_jj‖)`.
 const STRENGTH: f64 = 0.08;

@@ -25,7 +25,7 @@ use super::blocks::{BlockLayout, BlockMatrix};
 use super::csr::Csr;
 use super::lattice;
 use super::problem::Problem;
-use super::small::Vector;
+use super::small_matrix::Vector;
 use super::sparse::{CholeskyPattern, Factor};
 
 /// Stop coarsening below this many unknowns (then factor the level, sparse).
@@ -63,6 +63,50 @@ pub struct Amg {
     dof: Vec<u32>,
 }
 
+impl Level {
+    /// The level of operator `a` with the prolongator `p` from the next one (and the smoother's
+    /// `inverse_diagonal` and `lambda`), and the next level's operator `PᵀAP`.
+    fn new(
+        pool: &ThreadPool,
+        a: Csr,
+        p: Csr,
+        inverse_diagonal: Vec<f64>,
+        lambda: f64,
+    ) -> (Level, Csr) {
+        let r = p.transpose();
+        let coarse = r.product(pool, &a.product(pool, &p));
+        let level = Level {
+            a,
+            inverse_diagonal,
+            lambda,
+            p,
+            r,
+        };
+        (level, coarse)
+    }
+}
+
+/// The sparse Cholesky factor of the coarsest operator `a`; `None` where it is not positive
+/// definite.
+fn coarsest_factor(a: &Csr) -> Option<(CholeskyPattern, Factor)> {
+    let (pattern, positions) = CholeskyPattern::of_csr(a).ok()?;
+    if std::env::var_os("IGAPARAM_DEBUG").is_some() {
+        eprintln!(
+            "coarsest: {} unknowns, {} stored, factor {}",
+            a.rows(),
+            a.stored(),
+            pattern.factor_size()
+        );
+    }
+    let factor = pattern
+        .factorize(positions.iter().map(|&p| a.value[p]).collect())
+        .ok()??;
+    if factor.modified {
+        return None;
+    }
+    Some((pattern, factor))
+}
+
 impl Amg {
     /// The hierarchy of the free block of `hessian` (free coordinates per node given by `free`);
     /// `x` are the node positions (for the rigid motions). `None` where the coarsest level is not
@@ -80,17 +124,10 @@ impl Amg {
         let mut levels = Vec::new();
         let (mut a, mut grouping, mut null_space) = match corner_prolongator(problem, &dof, x) {
             Some((p, grouping, null_space)) => {
-                let r = p.transpose();
-                let coarse = r.product(pool, &a.product(pool, &p));
                 let inverse_diagonal = inverse_diagonal(&a);
                 let lambda = spectral_radius(pool, &a, &inverse_diagonal);
-                levels.push(Level {
-                    a,
-                    inverse_diagonal,
-                    lambda,
-                    p,
-                    r,
-                });
+                let (level, coarse) = Level::new(pool, a, p, inverse_diagonal, lambda);
+                levels.push(level);
                 (coarse, grouping, null_space)
             }
             None => {
@@ -123,38 +160,16 @@ impl Amg {
                 true => smooth_prolongator(pool, &a, &inverse_diagonal, lambda, &tentative),
                 false => tentative,
             };
-            let r = p.transpose();
-            let coarse = r.product(pool, &a.product(pool, &p));
-            levels.push(Level {
-                a,
-                inverse_diagonal,
-                lambda,
-                p,
-                r,
-            });
+            let (level, coarse) = Level::new(pool, a, p, inverse_diagonal, lambda);
+            levels.push(level);
             a = coarse;
             grouping = coarse_grouping;
             null_space = coarse_null;
         }
-        let n = a.rows();
-        let (pattern, positions) = CholeskyPattern::of_csr(&a).ok()?;
-        if std::env::var_os("IGAPARAM_DEBUG").is_some() {
-            eprintln!(
-                "coarsest: {n} unknowns, {} stored, factor {}",
-                a.stored(),
-                pattern.factor_size()
-            );
-        }
-        let factor = pattern
-            .factorize(positions.iter().map(|&p| a.value[p]).collect())
-            .ok()??;
-        if factor.modified {
-            return None;
-        }
         Some(Amg {
             levels,
-            coarsest: (pattern, factor),
-            coarsest_size: n,
+            coarsest: coarsest_factor(&a)?,
+            coarsest_size: a.rows(),
             dof,
         })
     }

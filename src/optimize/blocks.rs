@@ -10,7 +10,7 @@ use rayon::prelude::*;
 use rayon::ThreadPool;
 
 use super::problem::Problem;
-use super::small::{Matrix, Vector};
+use super::small_matrix::{Matrix, Vector};
 
 /// Marks a pair of a cell's nodes that does not couple.
 pub(super) const NONE: u32 = u32::MAX;
@@ -104,8 +104,8 @@ impl BlockLayout {
             .map(|i| range.start + i)
     }
 
-    /// The blocks of the ordered pairs of cell `c`'s real nodes (row-major), [`NONE`] where a
-    /// pair does not couple.
+    /// The blocks of the ordered pairs of cell `c`'s real nodes (row-major), `NONE` (`u32::MAX`)
+    /// where a pair does not couple.
     pub fn cell_blocks(&self, c: usize) -> &[u32] {
         &self.cell_blocks[self.first[c]..self.first[c + 1]]
     }

@@ -7,7 +7,7 @@
 //! `Σ_ck ε_abc ε_ijk S_ck` in 3D.
 
 use super::metric::{inverse_power, regularised_det};
-use super::small::{cofactor, det, frobenius2, Matrix};
+use super::small_matrix::{cofactor, det, frobenius2, Matrix};
 
 /// `∂²η/∂S_ai∂S_bj`, stored as `[a][i][b][j]`.
 pub type Hessian<const D: usize> = [[[[f64; D]; D]; D]; D];

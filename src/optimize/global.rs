@@ -16,7 +16,7 @@ use rayon::ThreadPool;
 use super::blocks::{BlockLayout, BlockMatrix, NONE};
 use super::distortion::{derivatives, value as distortion};
 use super::problem::Problem;
-use super::small::{Matrix, Vector};
+use super::small_matrix::{Matrix, Vector};
 
 /// Cells evaluated together before their contributions are added in cell order.
 const CHUNK: usize = 512;

@@ -6,7 +6,7 @@
 
 use rayon::ThreadPool;
 
-use super::small::Vector;
+use super::small_matrix::Vector;
 use super::solver::{mask, HessianSolver};
 use crate::error::{Error, Result};
 
@@ -24,7 +24,7 @@ impl<const D: usize> HessianSolver<D> {
 
     /// The first-order motion of every node for a motion `dx` of the prescribed coordinates
     /// (its free entries are ignored): `dx` at prescribed coordinates, `−H_ff⁻¹ H_fp dx_p` at
-    /// free ones, solved to the relative residual `tolerance` ([`EXACT`] for sensitivities).
+    /// free ones, solved to the relative residual `tolerance` (`EXACT` for sensitivities).
     pub fn tangent(
         &self,
         pool: &ThreadPool,

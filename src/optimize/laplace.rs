@@ -11,7 +11,7 @@ use rayon::ThreadPool;
 use super::exact::ExactSum;
 use super::lattice;
 use super::problem::Problem;
-use super::small::Vector;
+use super::small_matrix::Vector;
 use super::team::{Alone, Team};
 use crate::error::Result;
 

@@ -6,7 +6,7 @@
 //! distortion replaces `σ = det S` by `h(σ) = ½(σ + √(σ² + 4δ²))`, which stays positive, so the
 //! objective is finite on tangled meshes and untangling and smoothing are one minimisation.
 
-use super::small::{cofactor, det, dot, frobenius2, mul_vec, Matrix, Vector};
+use super::small_matrix::{cofactor, det, dot, frobenius2, mul_vec, Matrix, Vector};
 
 /// `ε` of the δ rule: 10⁶ machine epsilons, for Jacobians normalised by their targets.
 pub const DELTA_EPSILON: f64 = 1e6 * f64::EPSILON;
@@ -21,7 +21,7 @@ pub fn mean_ratio<const D: usize>(s: &Matrix<D>) -> f64 {
     let power = match D {
         2 => sigma,
         _ => {
-            let c = super::small::cube_root(sigma);
+            let c = super::small_matrix::cube_root(sigma);
             c * c
         }
     };
@@ -47,7 +47,7 @@ pub(super) fn inverse_power<const D: usize>(h: f64) -> f64 {
     match D {
         2 => 1.0 / h,
         3 => {
-            let c = super::small::cube_root(h);
+            let c = super::small_matrix::cube_root(h);
             1.0 / (c * c)
         }
         _ => h.powf(-2.0 / D as f64),
@@ -69,7 +69,7 @@ pub struct Term<const D: usize> {
 impl<const D: usize> Term<D> {
     /// `S(x)`.
     pub fn jacobian(&self, x: &Vector<D>) -> Matrix<D> {
-        super::small::add_outer(&self.a, x, &self.g)
+        super::small_matrix::add_outer(&self.a, x, &self.g)
     }
 }
 

@@ -21,7 +21,7 @@ pub mod node;
 pub mod path;
 pub mod pattern;
 pub mod problem;
-pub mod small;
+pub mod small_matrix;
 pub mod solver;
 pub mod sparse;
 pub mod stationary;

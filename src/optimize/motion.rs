@@ -10,7 +10,7 @@ use rayon::ThreadPool;
 
 use super::laplace::MeshGraph;
 use super::problem::Problem;
-use super::small::Vector;
+use super::small_matrix::Vector;
 use super::sweep::{invalid_count_on, optimize_on, SweepOptions, SweepStats};
 use super::team::{Alone, Team};
 use crate::error::Result;

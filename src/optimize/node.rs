@@ -1,8 +1,8 @@
 //! Minimisation of one node's objective: Newton with the analytic Hessian made positive definite
 //! (modified Cholesky) and a backtracking line search that never accepts an increase.
 
-use super::metric::{choose_delta, evaluate, Term};
-use super::small::{dot, solve_spd_modified, Vector};
+use super::metric::{choose_delta, evaluate, Local, Term};
+use super::small_matrix::{det, dot, solve_spd_modified, Vector};
 
 /// Stopping rules of the per-node solver.
 #[derive(Clone, Copy, Debug)]
@@ -65,19 +65,9 @@ pub fn minimise<const D: usize>(
         if slope.is_nan() || slope >= 0.0 {
             break;
         }
-        // The full step is tried with derivatives (it is usually taken); shorter ones by value.
-        let mut alpha = 1.0;
-        let mut accepted = None;
-        for attempt in 0..40 {
-            let trial: Vector<D> = std::array::from_fn(|k| x[k] + alpha * step[k]);
-            let local = objective(&trial, attempt == 0);
-            if local.value.is_finite() && local.value <= current.value + 1e-4 * alpha * slope {
-                accepted = Some((trial, local, attempt == 0));
-                break;
-            }
-            alpha *= 0.5;
-        }
-        let Some((next, local, has_derivatives)) = accepted else {
+        let Some((next, local, has_derivatives)) =
+            line_search(&objective, &x, &step, current.value, slope)
+        else {
             break;
         };
         if next == x {
@@ -98,13 +88,42 @@ pub fn minimise<const D: usize>(
         // Over-relaxation speeds up the slow global smoothing of Gauss–Seidel sweeps; it is kept
         // only when the node's objective still decreased and no point it touches inverts.
         let over: Vector<D> = std::array::from_fn(|k| x0[k] + omega * (x[k] - x0[k]));
-        let keeps_signs = terms.iter().all(|t| {
-            let before = super::small::det(&t.jacobian(&x));
-            before <= 0.0 || super::small::det(&t.jacobian(&over)) > 0.0
-        });
-        if keeps_signs && objective(&over, false).value < start.value {
+        if keeps_signs(terms, &x, &over) && objective(&over, false).value < start.value {
             return Some(over);
         }
     }
     Some(x)
+}
+
+/// Backtracking from `x` along the descent direction `step` (`slope` the directional
+/// derivative there, `value` the objective): the first of the steps 1, ½, ¼, ... (40 at most)
+/// that meets Armijo's condition. The full step is tried with derivatives (it is usually taken),
+/// shorter ones by value. Returns the point, its evaluation, and whether that has derivatives.
+#[inline]
+fn line_search<const D: usize>(
+    objective: &impl Fn(&Vector<D>, bool) -> Local<D>,
+    x: &Vector<D>,
+    step: &Vector<D>,
+    value: f64,
+    slope: f64,
+) -> Option<(Vector<D>, Local<D>, bool)> {
+    let mut alpha = 1.0;
+    for attempt in 0..40 {
+        let trial: Vector<D> = std::array::from_fn(|k| x[k] + alpha * step[k]);
+        let local = objective(&trial, attempt == 0);
+        if local.value.is_finite() && local.value <= value + 1e-4 * alpha * slope {
+            return Some((trial, local, attempt == 0));
+        }
+        alpha *= 0.5;
+    }
+    None
+}
+
+/// Whether moving the node from `x` to `over` inverts none of the points of `terms` that are
+/// not inverted at `x`.
+fn keeps_signs<const D: usize>(terms: &[Term<D>], x: &Vector<D>, over: &Vector<D>) -> bool {
+    terms.iter().all(|t| {
+        let before = det(&t.jacobian(x));
+        before <= 0.0 || det(&t.jacobian(over)) > 0.0
+    })
 }

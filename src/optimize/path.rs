@@ -14,7 +14,7 @@ use std::sync::Arc;
 use rayon::ThreadPool;
 
 use super::problem::Problem;
-use super::small::Vector;
+use super::small_matrix::Vector;
 use super::solver::{HessianSolver, SolverSetup};
 use super::stationary::{minimise, StationaryOptions};
 use super::sweep::invalid_cells;

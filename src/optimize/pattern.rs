@@ -2,7 +2,7 @@
 //! Jacobian stencils at the Gauss–Lobatto points.
 
 use super::lattice;
-use super::small::{Matrix, Vector};
+use super::small_matrix::{Matrix, Vector};
 
 /// One term of a Jacobian stencil: local real node and the vector `G` with
 /// `J(ξ_q) = Σ x_r ⊗ G_{q,r}`.

@@ -4,7 +4,7 @@
 use super::lattice;
 use super::metric::{mean_ratio, Term};
 use super::pattern::CellPattern;
-use super::small::{det, inverse, mul, mul_transpose_vec, scaled_identity, Matrix, Vector};
+use super::small_matrix::{det, inverse, mul, mul_transpose_vec, scaled_identity, Matrix, Vector};
 use crate::error::{Error, Result};
 
 /// One cell: its pattern and where its real node ids start in [`Problem`]'s node list.

@@ -12,7 +12,7 @@ use rayon::ThreadPool;
 
 use super::amg::Amg;
 use super::blocks::{BlockLayout, BlockMatrix};
-use super::small::{inverse, mul_vec, Matrix, Vector};
+use super::small_matrix::{inverse, mul_vec, Matrix, Vector};
 use super::sparse::{Factor, FreeHessian};
 use crate::error::Result;
 

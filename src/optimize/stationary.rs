@@ -12,10 +12,11 @@ use std::sync::Arc;
 
 use rayon::ThreadPool;
 
+use super::blocks::BlockMatrix;
 use super::global::{Evaluation, GlobalObjective};
 use super::problem::Problem;
-use super::small::Vector;
-use super::solver::{mask, HessianSolver, Preconditioner, SolverSetup};
+use super::small_matrix::Vector;
+use super::solver::{mask, HessianSolver, Preconditioner, SolveStats, SolverSetup};
 use crate::error::{Error, Result};
 
 /// Stopping rules of the Newton stage.
@@ -81,6 +82,11 @@ pub fn minimise<const D: usize>(
     preconditioner: Option<Arc<Preconditioner<D>>>,
     progress: &mut dyn FnMut(usize) -> bool,
 ) -> Result<(StationaryStats, Option<HessianSolver<D>>)> {
+    let newton = Newton {
+        pool,
+        problem,
+        setup,
+    };
     let objective = GlobalObjective::new(problem, setup.layout(), None, 0.0);
     let free = setup.free.clone();
     let mut stats = StationaryStats {
@@ -95,14 +101,14 @@ pub fn minimise<const D: usize>(
     loop {
         stats.gradient_norm = scaled_gradient_norm(&objective, &free, &eval.gradient);
         let hessian = eval.hessian.take().expect("Hessian evaluated");
-        let (lagged, fresh) = match preconditioner.take() {
-            Some(p) => (true, p),
-            None => match Preconditioner::new(pool, problem, setup, &hessian, x)? {
-                Some(p) => (false, Arc::new(p)),
+        let lagged = preconditioner.is_some();
+        let mut solver = match preconditioner.take() {
+            Some(p) => HessianSolver::new(setup.clone(), hessian, p),
+            None => match newton.fresh_solver(x, hessian)? {
+                Some(solver) => solver,
                 None => return Ok((stats, None)),
             },
         };
-        let mut solver = HessianSolver::new(setup.clone(), hessian, fresh);
         if stats.gradient_norm <= options.tolerance {
             stats.converged = true;
             return Ok((stats, Some(solver)));
@@ -114,24 +120,11 @@ pub fn minimise<const D: usize>(
             return Err(Error::cancelled());
         }
         stats.iterations += 1;
-        let minus_g: Vec<Vector<D>> = eval.gradient.iter().map(|g| g.map(|v| -v)).collect();
-        // Inexact Newton: the inner tolerance shrinks with the gradient (superlinear rate).
-        let inner = stats.gradient_norm.sqrt().clamp(1e-14, 0.1);
-        let (mut step, mut solved) = solver.solve_with(pool, &minus_g, inner, LAGGED_ITERATIONS);
-        if lagged && (solved.residual > inner || solved.negative_curvature) {
-            // The earlier preconditioner stopped paying: make one from this Hessian.
-            let hessian = solver.hessian().clone();
-            let Some(p) = Preconditioner::new(pool, problem, setup, &hessian, x)? else {
-                return Ok((stats, Some(solver)));
-            };
-            solver = HessianSolver::new(setup.clone(), hessian, Arc::new(p));
-            (step, solved) = solver.solve(pool, &minus_g, inner);
-        }
-        if solver.preconditioner().modified() || solved.iterations == 0 {
-            // An indefinite Hessian: the step of its modified factor (modified Newton), or the
-            // preconditioned gradient, is a descent direction.
-            step = solver.precondition(pool, &minus_g);
-        }
+        let Some((step, solved)) =
+            newton.step(x, &mut solver, &eval.gradient, stats.gradient_norm, lagged)?
+        else {
+            return Ok((stats, Some(solver)));
+        };
         if std::env::var_os("IGAPARAM_DEBUG").is_some() {
             eprintln!(
                 "newton {} g {:e} F {} solve {:?} lagged {lagged}",
@@ -154,6 +147,66 @@ pub fn minimise<const D: usize>(
             }
             None => return Ok((stats, Some(solver))),
         }
+    }
+}
+
+/// What the iterations of [`minimise`] share.
+struct Newton<'a, const D: usize> {
+    pool: &'a ThreadPool,
+    problem: &'a Problem<D>,
+    setup: &'a Arc<SolverSetup>,
+}
+
+impl<const D: usize> Newton<'_, D> {
+    /// The solver of `hessian` (at `x`) with a preconditioner made from it; `None` where none
+    /// can be made.
+    fn fresh_solver(
+        &self,
+        x: &[Vector<D>],
+        hessian: BlockMatrix<D>,
+    ) -> Result<Option<HessianSolver<D>>> {
+        let Some(p) = Preconditioner::new(self.pool, self.problem, self.setup, &hessian, x)? else {
+            return Ok(None);
+        };
+        Ok(Some(HessianSolver::new(
+            self.setup.clone(),
+            hessian,
+            Arc::new(p),
+        )))
+    }
+
+    /// The Newton step at `x` for the `gradient` (scaled max-norm `gradient_norm`), and the
+    /// stats of its solve: inexact, the inner tolerance shrinking with the gradient. A `lagged`
+    /// preconditioner that stopped paying is replaced in `solver` by a fresh one (`None`, the
+    /// solver unchanged, where none can be made).
+    fn step(
+        &self,
+        x: &[Vector<D>],
+        solver: &mut HessianSolver<D>,
+        gradient: &[Vector<D>],
+        gradient_norm: f64,
+        lagged: bool,
+    ) -> Result<Option<(Vec<Vector<D>>, SolveStats)>> {
+        let minus_g: Vec<Vector<D>> = gradient.iter().map(|g| g.map(|v| -v)).collect();
+        // Inexact Newton: the inner tolerance shrinks with the gradient (superlinear rate).
+        let inner = gradient_norm.sqrt().clamp(1e-14, 0.1);
+        let (mut step, mut solved) =
+            solver.solve_with(self.pool, &minus_g, inner, LAGGED_ITERATIONS);
+        if lagged && (solved.residual > inner || solved.negative_curvature) {
+            // The earlier preconditioner stopped paying: make one from this Hessian.
+            let hessian = solver.hessian().clone();
+            let Some(fresh) = self.fresh_solver(x, hessian)? else {
+                return Ok(None);
+            };
+            *solver = fresh;
+            (step, solved) = solver.solve(self.pool, &minus_g, inner);
+        }
+        if solver.preconditioner().modified() || solved.iterations == 0 {
+            // An indefinite Hessian: the step of its modified factor (modified Newton), or the
+            // preconditioned gradient, is a descent direction.
+            step = solver.precondition(self.pool, &minus_g);
+        }
+        Ok(Some((step, solved)))
     }
 }
 

@@ -6,7 +6,7 @@ use rayon::ThreadPool;
 use super::exact::ExactSum;
 use super::node::{minimise, NodeSolverOptions};
 use super::problem::Problem;
-use super::small::Vector;
+use super::small_matrix::Vector;
 use super::team::{Alone, Team};
 use crate::error::{Error, Result};
 
@@ -81,36 +81,8 @@ pub fn optimize_on<const D: usize, T: Team>(
 
     let total = options.max_sweeps as usize;
     for sweep in 1..=options.max_sweeps {
-        // Per node: 1 when it moved more than the tolerance or lies in an invalid cell; the
-        // nodes sharing a cell with such a node are optimized in the next sweep.
-        let mut marks = vec![0.0; n];
-        let mut max_move = 0.0f64;
-        for class in &colours {
-            let todo: Vec<usize> = class.iter().copied().filter(|&v| active[v]).collect();
-            let snapshot: &[Vector<D>] = positions;
-            let solve = |terms: &mut Vec<_>, &v: &usize| {
-                let (weight_sum, length) = problem.node_terms(v, snapshot, terms);
-                let free = problem.free_mask(v);
-                let x = minimise(terms, snapshot[v], free, weight_sum, length, &options.node);
-                (v, x, length)
-            };
-            let results: Vec<(usize, Option<Vector<D>>, f64)> =
-                pool.install(|| todo.par_iter().map_init(Vec::new, solve).collect());
-            for (v, x, length) in results {
-                let Some(x) = x else { continue };
-                let step = (0..D)
-                    .map(|k| (x[k] - positions[v][k]).powi(2))
-                    .sum::<f64>()
-                    .sqrt();
-                let relative = step / length;
-                max_move = max_move.max(relative);
-                positions[v] = x;
-                if relative > options.move_tolerance {
-                    marks[v] = 1.0;
-                }
-            }
-            team.refresh(positions.as_flattened_mut(), D)?;
-        }
+        let (mut marks, max_move) =
+            sweep_once(team, pool, problem, positions, &colours, &active, options)?;
         let max_move = team.max(max_move)?;
         stats.sweeps = sweep;
         stats.last_max_move = max_move;
@@ -143,6 +115,50 @@ pub fn optimize_on<const D: usize, T: Team>(
         active = next_active;
     }
     Ok(stats)
+}
+
+/// One sweep: the `active` nodes of each colour class in parallel, the ghosts refreshed after
+/// each class. Returns per node 1 when it moved more than the tolerance (the nodes sharing a
+/// cell with such a node are optimized in the next sweep), else 0, and the largest relative
+/// move on this rank.
+fn sweep_once<const D: usize, T: Team>(
+    team: &mut T,
+    pool: &ThreadPool,
+    problem: &Problem<D>,
+    positions: &mut [Vector<D>],
+    colours: &[Vec<usize>],
+    active: &[bool],
+    options: &SweepOptions,
+) -> Result<(Vec<f64>, f64)> {
+    let mut marks = vec![0.0; problem.node_count()];
+    let mut max_move = 0.0f64;
+    for class in colours {
+        let todo: Vec<usize> = class.iter().copied().filter(|&v| active[v]).collect();
+        let snapshot: &[Vector<D>] = positions;
+        let solve = |terms: &mut Vec<_>, &v: &usize| {
+            let (weight_sum, length) = problem.node_terms(v, snapshot, terms);
+            let free = problem.free_mask(v);
+            let x = minimise(terms, snapshot[v], free, weight_sum, length, &options.node);
+            (v, x, length)
+        };
+        let results: Vec<(usize, Option<Vector<D>>, f64)> =
+            pool.install(|| todo.par_iter().map_init(Vec::new, solve).collect());
+        for (v, x, length) in results {
+            let Some(x) = x else { continue };
+            let step = (0..D)
+                .map(|k| (x[k] - positions[v][k]).powi(2))
+                .sum::<f64>()
+                .sqrt();
+            let relative = step / length;
+            max_move = max_move.max(relative);
+            positions[v] = x;
+            if relative > options.move_tolerance {
+                marks[v] = 1.0;
+            }
+        }
+        team.refresh(positions.as_flattened_mut(), D)?;
+    }
+    Ok((marks, max_move))
 }
 
 /// Sweeps over which a stalled quality ends the optimization.

@@ -1,4 +1,5 @@
-//! The collective checks of a partition and the plan of its ghost refreshes.
+//! A part built on all ranks together ([`Partition::new`]): the collective checks of the
+//! partition and the plan of its ghost refreshes.
 //!
 //! Each global id has a home rank (`id mod ranks`) that gathers what every rank says about it:
 //! who owns the node, which cells lie around it, which nodes a cell has. The homes find the
@@ -8,48 +9,38 @@
 use std::collections::HashMap;
 
 use super::exchange::{read_words, words, Ranks};
-use super::Partition;
+use super::ghost::GhostPlan;
+use super::{PartInput, Partition};
 use crate::error::{Error, Result};
 
 /// Marks a node whose owner was not found.
 const NO_OWNER: u64 = u64::MAX;
 
-/// Where ghost values come from: per rank, the local nodes whose values are sent to it and the
-/// local ghosts filled from it, in ascending global id.
-#[derive(Clone, Debug, Default)]
-pub struct GhostPlan {
-    send: Vec<Vec<u32>>,
-    recv: Vec<Vec<u32>>,
-}
-
-impl GhostPlan {
-    /// Copies `width` values per node from the owners to the ghost copies. Collective.
-    pub fn refresh(&self, ranks: &mut Ranks<'_>, values: &mut [f64], width: usize) -> Result<()> {
-        let send: Vec<Vec<u8>> = self
-            .send
-            .iter()
-            .map(|nodes| {
-                let v = nodes.iter().map(|&i| i as usize * width);
-                v.flat_map(|i| values[i..i + width].iter().flat_map(|x| x.to_le_bytes()))
-                    .collect()
-            })
-            .collect();
-        let counts: Vec<usize> = self.recv.iter().map(|r| r.len() * width * 8).collect();
-        let got = ranks.known(&send, &counts)?;
-        for (nodes, bytes) in self.recv.iter().zip(got) {
-            let x = read_words(&bytes);
-            for (k, &i) in nodes.iter().enumerate() {
-                for j in 0..width {
-                    values[i as usize * width + j] = f64::from_bits(x[k * width + j]);
-                }
-            }
+impl Partition {
+    /// Builds this rank's part. Collective: every rank calls it; a part that is bad anywhere (a
+    /// node owned twice or by no rank, an owner lacking a cell around its node, cells whose
+    /// nodes are absent, a cell with different nodes on two ranks) is refused on every rank
+    /// with the same message.
+    /// `input` is an error when the host's arguments were bad on this rank: that too is agreed.
+    pub fn new(ranks: &mut Ranks<'_>, input: Result<&PartInput<'_>>) -> Result<Partition> {
+        let local = input.and_then(Partition::local);
+        ranks.agree(local.as_ref().map(|_| ()).map_err(Clone::clone))?;
+        let Ok(mut part) = local else {
+            return Err(Error::mesh("the part was refused"));
+        };
+        part.plan = check_and_plan(ranks, &part)?;
+        let mut reference: Vec<f64> = part.reference.concat();
+        part.plan.refresh(ranks, &mut reference, 3)?;
+        for (r, p) in part.reference.iter_mut().zip(reference.chunks(3)) {
+            *r = [p[0], p[1], p[2]];
         }
-        Ok(())
+        part.positions = part.reference.clone();
+        Ok(part)
     }
 }
 
 /// Checks the partition on all ranks together and plans the ghost refreshes.
-pub fn check_and_plan(ranks: &mut Ranks<'_>, part: &Partition) -> Result<GhostPlan> {
+fn check_and_plan(ranks: &mut Ranks<'_>, part: &Partition) -> Result<GhostPlan> {
     let p = ranks.size();
     let types = ranks.all_gather_words(&[part.cell_type as u64])?;
     if let Some(r) = types.iter().position(|t| t[0] != part.cell_type as u64) {

@@ -10,14 +10,17 @@
 
 mod check;
 mod exchange;
+mod ghost;
 mod relocate;
 mod team;
 
 pub use exchange::{Exchange, Ranks};
 pub use relocate::PartitionReport;
 
+use ghost::GhostPlan;
+
 use crate::error::{check_finite, Error, Result};
-use crate::homesh::CellType;
+use crate::fe_mesh::CellType;
 
 /// A rank's part of a partitioned mesh.
 #[derive(Clone, Debug)]
@@ -37,7 +40,7 @@ pub struct Partition {
     /// Local node indices of the local cells, VTK order.
     connectivity: Vec<u32>,
     /// Where ghost values come from and go to.
-    plan: check::GhostPlan,
+    plan: GhostPlan,
     /// Positions of the last successful relocation (for `Placement::Incremental`).
     last: Option<Vec<[f64; 3]>>,
 }
@@ -59,27 +62,6 @@ pub struct PartInput<'a> {
 }
 
 impl Partition {
-    /// Builds this rank's part. Collective: every rank calls it; a part that is bad anywhere (a
-    /// node owned twice or by no rank, an owner lacking a cell around its node, cells whose
-    /// nodes are absent, a cell with different nodes on two ranks) is refused on every rank
-    /// with the same message.
-    /// `input` is an error when the host's arguments were bad on this rank: that too is agreed.
-    pub fn new(ranks: &mut Ranks<'_>, input: Result<&PartInput<'_>>) -> Result<Partition> {
-        let local = input.and_then(Partition::local);
-        ranks.agree(local.as_ref().map(|_| ()).map_err(Clone::clone))?;
-        let Ok(mut part) = local else {
-            return Err(Error::mesh("the part was refused"));
-        };
-        part.plan = check::check_and_plan(ranks, &part)?;
-        let mut reference: Vec<f64> = part.reference.concat();
-        part.plan.refresh(ranks, &mut reference, 3)?;
-        for (r, p) in part.reference.iter_mut().zip(reference.chunks(3)) {
-            *r = [p[0], p[1], p[2]];
-        }
-        part.positions = part.reference.clone();
-        Ok(part)
-    }
-
     /// The part in local order (ascending global ids), checked on this rank alone.
     fn local(input: &PartInput<'_>) -> Result<Partition> {
         let n = input.node_ids.len();
@@ -140,7 +122,7 @@ impl Partition {
                 ids
             },
             connectivity,
-            plan: check::GhostPlan::default(),
+            plan: GhostPlan::default(),
             last: None,
         })
     }
@@ -197,7 +179,7 @@ impl Partition {
     /// Sets the constraint mask of every local node, in the order given to
     /// [`Partition::new`] (see `Mesh::set_fixed`). A ghost's mask is taken from its owner.
     pub fn set_fixed(&mut self, mask: &[u8]) -> Result<()> {
-        crate::homesh::check_mask(mask, self.node_count())?;
+        crate::fe_mesh::check_mask(mask, self.node_count())?;
         for (i, &m) in mask.iter().enumerate() {
             self.fixed[self.local_of_input[i]] = m;
         }

@@ -1,7 +1,7 @@
 //! The ranks of a partition as a [`Team`] of the optimizer.
 
-use super::check::GhostPlan;
 use super::exchange::Ranks;
+use super::ghost::GhostPlan;
 use crate::error::Result;
 use crate::optimize::exact::ExactSum;
 use crate::optimize::team::Team;

@@ -32,7 +32,7 @@ pub struct AdaptOptions {
     pub validity: ValidityOptions,
     /// Threads and sweep limit of the T-mesh optimization after each refinement (`threads`,
     /// `max_sweeps`); its other fields are not used: the boundary offset, relief and repair
-    /// rules are those the domain was built with (see [`refinement_options`]).
+    /// rules are those the domain was built with.
     pub domain: DomainOptions,
 }
 
@@ -119,7 +119,7 @@ pub struct AdaptReport {
 /// The options of the T-mesh optimization after a refinement: the domain's own build options
 /// (a domain built to keep its boundary, `boundary_offset = 0`, keeps it through the loop), with
 /// the loop's threads and sweep limit.
-pub fn refinement_options(built: &DomainOptions, options: &AdaptOptions) -> DomainOptions {
+fn refinement_options(built: &DomainOptions, options: &AdaptOptions) -> DomainOptions {
     DomainOptions {
         threads: options.domain.threads,
         max_sweeps: options.domain.max_sweeps,

@@ -106,7 +106,7 @@ pub fn two_scale(level: u8, span: usize, child: usize) -> Matrix4 {
     })
 }
 
-/// Values and first derivatives of the four cubic Bernstein polynomials at `t ∈ [0,1]`.
+/// Values and first derivatives of the four cubic Bernstein polynomials at `t ∈ \[0,1\]`.
 pub fn bernstein3(t: f64) -> ([f64; 4], [f64; 4]) {
     let s = 1.0 - t;
     (
@@ -124,7 +124,7 @@ fn binomial(n: usize, k: usize) -> f64 {
     (0..k).fold(1.0, |acc, i| acc * (n - i) as f64 / (i + 1) as f64)
 }
 
-/// A polynomial on [0,1]^d in tensor Bernstein form: `degree[k]` in direction `k`, coefficient
+/// A polynomial on \[0,1\]^d in tensor Bernstein form: `degree[k]` in direction `k`, coefficient
 /// of multi-index `i` at `Σ i_k · stride_k` with direction 0 fastest.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Bernstein<const D: usize> {
@@ -227,7 +227,7 @@ impl<const D: usize> Bernstein<D> {
     }
 
     /// Splits at the middle of direction `k` by de Casteljau: the polynomials on the lower and
-    /// upper halves, each reparameterized to [0,1].
+    /// upper halves, each reparameterized to \[0,1\].
     pub fn split(&self, k: usize) -> (Self, Self) {
         let (mut lo, mut hi) = (self.clone(), self.clone());
         let stride = self.strides()[k];
@@ -250,7 +250,7 @@ impl<const D: usize> Bernstein<D> {
         (lo, hi)
     }
 
-    /// Value at `t ∈ [0,1]^d`.
+    /// Value at `t ∈ \[0,1\]^d`.
     pub fn eval(&self, t: [f64; D]) -> f64 {
         let mut acc = 0.0;
         for (f, &c) in self.coef.iter().enumerate() {
@@ -267,12 +267,12 @@ impl<const D: usize> Bernstein<D> {
         acc
     }
 
-    /// Smallest coefficient: a lower bound of the polynomial on [0,1]^d.
+    /// Smallest coefficient: a lower bound of the polynomial on \[0,1\]^d.
     pub fn min_coef(&self) -> f64 {
         self.coef.iter().copied().fold(f64::INFINITY, f64::min)
     }
 
-    /// Largest coefficient: an upper bound of the polynomial on [0,1]^d.
+    /// Largest coefficient: an upper bound of the polynomial on \[0,1\]^d.
     pub fn max_coef(&self) -> f64 {
         self.coef.iter().copied().fold(f64::NEG_INFINITY, f64::max)
     }

@@ -87,7 +87,7 @@ impl<const D: usize> SplineMap<D, ThbSpace<D>> {
         options: &FitOptions,
         progress: &mut FitProgress,
     ) -> Result<Checked<D>> {
-        let source = super::quadratic::QuadraticMap::new(mesh, positions)?;
+        let source = super::tmesh_map::QuadraticMap::new(mesh, positions)?;
         let space = ThbSpace::new(mesh.tree().clone())?;
         Self::fit_checked_with(space, |x| source.eval(x), options, progress)
     }

@@ -18,7 +18,7 @@ use super::space::SplineSpace;
 use super::thb::ThbSpace;
 use crate::optimize::metric::{mean_ratio, Term};
 use crate::optimize::node::minimise;
-use crate::optimize::small::{add_outer, det, Matrix, Vector};
+use crate::optimize::small_matrix::{add_outer, det, Matrix, Vector};
 use crate::optimize::NodeSolverOptions;
 
 /// One element of a [`Region`]: its functions and, per sample, their gradients.
@@ -114,23 +114,7 @@ impl<const D: usize> SplineMap<D, ThbSpace<D>> {
             objective_elements.extend(support[f].iter().copied());
         }
         let order: Vec<usize> = objective_elements.into_iter().collect();
-        let local = 4usize.pow(D as u32);
-        let elements: Vec<SampledElement<D>> = order
-            .par_iter()
-            .map(|&e| {
-                let (lo, hi) = self.space.element_bounds(e);
-                let (functions, c) = self.space.extraction(e);
-                let per_function: Vec<Vec<[f64; D]>> = c
-                    .chunks_exact(local)
-                    .map(|row| grid_gradients(row, lo, hi, samples))
-                    .collect();
-                let count = per_function.first().map_or(0, Vec::len);
-                let per_sample = (0..count)
-                    .map(|s| per_function.iter().map(|g| g[s]).collect())
-                    .collect();
-                (functions.to_vec(), per_sample)
-            })
-            .collect();
+        let elements = self.sampled_elements(&order, samples);
         let position: HashMap<usize, usize> =
             order.iter().enumerate().map(|(i, &e)| (e, i)).collect();
         let mut touches = Vec::with_capacity(functions.len());
@@ -158,21 +142,7 @@ impl<const D: usize> SplineMap<D, ThbSpace<D>> {
             lengths.push(side);
             touches.push((f, list));
         }
-        let jacobians = elements
-            .par_iter()
-            .map(|(functions, samples)| {
-                samples
-                    .iter()
-                    .map(|gradients| {
-                        let mut j = [[0.0; D]; D];
-                        for (&h, g) in functions.iter().zip(gradients) {
-                            j = add_outer(&j, &y[h], g);
-                        }
-                        j
-                    })
-                    .collect()
-            })
-            .collect();
+        let jacobians = sample_jacobians(&elements, y);
         let colours = colour(&touches, order.len());
         Region {
             order,
@@ -183,6 +153,50 @@ impl<const D: usize> SplineMap<D, ThbSpace<D>> {
             colours,
         }
     }
+
+    /// The `elements` (in this order) with their functions and, at `samples^d` points each,
+    /// the functions' gradients.
+    fn sampled_elements(&self, elements: &[usize], samples: usize) -> Vec<SampledElement<D>> {
+        let local = 4usize.pow(D as u32);
+        elements
+            .par_iter()
+            .map(|&e| {
+                let (lo, hi) = self.space.element_bounds(e);
+                let (functions, c) = self.space.extraction(e);
+                let per_function: Vec<Vec<[f64; D]>> = c
+                    .chunks_exact(local)
+                    .map(|row| grid_gradients(row, lo, hi, samples))
+                    .collect();
+                let count = per_function.first().map_or(0, Vec::len);
+                let per_sample = (0..count)
+                    .map(|s| per_function.iter().map(|g| g[s]).collect())
+                    .collect();
+                (functions.to_vec(), per_sample)
+            })
+            .collect()
+    }
+}
+
+/// Per element and sample, `J_S = Σ_h y_h ∇N_hᵀ` for the control points `y`.
+fn sample_jacobians<const D: usize>(
+    elements: &[SampledElement<D>],
+    y: &[Vector<D>],
+) -> Vec<Vec<Matrix<D>>> {
+    elements
+        .par_iter()
+        .map(|(functions, samples)| {
+            samples
+                .iter()
+                .map(|gradients| {
+                    let mut j = [[0.0; D]; D];
+                    for (&h, g) in functions.iter().zip(gradients) {
+                        j = add_outer(&j, &y[h], g);
+                    }
+                    j
+                })
+                .collect()
+        })
+        .collect()
 }
 
 /// Greedy colouring of the free functions in their order: the smallest colour not used by a

@@ -95,7 +95,65 @@ fn value<const D: usize>(
     Ok(y)
 }
 
-/// The element of each point, in point order; an error for a point outside [0,1]^d.
+/// The points of element `e` a least-squares fit uses: its interpolation points (`points_of`),
+/// then its `4^d` samples.
+fn least_squares_points<'a, const D: usize, S: SplineSpace<D>>(
+    space: &S,
+    points_of: &'a [Vec<[f64; D]>],
+    e: usize,
+) -> impl Iterator<Item = [f64; D]> + 'a {
+    let samples: Vec<[f64; D]> = samples_of(space, e).collect();
+    points_of[e].iter().copied().chain(samples)
+}
+
+/// The normal equations of the least-squares fit of `f` at the points of every element (see
+/// [`least_squares_points`]; `blocks` holds each element's functions): the matrix, assembled
+/// block by block in element order, and the right-hand sides.
+fn normal_equations<const D: usize, S: SplineSpace<D>>(
+    space: &S,
+    points_of: &[Vec<[f64; D]>],
+    blocks: &[Vec<usize>],
+    f: &(impl Fn([f64; D]) -> Option<[f64; D]> + Sync),
+) -> Result<(SymmetricAssembly, Vec<[f64; D]>)> {
+    let (n, m) = (space.basis_count(), space.element_count());
+    let block_refs: Vec<&[usize]> = blocks.iter().map(|b| &b[..]).collect();
+    let mut normal = SymmetricAssembly::new(n, &block_refs)?;
+    let mut rhs = vec![[0.0; D]; n];
+    for first in (0..m).step_by(CHUNK) {
+        let local: Vec<(Vec<f64>, Vec<[f64; D]>)> = (first..(first + CHUNK).min(m))
+            .into_par_iter()
+            .map(|e| {
+                let size = blocks[e].len();
+                let mut gram = vec![0.0; size * size];
+                let mut right = vec![[0.0; D]; size];
+                for x in least_squares_points(space, points_of, e) {
+                    let y = value(f, x)?;
+                    let v = space.values_on(e, x);
+                    for (a, &va) in v.iter().enumerate() {
+                        for (g, &vb) in gram[a * size..=a * size + a].iter_mut().zip(&v) {
+                            *g += va * vb;
+                        }
+                        for (r, yk) in right[a].iter_mut().zip(y) {
+                            *r += va * yk;
+                        }
+                    }
+                }
+                Ok((gram, right))
+            })
+            .collect::<Result<_>>()?;
+        for (e, (gram, right)) in (first..).zip(local) {
+            normal.add_block(&blocks[e], &gram);
+            for (&i, r) in blocks[e].iter().zip(right) {
+                for k in 0..D {
+                    rhs[i][k] += r[k];
+                }
+            }
+        }
+    }
+    Ok((normal, rhs))
+}
+
+/// The element of each point, in point order; an error for a point outside \[0,1\]^d.
 fn elements_of<const D: usize, S: SplineSpace<D>>(
     space: &S,
     points: &[[f64; D]],
@@ -245,7 +303,6 @@ impl<const D: usize, S: SplineSpace<D>> SplineMap<D, S> {
         f: impl Fn([f64; D]) -> Option<[f64; D]> + Sync,
     ) -> Result<(Self, FitReport)> {
         let start = Instant::now();
-        let n = space.basis_count();
         let m = space.element_count();
         let interpolation = space.interpolation_points();
         let mut points_of: Vec<Vec<[f64; D]>> = vec![Vec::new(); m];
@@ -255,64 +312,39 @@ impl<const D: usize, S: SplineSpace<D>> SplineMap<D, S> {
         {
             points_of[e].push(x);
         }
-        let points_of = &points_of;
-        let all_points = |space: &S, e: usize| {
-            let samples: Vec<[f64; D]> = samples_of(space, e).collect();
-            points_of[e].iter().copied().chain(samples)
-        };
         let blocks: Vec<Vec<usize>> = (0..m).map(|e| space.extraction(e).0.to_vec()).collect();
-        let block_refs: Vec<&[usize]> = blocks.iter().map(|b| &b[..]).collect();
-        let mut normal = SymmetricAssembly::new(n, &block_refs)?;
-        let mut rhs = vec![[0.0; D]; n];
-        for first in (0..m).step_by(CHUNK) {
-            let local: Vec<(Vec<f64>, Vec<[f64; D]>)> = (first..(first + CHUNK).min(m))
-                .into_par_iter()
-                .map(|e| {
-                    let size = blocks[e].len();
-                    let mut gram = vec![0.0; size * size];
-                    let mut right = vec![[0.0; D]; size];
-                    for x in all_points(&space, e) {
-                        let y = value(&f, x)?;
-                        let v = space.values_on(e, x);
-                        for (a, &va) in v.iter().enumerate() {
-                            for (g, &vb) in gram[a * size..=a * size + a].iter_mut().zip(&v) {
-                                *g += va * vb;
-                            }
-                            for (r, yk) in right[a].iter_mut().zip(y) {
-                                *r += va * yk;
-                            }
-                        }
-                    }
-                    Ok((gram, right))
-                })
-                .collect::<Result<_>>()?;
-            for (e, (gram, right)) in (first..).zip(local) {
-                normal.add_block(&blocks[e], &gram);
-                for (&i, r) in blocks[e].iter().zip(right) {
-                    for k in 0..D {
-                        rhs[i][k] += r[k];
-                    }
-                }
-            }
-        }
+        let (normal, rhs) = normal_equations(&space, &points_of, &blocks, &f)?;
         let llt = normal.cholesky()?;
         let mut control = rhs;
         llt.solve(&mut control);
         check_finite("control", &control.concat())?;
         let map = SplineMap { space, control };
-        let residual = (0..m)
+        let residual = map.least_squares_residual(&points_of, &blocks, &f)?;
+        let report = map.fit_report(residual, true, llt.reciprocal_condition(), start);
+        Ok((map, report))
+    }
+
+    /// The largest coordinate difference between the map and `f` at the least-squares points
+    /// (`points_of` and the samples of each element, whose functions are `blocks`).
+    fn least_squares_residual(
+        &self,
+        points_of: &[Vec<[f64; D]>],
+        blocks: &[Vec<usize>],
+        f: &(impl Fn([f64; D]) -> Option<[f64; D]> + Sync),
+    ) -> Result<f64> {
+        Ok((0..self.space.element_count())
             .into_par_iter()
             .map(|e| {
                 let functions = &blocks[e];
                 let mut largest = 0.0f64;
-                for x in all_points(&map.space, e) {
-                    let y = value(&f, x)?;
-                    let v = map.space.values_on(e, x);
+                for x in least_squares_points(&self.space, points_of, e) {
+                    let y = value(f, x)?;
+                    let v = self.space.values_on(e, x);
                     for (k, yk) in y.iter().enumerate() {
                         let s: f64 = functions
                             .iter()
                             .zip(&v)
-                            .map(|(&i, w)| w * map.control[i][k])
+                            .map(|(&i, w)| w * self.control[i][k])
                             .sum();
                         largest = largest.max((s - yk).abs());
                     }
@@ -321,9 +353,7 @@ impl<const D: usize, S: SplineSpace<D>> SplineMap<D, S> {
             })
             .collect::<Result<Vec<f64>>>()?
             .into_iter()
-            .fold(0.0, f64::max);
-        let report = map.fit_report(residual, true, llt.reciprocal_condition(), start);
-        Ok((map, report))
+            .fold(0.0, f64::max))
     }
 
     /// The report of a fit by a linear solve.

@@ -73,7 +73,7 @@ fn basis<'a, 'input>(node: Node<'a, 'input>, ty: &str) -> Result<Node<'a, 'input
 }
 
 /// The base-2 logarithm of the number of spans of the level-0 knot vectors of a tensor basis,
-/// which must be cubic, clamped and uniform on [0,1] with `2^s` spans, the same in every
+/// which must be cubic, clamped and uniform on \[0,1\] with `2^s` spans, the same in every
 /// direction; the direction of each `<Basis>` is its `index` attribute, else its place.
 fn level0_shift<const D: usize>(tensor: Node<'_, '_>) -> Result<u8> {
     let mut bases: Vec<(usize, Node)> = xml::children(tensor, "Basis")
@@ -235,7 +235,7 @@ fn read_thb_geometry<const D: usize>(geometry: Node<'_, '_>) -> Result<SplineMap
 }
 
 /// Reads the first `THBSpline{D}` patch of a G+Smo document: a map written by
-/// [`write_gismo_thb`], or any `THBSpline2/3` of degree 3 on [0,1]^d whose level-0 knots are
+/// [`write_gismo_thb`], or any `THBSpline2/3` of degree 3 on \[0,1\]^d whose level-0 knots are
 /// clamped and uniform with `2^s` spans. Other patches of the file are not read (see
 /// [`SplineMap::parse_gismo_patches`]).
 pub fn read_gismo_thb<const D: usize>(text: &str) -> Result<SplineMap<D, ThbSpace<D>>> {

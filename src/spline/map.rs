@@ -1,4 +1,4 @@
-//! A spline map `S = Σ P_i N_i` of [0,1]^d: evaluation, Jacobians, mean ratio, inverse (the
+//! A spline map `S = Σ P_i N_i` of \[0,1\]^d: evaluation, Jacobians, mean ratio, inverse (the
 //! fits are in `fit.rs`, h-refinement in `quasi.rs`).
 
 use rayon::prelude::*;
@@ -7,7 +7,7 @@ use super::space::{BasisValues, SplineSpace};
 use super::thb::ThbSpace;
 use crate::error::{check_finite, Error, Result};
 use crate::optimize::metric::mean_ratio;
-use crate::optimize::small::{bounding_box, det, inverse, Matrix};
+use crate::optimize::small_matrix::{bounding_box, det, inverse, Matrix};
 
 /// A spline space with one control point per basis function.
 #[derive(Clone, Debug)]
@@ -79,7 +79,7 @@ impl<const D: usize, S: SplineSpace<D>> SplineMap<D, S> {
         self.space.basis_at(x)
     }
 
-    /// `S(x)` and its Jacobian (`J[a][b] = ∂S_a/∂x_b`), `None` outside [0,1]^d.
+    /// `S(x)` and its Jacobian (`J[a][b] = ∂S_a/∂x_b`), `None` outside \[0,1\]^d.
     pub fn eval_with_jacobian(&self, x: [f64; D]) -> Option<([f64; D], Matrix<D>)> {
         let b = self.space.basis_at(x)?;
         let mut y = [0.0; D];
@@ -96,7 +96,7 @@ impl<const D: usize, S: SplineSpace<D>> SplineMap<D, S> {
         Some((y, j))
     }
 
-    /// `S(x)`, `None` outside [0,1]^d.
+    /// `S(x)`, `None` outside \[0,1\]^d.
     pub fn eval(&self, x: [f64; D]) -> Option<[f64; D]> {
         self.eval_with_jacobian(x).map(|r| r.0)
     }

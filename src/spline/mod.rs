@@ -1,4 +1,4 @@
-//! Spline maps of [0,1]^d over the T-mesh: cubic truncated hierarchical B-splines (THB) on the
+//! Spline maps of \[0,1\]^d over the T-mesh: cubic truncated hierarchical B-splines (THB) on the
 //! tree levels, their Bézier extraction, Greville interpolation of the T-mesh's piecewise
 //! quadratic map, queries (values, Jacobians, inverse), h-refinement, certified validity of the
 //! Jacobian determinant, and output (`.vtu` samples, G+Smo XML).
@@ -15,15 +15,16 @@ mod control;
 mod fit;
 mod fit_options;
 mod gismo;
+mod jacobian;
 mod map;
 mod piece;
-mod quadratic;
 mod quality_bound;
 mod quasi;
 mod refit;
 mod smooth;
 mod space;
 mod thb;
+mod tmesh_map;
 mod untangle;
 mod validity;
 mod vtu;
@@ -33,12 +34,12 @@ pub use fit::{FitReport, FitStages};
 pub use fit_options::{FitChoice, FitOptions, FitProgress, FitStage};
 pub use gismo::{read_gismo_thb, write_gismo_thb};
 pub use map::{InverseMap, SplineMap};
-pub use quadratic::QuadraticMap;
 pub use quality_bound::{QualityBound, QualityBoundOptions, MAX_SOLID_DEPTH};
 pub use refit::{FitRecord, FitRule};
 pub use smooth::SmoothReport;
 pub use space::{BasisValues, SplineSpace};
 pub use thb::ThbSpace;
+pub use tmesh_map::QuadraticMap;
 pub use untangle::{UntangleOptions, UntangleReport};
 pub(crate) use validity::HISTOGRAM_BINS;
 pub use validity::{ElementValidity, ValidityOptions, ValidityReport};

@@ -4,10 +4,10 @@
 //! point).
 
 use super::bernstein::{bernstein3, bernstein_blossom, knot, Bernstein};
+use super::jacobian::jacobian_determinant;
 use super::map::SplineMap;
 use super::space::SplineSpace;
-use super::validity::jacobian_determinant;
-use crate::optimize::small::Matrix;
+use crate::optimize::small_matrix::Matrix;
 
 /// A polynomial of degree 3 per direction on a box: its tensor Bernstein coefficients there
 /// (`4^d` points, direction 0 fastest).
@@ -37,7 +37,7 @@ impl<const D: usize> Piece<D> {
         out
     }
 
-    /// Component `a` of the piece as a Bernstein polynomial on the box mapped to [0,1]^d.
+    /// Component `a` of the piece as a Bernstein polynomial on the box mapped to \[0,1\]^d.
     pub(super) fn component(&self, a: usize) -> Bernstein<D> {
         Bernstein {
             degree: [3; D],
@@ -46,7 +46,7 @@ impl<const D: usize> Piece<D> {
     }
 
     /// `det J` on the box, the Jacobian with respect to the parametric coordinates, as a
-    /// Bernstein polynomial of degree `3d − 1` per direction on the box mapped to [0,1]^d.
+    /// Bernstein polynomial of degree `3d − 1` per direction on the box mapped to \[0,1\]^d.
     pub(super) fn det_polynomial(&self) -> Bernstein<D> {
         let components: Vec<Bernstein<D>> = (0..D).map(|a| self.component(a)).collect();
         jacobian_determinant(&components, self.lo, self.hi)

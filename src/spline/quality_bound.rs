@@ -14,9 +14,9 @@
 use rayon::prelude::*;
 
 use super::bernstein::Bernstein;
+use super::jacobian::{jacobian_determinant, jacobian_entries};
 use super::map::SplineMap;
 use super::space::SplineSpace;
-use super::validity::{jacobian_determinant, jacobian_entries};
 use crate::error::{Error, Result};
 
 /// Options of [`SplineMap::quality_bound`].
@@ -134,7 +134,7 @@ impl<const D: usize, S: SplineSpace<D>> SplineMap<D, S> {
 }
 
 /// `det J` and `‖J‖²_F` of the map of Bernstein `patches` on the box `[lo, hi]`, as
-/// polynomials on [0,1]^d (the norm elevated to degree `2p` in every direction).
+/// polynomials on \[0,1\]^d (the norm elevated to degree `2p` in every direction).
 fn det_and_norm<const D: usize>(
     patches: &[Bernstein<D>],
     lo: [f64; D],

@@ -1,5 +1,5 @@
 //! Smoothing of a certified spline map: every inner control point (of a function vanishing on
-//! the boundary of [0,1]^d, so the map's boundary is kept) moves to the minimum of the
+//! the boundary of \[0,1\]^d, so the map's boundary is kept) moves to the minimum of the
 //! regularised mean-ratio distortion of `J_S` at the sample points of its support, in coloured
 //! Gauss–Seidel sweeps ([`Region::sweep`](super::control::Region)). The distortion grows without
 //! bound as `det J_S → 0`, so its minimisation keeps the map away from folds and raises its worst
@@ -12,7 +12,7 @@ use std::collections::BTreeSet;
 use super::map::SplineMap;
 use super::thb::ThbSpace;
 use super::validity::{ValidityOptions, ValidityReport};
-use crate::optimize::small::{bounding_box, Vector};
+use crate::optimize::small_matrix::{bounding_box, Vector};
 use crate::optimize::NodeSolverOptions;
 
 /// What [`SplineMap::smooth`] did.
@@ -108,6 +108,21 @@ impl<const D: usize> SplineMap<D, ThbSpace<D>> {
             }
             best = now;
         }
+        let kept = self.keep_best(states, scale, validity, certify, &mut report);
+        (kept, report)
+    }
+
+    /// Keeps the last of the sweeps' `states` (control points in coordinates scaled by `scale`,
+    /// and those moved) that is certified and better than the map given, whose validity is
+    /// `validity`; returns the validity of the map kept.
+    fn keep_best(
+        &mut self,
+        states: Vec<(Vec<Vector<D>>, BTreeSet<usize>)>,
+        scale: f64,
+        validity: ValidityReport,
+        certify: &ValidityOptions,
+        report: &mut SmoothReport,
+    ) -> ValidityReport {
         // The last state that is certified and better than the map given, latest first.
         for (y, moved) in states.into_iter().rev() {
             let mut control = self.control.clone();
@@ -126,9 +141,9 @@ impl<const D: usize> SplineMap<D, ThbSpace<D>> {
                 report.moved = moved.len();
                 report.min_quality_after = after.min_quality;
                 *self = trial;
-                return (after, report);
+                return after;
             }
         }
-        (validity, report)
+        validity
     }
 }

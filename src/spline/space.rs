@@ -4,7 +4,7 @@
 use super::bernstein::{bernstein3, SPAN_FUNCTIONS};
 use crate::error::Result;
 
-/// A spline space of degree 3 per direction on [0,1]^d, split into box elements on each of which
+/// A spline space of degree 3 per direction on \[0,1\]^d, split into box elements on each of which
 /// every function is a polynomial.
 pub trait SplineSpace<const D: usize>: Clone + Send + Sync {
     /// Number of basis functions.
@@ -19,7 +19,7 @@ pub trait SplineSpace<const D: usize>: Clone + Send + Sync {
     /// Refinement level of element `e` (its side is `2^-level`).
     fn element_level(&self, e: usize) -> u8;
 
-    /// The element containing the parametric point `x`, `None` outside [0,1]^d. On shared
+    /// The element containing the parametric point `x`, `None` outside \[0,1\]^d. On shared
     /// element boundaries the element on the upper side is chosen.
     fn element_at(&self, x: [f64; D]) -> Option<usize>;
 
@@ -43,7 +43,7 @@ pub trait SplineSpace<const D: usize>: Clone + Send + Sync {
     fn refine(&self, marked: &[usize]) -> Result<Self>;
 
     /// Values and first derivatives (with respect to the parametric coordinates) of the
-    /// functions non-zero at `x`; `None` outside [0,1]^d.
+    /// functions non-zero at `x`; `None` outside \[0,1\]^d.
     fn basis_at(&self, x: [f64; D]) -> Option<BasisValues<D>> {
         Some(self.basis_on(self.element_at(x)?, x))
     }

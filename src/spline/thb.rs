@@ -13,7 +13,7 @@ use std::collections::HashMap;
 use super::bernstein::{extraction, function_count, greville, support_spans, two_scale, Matrix4};
 use super::space::SplineSpace;
 use crate::error::{Error, Result};
-use crate::tmesh::{Tree, MAX_LEVEL, UNIT};
+use crate::tmesh::{Cell, Tree, MAX_LEVEL, UNIT};
 
 /// Per function of one level: how many level cells of its support exist in the tree, and how
 /// many of those are refined.
@@ -72,6 +72,98 @@ pub(super) fn tensor_apply<const D: usize>(m: &[Matrix4; D], v: &[f64]) -> Vec<f
     cur
 }
 
+/// Per level, the [`Counts`] of the functions whose support meets a tree cell of that level.
+fn level_counts<const D: usize>(cells: &[Cell<D>]) -> Vec<Counts<D>> {
+    let max_level = cells.iter().map(|c| c.level).max().unwrap_or(0);
+    let mut counts: Vec<Counts<D>> = vec![HashMap::new(); max_level as usize + 2];
+    for cell in cells {
+        let side = cell.side();
+        let span = cell.lower.map(|v| v / side);
+        let refined = cell.first_child.is_some() as u32;
+        for q in 0..4usize.pow(D as u32) {
+            let f: [u32; D] = std::array::from_fn(|k| span[k] + (q >> (2 * k) & 3) as u32);
+            let e = counts[cell.level as usize].entry(f).or_insert((0, 0));
+            e.0 += 1;
+            e.1 += refined;
+        }
+    }
+    counts
+}
+
+/// Whether the support of the level-`level` function `f` lies in `Ω_level`.
+fn inside<const D: usize>(counts: &[Counts<D>], level: u8, f: &[u32; D]) -> bool {
+    counts[level as usize]
+        .get(f)
+        .is_some_and(|&(n, _)| n == support_size(level, f))
+}
+
+/// The active functions (support in `Ω_l`, not in `Ω_{l+1}`), level by level, each level's
+/// by multi-index with the last direction slowest.
+fn active_functions<const D: usize>(counts: &[Counts<D>]) -> Vec<(u8, [u32; D])> {
+    let active = |level: u8, f: &[u32; D]| -> bool {
+        counts[level as usize]
+            .get(f)
+            .is_some_and(|&(n, r)| n == support_size(level, f) && r < n)
+    };
+    let mut functions: Vec<(u8, [u32; D])> = Vec::new();
+    for (level, map) in counts.iter().enumerate() {
+        let level = level as u8;
+        let mut here: Vec<[u32; D]> = map.keys().filter(|f| active(level, f)).copied().collect();
+        here.sort_by(|a, b| a.iter().rev().cmp(b.iter().rev()));
+        functions.extend(here.into_iter().map(|f| (level, f)));
+    }
+    functions
+}
+
+/// The active functions non-zero on the leaf `cell` (ascending, by their `index`) and its
+/// extraction matrix (a row of `4^d` Bernstein coefficients per function): each function
+/// followed from its level down the leaf's ancestors by the two-scale relation, truncated on the
+/// way.
+fn leaf_extraction<const D: usize>(
+    cell: &Cell<D>,
+    counts: &[Counts<D>],
+    index: &HashMap<(u8, [u32; D]), usize>,
+) -> (Vec<usize>, Vec<f64>) {
+    let local = 4usize.pow(D as u32);
+    let span = cell.lower.map(|v| v / cell.side());
+    let ancestor = |k: u8| -> [usize; D] { span.map(|s| (s >> (cell.level - k)) as usize) };
+    let mut rows: Vec<(usize, Vec<f64>)> = Vec::new();
+    for k in 0..=cell.level {
+        let a = ancestor(k);
+        if k > 0 {
+            let parent = ancestor(k - 1);
+            let m: [Matrix4; D] = std::array::from_fn(|d| two_scale(k - 1, parent[d], a[d]));
+            for (_, coef) in rows.iter_mut() {
+                *coef = tensor_apply(&m, coef);
+                for (q, v) in coef.iter_mut().enumerate() {
+                    let f = std::array::from_fn(|d| (a[d] + (q >> (2 * d) & 3)) as u32);
+                    if inside(counts, k, &f) {
+                        *v = 0.0;
+                    }
+                }
+            }
+            rows.retain(|(_, coef)| coef.iter().any(|&v| v != 0.0));
+        }
+        for q in 0..local {
+            let f = std::array::from_fn(|d| (a[d] + (q >> (2 * d) & 3)) as u32);
+            if let Some(&g) = index.get(&(k, f)) {
+                let mut coef = vec![0.0; local];
+                coef[q] = 1.0;
+                rows.push((g, coef));
+            }
+        }
+    }
+    let a = ancestor(cell.level);
+    let m: [Matrix4; D] = std::array::from_fn(|d| extraction(cell.level, a[d]));
+    rows.sort_by_key(|r| r.0);
+    let functions = rows.iter().map(|r| r.0).collect();
+    let matrix = rows
+        .iter()
+        .flat_map(|(_, coef)| tensor_apply(&m, coef))
+        .collect();
+    (functions, matrix)
+}
+
 impl<const D: usize> ThbSpace<D> {
     /// The THB space of a strongly 2:1 balanced tree.
     pub fn new(tree: Tree<D>) -> Result<Self> {
@@ -81,37 +173,8 @@ impl<const D: usize> ThbSpace<D> {
             ));
         }
         let cells = tree.cells();
-        let max_level = cells.iter().map(|c| c.level).max().unwrap_or(0);
-        let mut counts: Vec<Counts<D>> = vec![HashMap::new(); max_level as usize + 2];
-        for cell in cells {
-            let side = cell.side();
-            let span = cell.lower.map(|v| v / side);
-            let refined = cell.first_child.is_some() as u32;
-            for q in 0..4usize.pow(D as u32) {
-                let f: [u32; D] = std::array::from_fn(|k| span[k] + (q >> (2 * k) & 3) as u32);
-                let e = counts[cell.level as usize].entry(f).or_insert((0, 0));
-                e.0 += 1;
-                e.1 += refined;
-            }
-        }
-        let inside = |level: u8, f: &[u32; D]| -> bool {
-            counts[level as usize]
-                .get(f)
-                .is_some_and(|&(n, _)| n == support_size(level, f))
-        };
-        let active = |level: u8, f: &[u32; D]| -> bool {
-            counts[level as usize]
-                .get(f)
-                .is_some_and(|&(n, r)| n == support_size(level, f) && r < n)
-        };
-        let mut functions: Vec<(u8, [u32; D])> = Vec::new();
-        for (level, map) in counts.iter().enumerate() {
-            let level = level as u8;
-            let mut here: Vec<[u32; D]> =
-                map.keys().filter(|f| active(level, f)).copied().collect();
-            here.sort_by(|a, b| a.iter().rev().cmp(b.iter().rev()));
-            functions.extend(here.into_iter().map(|f| (level, f)));
-        }
+        let counts = level_counts(cells);
+        let functions = active_functions(&counts);
         let index: HashMap<(u8, [u32; D]), usize> =
             functions.iter().enumerate().map(|(i, &f)| (f, i)).collect();
         let leaves = tree.leaves();
@@ -119,49 +182,12 @@ impl<const D: usize> ThbSpace<D> {
         for (e, &c) in leaves.iter().enumerate() {
             leaf_of_cell[c] = e;
         }
-        let local = 4usize.pow(D as u32);
         let mut element_functions = Vec::with_capacity(leaves.len());
         let mut element_matrices = Vec::with_capacity(leaves.len());
         for &c in &leaves {
-            let cell = cells[c];
-            let span = cell.lower.map(|v| v / cell.side());
-            let ancestor = |k: u8| -> [usize; D] { span.map(|s| (s >> (cell.level - k)) as usize) };
-            let mut rows: Vec<(usize, Vec<f64>)> = Vec::new();
-            for k in 0..=cell.level {
-                let a = ancestor(k);
-                if k > 0 {
-                    let parent = ancestor(k - 1);
-                    let m: [Matrix4; D] =
-                        std::array::from_fn(|d| two_scale(k - 1, parent[d], a[d]));
-                    for (_, coef) in rows.iter_mut() {
-                        *coef = tensor_apply(&m, coef);
-                        for (q, v) in coef.iter_mut().enumerate() {
-                            let f = std::array::from_fn(|d| (a[d] + (q >> (2 * d) & 3)) as u32);
-                            if inside(k, &f) {
-                                *v = 0.0;
-                            }
-                        }
-                    }
-                    rows.retain(|(_, coef)| coef.iter().any(|&v| v != 0.0));
-                }
-                for q in 0..local {
-                    let f = std::array::from_fn(|d| (a[d] + (q >> (2 * d) & 3)) as u32);
-                    if let Some(&g) = index.get(&(k, f)) {
-                        let mut coef = vec![0.0; local];
-                        coef[q] = 1.0;
-                        rows.push((g, coef));
-                    }
-                }
-            }
-            let a = ancestor(cell.level);
-            let m: [Matrix4; D] = std::array::from_fn(|d| extraction(cell.level, a[d]));
-            rows.sort_by_key(|r| r.0);
-            element_functions.push(rows.iter().map(|r| r.0).collect());
-            element_matrices.push(
-                rows.iter()
-                    .flat_map(|(_, coef)| tensor_apply(&m, coef))
-                    .collect(),
-            );
+            let (functions, matrix) = leaf_extraction(&cells[c], &counts, &index);
+            element_functions.push(functions);
+            element_matrices.push(matrix);
         }
         Ok(ThbSpace {
             tree,
@@ -233,7 +259,7 @@ impl<const D: usize> SplineSpace<D> for ThbSpace<D> {
     /// The Greville points, except where those of functions of different levels coincide (near
     /// a level change; the collocation matrix would be singular): the finest function keeps the
     /// point, each coarser one (level `l`) takes, among the points `{¼, ½, ¾}^d` of the level-`l`
-    /// leaves in its support (a coordinate on the boundary of [0,1]^d stays there), the free one
+    /// leaves in its support (a coordinate on the boundary of \[0,1\]^d stays there), the free one
     /// where it is largest.
     fn interpolation_points(&self) -> Vec<[f64; D]> {
         let cells = self.tree.cells();

@@ -4,7 +4,7 @@
 //! objective and per-node Newton solver, applied to control points. `J_S` at a point is affine
 //! in each control point (`J_S = A + P_i ∇N_iᵀ`), exactly the form of a T-mesh node's terms.
 //!
-//! First only the control points of functions that vanish on the boundary of [0,1]^d move: the
+//! First only the control points of functions that vanish on the boundary of \[0,1\]^d move: the
 //! boundary of the map does not change. If elements stay uncertified and `boundary_offset` is
 //! positive, those of the boundary functions move too, each at most `boundary_offset` (in
 //! coordinates that map the control points' bounding box onto a unit box) from where it was:
@@ -21,7 +21,7 @@ use super::map::SplineMap;
 use super::space::SplineSpace;
 use super::thb::ThbSpace;
 use super::validity::{ValidityOptions, ValidityReport};
-use crate::optimize::small::{bounding_box, clip_to_ball, det, Vector};
+use crate::optimize::small_matrix::{bounding_box, clip_to_ball, det, Vector};
 use crate::optimize::NodeSolverOptions;
 
 /// Options of [`SplineMap::untangle`].
@@ -37,7 +37,7 @@ pub struct UntangleOptions {
     pub samples: usize,
     /// Rings of elements around the uncertified ones whose control points move too.
     pub rings: u32,
-    /// Largest move of a control point of a function non-zero on the boundary of [0,1]^d, in
+    /// Largest move of a control point of a function non-zero on the boundary of \[0,1\]^d, in
     /// coordinates that map the control points' bounding box onto a unit box; 0 keeps the boundary of the map. The boundary moves only
     /// when moving the inner control points alone leaves elements uncertified. Default 1e-2,
     /// as [`DomainOptions::boundary_offset`](crate::domain::DomainOptions::boundary_offset).
@@ -75,6 +75,19 @@ pub struct UntangleReport {
     /// Whether the progress callback of [`SplineMap::untangle_with`] stopped it (the map is
     /// then left as it was).
     pub cancelled: bool,
+}
+
+/// One stage of the untangling, in unit-box coordinates (each axis scaled by the extent of the
+/// control points where it started).
+struct Stage<const D: usize> {
+    /// Per axis, the factor into unit-box coordinates.
+    scale: [f64; D],
+    /// The control points where the stage started.
+    start: Vec<Vector<D>>,
+    /// The control points now.
+    y: Vec<Vector<D>>,
+    /// The control points moved so far.
+    moved: BTreeSet<usize>,
 }
 
 impl<const D: usize> SplineMap<D, ThbSpace<D>> {
@@ -140,7 +153,7 @@ impl<const D: usize> SplineMap<D, ThbSpace<D>> {
     }
 
     /// The boundary functions non-zero on an uncertified element whose `det J_S` is not
-    /// positive at a sample on two or more sides of [0,1]^d (a corner of the square, an edge of
+    /// positive at a sample on two or more sides of \[0,1\]^d (a corner of the square, an edge of
     /// the cube), in 3D also on an element in the support of one of those: at such a sample every
     /// column of `J_S` is a tangent of the boundary, so `det J_S` depends on the boundary
     /// control points alone and no inner one can lift it.
@@ -202,41 +215,9 @@ impl<const D: usize> SplineMap<D, ThbSpace<D>> {
         boundary: &BTreeSet<usize>,
         round: &mut dyn FnMut(usize) -> bool,
     ) -> Option<(ValidityReport, usize, f64)> {
-        let cap = options.boundary_offset;
-        // Unit-box coordinates: each axis scaled by the extent of the control points.
-        let (lo, hi) = bounding_box(self.control.iter().copied());
-        let scale: [f64; D] = std::array::from_fn(|k| {
-            let e = hi[k] - lo[k];
-            if e > 0.0 && e.is_finite() {
-                1.0 / e
-            } else {
-                1.0
-            }
-        });
-        let start: Vec<Vector<D>> = self
-            .control
-            .iter()
-            .map(|p| std::array::from_fn(|k| p[k] * scale[k]))
-            .collect();
-        let mut y = start.clone();
+        let mut stage = self.unit_box();
         let mut uncertified: Vec<usize> = marked(&validity);
-        let mut moved = BTreeSet::new();
         let support = self.function_elements();
-        // Newton iterations per control point and sweep, as measured: in 3D 20 lift the duck
-        // B-rep's min q_S from 0.076 (8) to 0.082; in 2D 8 untangle Gran Canaria with its
-        // boundary kept, where 20 leave an element for the boundary stage (1% moves).
-        let solver = NodeSolverOptions {
-            gradient_tolerance: 1e-4,
-            max_iterations: if D == 3 { 20 } else { 8 },
-            relaxation: 1.0,
-        };
-        let constrain = |f: usize, next: Vector<D>| {
-            if self.boundary_sides(f) > 0 {
-                clip_to_ball(next, start[f], cap)
-            } else {
-                next
-            }
-        };
         for r in 0..options.rounds as usize {
             if !round(r) {
                 return None;
@@ -245,32 +226,9 @@ impl<const D: usize> SplineMap<D, ThbSpace<D>> {
                 break;
             }
             let functions = self.free_functions(&uncertified, &support, options.rings, boundary);
-            let mut region = self.region(&functions, &support, options.samples, &y);
-            let progress = |region: &Region<D>, y: &[Vector<D>], moved: &BTreeSet<usize>| {
-                let (folded, smallest, quality) = region.folded();
-                let control = self.unscaled(y, &scale, moved);
-                let open = self.uncertified_count(&uncertified, &control, certify);
-                (folded + open, smallest, quality)
-            };
-            let mut best = progress(&region, &y, &moved);
-            for _ in 0..options.sweeps {
-                let largest = region.sweep(&mut y, &solver, &constrain, &mut moved);
-                let now = progress(&region, &y, &moved);
-                // While samples fold or the round's elements are not certified, a sweep must
-                // lower their count or lift the smallest sampled det J; after, it must lift
-                // the smallest sampled mean ratio by 1%. Otherwise, or when it barely moves,
-                // the round ends.
-                let improved = if now.0 == 0 {
-                    best.0 > 0 || now.2 > 1.01 * best.2
-                } else {
-                    now.0 < best.0 || (now.0 == best.0 && now.1 > best.1)
-                };
-                if !improved || largest < 1e-3 {
-                    break;
-                }
-                best = now;
-            }
-            let control = self.unscaled(&y, &scale, &moved);
+            let mut region = self.region(&functions, &support, options.samples, &stage.y);
+            self.sweep_round(&mut stage, &mut region, &uncertified, certify, options);
+            let control = self.unscaled(&stage.y, &stage.scale, &stage.moved);
             let elements: Vec<usize> = region
                 .order
                 .par_iter()
@@ -285,13 +243,111 @@ impl<const D: usize> SplineMap<D, ThbSpace<D>> {
                 break;
             }
         }
+        Some(self.keep_if_better(stage, validity, certify))
+    }
+
+    /// The start of a stage: the control points in unit-box coordinates, each axis scaled by
+    /// the extent of the control points, none moved yet.
+    fn unit_box(&self) -> Stage<D> {
+        let (lo, hi) = bounding_box(self.control.iter().copied());
+        let scale: [f64; D] = std::array::from_fn(|k| {
+            let e = hi[k] - lo[k];
+            if e > 0.0 && e.is_finite() {
+                1.0 / e
+            } else {
+                1.0
+            }
+        });
+        let start: Vec<Vector<D>> = self
+            .control
+            .iter()
+            .map(|p| std::array::from_fn(|k| p[k] * scale[k]))
+            .collect();
+        Stage {
+            scale,
+            y: start.clone(),
+            start,
+            moved: BTreeSet::new(),
+        }
+    }
+
+    /// One round's sweeps over the free control points of `region`, while they improve the
+    /// `uncertified` elements (the round's) or, once those are open, the sampled mean ratio.
+    fn sweep_round(
+        &self,
+        stage: &mut Stage<D>,
+        region: &mut Region<D>,
+        uncertified: &[usize],
+        certify: &ValidityOptions,
+        options: &UntangleOptions,
+    ) {
+        let cap = options.boundary_offset;
+        // Newton iterations per control point and sweep, as measured: in 3D 20 lift the duck
+        // B-rep's min q_S from 0.076 (8) to 0.082; in 2D 8 untangle Gran Canaria with its
+        // boundary kept, where 20 leave an element for the boundary stage (1% moves).
+        let solver = NodeSolverOptions {
+            gradient_tolerance: 1e-4,
+            max_iterations: if D == 3 { 20 } else { 8 },
+            relaxation: 1.0,
+        };
+        let start = &stage.start;
+        let constrain = |f: usize, next: Vector<D>| {
+            if self.boundary_sides(f) > 0 {
+                clip_to_ball(next, start[f], cap)
+            } else {
+                next
+            }
+        };
+        let scale = &stage.scale;
+        let progress = |region: &Region<D>, y: &[Vector<D>], moved: &BTreeSet<usize>| {
+            let (folded, smallest, quality) = region.folded();
+            let control = self.unscaled(y, scale, moved);
+            let open = self.uncertified_count(uncertified, &control, certify);
+            (folded + open, smallest, quality)
+        };
+        let (y, moved) = (&mut stage.y, &mut stage.moved);
+        let mut best = progress(region, y, moved);
+        for _ in 0..options.sweeps {
+            let largest = region.sweep(y, &solver, &constrain, moved);
+            let now = progress(region, y, moved);
+            // While samples fold or the round's elements are not certified, a sweep must
+            // lower their count or lift the smallest sampled det J; after, it must lift
+            // the smallest sampled mean ratio by 1%. Otherwise, or when it barely moves,
+            // the round ends.
+            let improved = if now.0 == 0 {
+                best.0 > 0 || now.2 > 1.01 * best.2
+            } else {
+                now.0 < best.0 || (now.0 == best.0 && now.1 > best.1)
+            };
+            if !improved || largest < 1e-3 {
+                break;
+            }
+            best = now;
+        }
+    }
+
+    /// The end of a stage: the map with the stage's control points if it is better than the
+    /// one whose validity is `validity`, else the map unchanged. Returns the validity of the map
+    /// kept, the control points moved and the largest move of a boundary one.
+    fn keep_if_better(
+        &mut self,
+        stage: Stage<D>,
+        validity: ValidityReport,
+        certify: &ValidityOptions,
+    ) -> (ValidityReport, usize, f64) {
+        let Stage {
+            scale,
+            start,
+            y,
+            moved,
+        } = stage;
         let trial = SplineMap {
             space: self.space.clone(),
             control: self.unscaled(&y, &scale, &moved),
         };
         let after = trial.validity(certify);
         if !after.is_better_than(&validity) {
-            return Some((validity, 0, 0.0));
+            return (validity, 0, 0.0);
         }
         let offset = moved
             .iter()
@@ -304,7 +360,7 @@ impl<const D: usize> SplineMap<D, ThbSpace<D>> {
             })
             .fold(0.0, f64::max);
         *self = trial;
-        Some((after, moved.len(), offset))
+        (after, moved.len(), offset)
     }
 
     /// How many of the `elements` are not certified for the control points `control` (in
@@ -321,7 +377,7 @@ impl<const D: usize> SplineMap<D, ThbSpace<D>> {
             .count()
     }
 
-    /// The number of sides of [0,1]^d function `f` is non-zero on.
+    /// The number of sides of \[0,1\]^d function `f` is non-zero on.
     pub(super) fn boundary_sides(&self, f: usize) -> usize {
         let (level, index) = self.space.functions()[f];
         let last = super::bernstein::function_count(level) as u32 - 1;
@@ -386,7 +442,7 @@ mod tests {
     use super::*;
     use crate::tmesh::Tree;
 
-    /// The identity of [0,1]^d on the uniform space of `level` (control points at the Greville
+    /// The identity of \[0,1\]^d on the uniform space of `level` (control points at the Greville
     /// points), with the inner control point `moved` displaced by `by`.
     fn folded<const D: usize>(level: u8, moved: usize, by: [f64; D]) -> SplineMap<D> {
         let mut tree = Tree::<D>::new();

@@ -6,7 +6,7 @@ use super::map::SplineMap;
 use super::space::SplineSpace;
 use crate::io::vtu::{DataArray, UnstructuredGrid};
 use crate::optimize::metric::mean_ratio;
-use crate::optimize::small::det;
+use crate::optimize::small_matrix::det;
 
 impl<const D: usize, S: SplineSpace<D>> SplineMap<D, S> {
     /// The map sampled on `n × n (× n)` sub-cells per element (`n ≥ 1`).

@@ -8,7 +8,7 @@ use super::tree::{Tree, UNIT};
 use crate::error::{Error, Result};
 use crate::optimize::{lattice, CellPattern, CellSpec, Problem, TargetKind};
 
-/// A strongly balanced T-mesh of [0,1]^d.
+/// A strongly balanced T-mesh of \[0,1\]^d.
 #[derive(Clone, Debug)]
 pub struct TMesh<const D: usize> {
     tree: Tree<D>,
@@ -112,7 +112,7 @@ impl<const D: usize> TMesh<D> {
             .collect()
     }
 
-    /// Whether vertex `v` lies on the boundary of [0,1]^d.
+    /// Whether vertex `v` lies on the boundary of \[0,1\]^d.
     pub fn on_boundary(&self, v: usize) -> bool {
         self.vertices[v].iter().any(|&c| c == 0 || c == UNIT)
     }

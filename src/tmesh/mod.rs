@@ -1,4 +1,4 @@
-//! Hierarchical T-meshes of [0,1]^d: a strongly 2:1 balanced quadtree/octree, its vertices with
+//! Hierarchical T-meshes of \[0,1\]^d: a strongly 2:1 balanced quadtree/octree, its vertices with
 //! hanging ones, and the quadratic cell maps the optimizer sees (corners and hanging vertices are
 //! real nodes, the other lattice points virtual).
 

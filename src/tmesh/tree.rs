@@ -1,4 +1,4 @@
-//! The hierarchical quadtree (d = 2) / octree (d = 3) over [0,1]^d: cells, refinement, point
+//! The hierarchical quadtree (d = 2) / octree (d = 3) over \[0,1\]^d: cells, refinement, point
 //! location and the strong 2:1 balance.
 //!
 //! Coordinates are integers on the finest half-grid: a cell of level `l` has side
@@ -39,7 +39,7 @@ impl<const D: usize> Cell<D> {
     }
 }
 
-/// A quadtree/octree over [0,1]^d.
+/// A quadtree/octree over \[0,1\]^d.
 #[derive(Clone, Debug)]
 pub struct Tree<const D: usize> {
     cells: Vec<Cell<D>>,
@@ -182,7 +182,7 @@ impl<const D: usize> Tree<D> {
         Some(c)
     }
 
-    /// The leaf containing the parametric point `x ∈ [0,1]^d`, or `None` outside (or not finite).
+    /// The leaf containing the parametric point `x ∈ \[0,1\]^d`, or `None` outside (or not finite).
     /// On shared boundaries the cell on the upper side is chosen.
     pub fn leaf_at_point(&self, x: &[f64; D]) -> Option<usize> {
         if x.iter().any(|v| !v.is_finite() || *v < 0.0 || *v > 1.0) {

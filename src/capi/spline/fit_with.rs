@@ -5,8 +5,8 @@ use std::ffi::{c_int, c_void};
 
 use super::{fit_report, igaparam_fit_report, igaparam_spline, igaparam_validity_options};
 use super::{new_recorded_handle, validity_options, AnyMap};
-use crate::capi::boundary::{non_null_mut, options_or, run, write_optional, Failure};
 use crate::capi::domain::{current, igaparam_domain, Built};
+use crate::capi::ffi::{non_null_mut, options_or, run, write_optional, Failure};
 use crate::capi::progress::call_progress;
 use crate::capi::{igaparam_progress_fn, igaparam_stage, igaparam_status};
 use crate::domain::{CubeMap, Domain};

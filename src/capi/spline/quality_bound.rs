@@ -2,7 +2,7 @@
 //! `igaparam_spline_quality_bound`, its options and its report.
 
 use super::{held, igaparam_spline};
-use crate::capi::boundary::{non_null_mut, options_or, run};
+use crate::capi::ffi::{non_null_mut, options_or, run};
 use crate::capi::igaparam_status;
 use crate::spline::QualityBoundOptions;
 

@@ -2,7 +2,7 @@
 //! basis functions non-zero at a point.
 
 use super::{dim, igaparam_spline, map};
-use crate::capi::boundary::{
+use crate::capi::ffi::{
     check_capacity, non_null_mut, optional_out, run, slice, slice_mut, Failure,
 };
 use crate::capi::igaparam_status;
@@ -59,6 +59,7 @@ fn point<const D: usize>(values: &[f64], i: usize) -> [f64; D] {
 /// receives `S(params)` (`n × d` doubles) and `jacobians` the Jacobian matrices `dS/du`
 /// (`n × d × d` doubles, row-major: entry (i, j) = ∂S_i/∂u_j). Either may be NULL to skip it.
 /// Fails with `IGAPARAM_STATUS_INVALID_ARGUMENT` when a point is outside [0,1]^d.
+#[allow(rustdoc::broken_intra_doc_links)]
 #[no_mangle]
 pub extern "C" fn igaparam_spline_evaluate(
     spline: *const igaparam_spline,
@@ -159,8 +160,8 @@ pub extern "C" fn igaparam_spline_invert(
             let inverse = m.inverse_map(samples as usize);
             (0..n).map(|i| inverse.locate(point(input, i)).map(|x| x.to_vec())).collect()
         });
-        let out = points_out(params, n, d, "params")?
-            .ok_or(crate::capi::boundary::NullArgument("params"))?;
+        let out =
+            points_out(params, n, d, "params")?.ok_or(crate::capi::ffi::NullArgument("params"))?;
         let flags = if found.is_null() {
             None
         } else {
@@ -184,6 +185,7 @@ pub extern "C" fn igaparam_spline_invert(
 /// Writes to `*count` the number of basis functions non-zero on the element holding the
 /// parametric point `param` (`d` doubles in [0,1]^d): the size of the buffers of
 /// `igaparam_spline_basis_at`.
+#[allow(rustdoc::broken_intra_doc_links)]
 #[no_mangle]
 pub extern "C" fn igaparam_spline_basis_count_at(
     spline: *const igaparam_spline,
@@ -206,6 +208,7 @@ pub extern "C" fn igaparam_spline_basis_count_at(
 /// and `Σ values[i] × control_point[functions[i]]` is the map's value at `param`. When the
 /// buffers are too small (`IGAPARAM_STATUS_BUFFER_TOO_SMALL`) `*count` still receives `m` and
 /// nothing else is written.
+#[allow(rustdoc::broken_intra_doc_links)]
 #[no_mangle]
 pub extern "C" fn igaparam_spline_basis_at(
     spline: *const igaparam_spline,

@@ -2,8 +2,8 @@
 //! T-mesh: `igaparam_spline_refit`, and the rule a spline's control points come from.
 
 use super::{dim, fit_report, igaparam_fit_report, igaparam_spline, AnyMap};
-use crate::capi::boundary::{non_null_mut, run, write_optional, Failure};
 use crate::capi::domain::{current, igaparam_domain, untangle_options, Built};
+use crate::capi::ffi::{non_null_mut, run, write_optional, Failure};
 use crate::capi::igaparam_status;
 use crate::domain::{CubeMap, Domain};
 use crate::error::{Error, Result};

@@ -2,7 +2,7 @@
 //! its report.
 
 use super::{held, igaparam_spline};
-use crate::capi::boundary::{check_capacity, non_null_mut, options_or, run, slice_mut};
+use crate::capi::ffi::{check_capacity, non_null_mut, options_or, run, slice_mut};
 use crate::capi::igaparam_status;
 use crate::spline::{ValidityOptions, HISTOGRAM_BINS};
 

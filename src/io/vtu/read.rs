@@ -2,6 +2,8 @@
 //! inline base64, appended raw or base64 data; uncompressed or zlib-compressed; `UInt32` or
 //! `UInt64` headers; either byte order), every piece of the file.
 
+use std::path::Path;
+
 use roxmltree::Node;
 
 use super::block::{Layout, Source};
@@ -47,6 +49,13 @@ fn find(haystack: &[u8], needle: &[u8]) -> Option<usize> {
 
 fn rfind(haystack: &[u8], needle: &[u8]) -> Option<usize> {
     haystack.windows(needle.len()).rposition(|w| w == needle)
+}
+
+/// Reads a `.vtu` file in any of the storages listed in the [module docs](super).
+pub fn read(path: &Path) -> Result<UnstructuredGrid> {
+    let bytes = std::fs::read(path)
+        .map_err(|e| Error::io(format!("cannot read {}: {e}", path.display())))?;
+    parse(&bytes).map_err(|e| Error::new(e.kind, format!("{}: {}", path.display(), e.message)))
 }
 
 /// Parses the bytes of a `.vtu` file.

@@ -2,6 +2,7 @@
 //! optionally zlib-compressed (little-endian, `UInt64` headers).
 
 use std::fmt::Write as _;
+use std::path::Path;
 
 use super::block;
 use super::{Encoding, Format, UnstructuredGrid};
@@ -124,6 +125,18 @@ fn uint8(name: &str, components: usize, bytes: Vec<u8>, f: Format) -> Array<'_> 
         bytes,
         ascii,
     }
+}
+
+/// Writes a grid as a `.vtu` file in the default [`Format`] (zlib-compressed base64).
+pub fn write(path: &Path, grid: &UnstructuredGrid) -> Result<()> {
+    write_as(path, grid, Format::default())
+}
+
+/// Writes a grid as a `.vtu` file in format `format`.
+pub fn write_as(path: &Path, grid: &UnstructuredGrid, format: Format) -> Result<()> {
+    let bytes = to_bytes(grid, format)?;
+    std::fs::write(path, bytes)
+        .map_err(|e| Error::io(format!("cannot write {}: {e}", path.display())))
 }
 
 /// The bytes of a `.vtu` document of `grid` in format `f`.

@@ -1,6 +1,6 @@
-//! The boundary helper every entry point runs in: panic catching, status mapping, the thread's
-//! last error message, and checked conversions of raw pointers to slices, paths, options and
-//! optional outputs.
+//! The foreign-function support every entry point runs in: panic catching, status mapping, the
+//! thread's last error message, and checked conversions of raw pointers to slices, paths,
+//! options and optional outputs.
 
 use std::cell::RefCell;
 use std::ffi::{c_char, CStr};

@@ -7,8 +7,8 @@ use crate::error::{Error, ErrorKind, Result};
 use crate::optimize::motion::{self, Ends};
 use crate::optimize::team::{Alone, Team};
 use crate::optimize::{
-    invalid_cells, laplace::MeshGraph, small::Vector, NodeSolverOptions, Problem, QualitySummary,
-    SweepOptions, TargetKind,
+    invalid_cells, laplace::MeshGraph, small_matrix::Vector, NodeSolverOptions, Problem,
+    QualitySummary, SweepOptions, TargetKind,
 };
 
 /// Where the free nodes start before the optimizer runs.
@@ -192,7 +192,7 @@ impl Mesh {
     /// proceeds; returning `false` cancels. On error or cancellation the mesh is unchanged.
     ///
     /// The optimizer runs on the mesh scaled by a power of two to a size of 1–2 (see
-    /// `unit_of` in `homesh`): the result does not depend on the units.
+    /// `unit_of` in `fe_mesh`): the result does not depend on the units.
     pub fn relocate(
         &mut self,
         options: &RelocateOptions,

@@ -1,4 +1,4 @@
-//! The T-mesh's piecewise quadratic map [0,1]^d → Ω: on each cell the quadratic Lagrange map of
+//! The T-mesh's piecewise quadratic map \[0,1\]^d → Ω: on each cell the quadratic Lagrange map of
 //! its 3^d lattice points, the real ones at their vertex positions and the virtual ones completed
 //! by [`lattice::completion`] — the map the optimizer shaped and the spline fit interpolates.
 
@@ -7,7 +7,7 @@ use std::collections::HashMap;
 use rayon::prelude::*;
 
 use super::bernstein::Bernstein;
-use super::validity::{jacobian_determinant, lower_bound};
+use super::jacobian::{jacobian_determinant, lower_bound};
 use crate::error::{Error, Result};
 use crate::optimize::lattice;
 use crate::tmesh::TMesh;
@@ -66,7 +66,7 @@ impl<'a, const D: usize> QuadraticMap<'a, D> {
         })
     }
 
-    /// The image of the parametric point `x`, `None` outside [0,1]^d.
+    /// The image of the parametric point `x`, `None` outside \[0,1\]^d.
     pub fn eval(&self, x: [f64; D]) -> Option<[f64; D]> {
         let c = self.leaf_of_cell[self.mesh.tree().leaf_at_point(&x)?];
         let (lo, hi) = self.mesh.cell_bounds(c);
@@ -85,7 +85,7 @@ impl<'a, const D: usize> QuadraticMap<'a, D> {
         Some(y)
     }
     /// `det J` of cell `c`'s quadratic map, with respect to the parametric coordinates, as a
-    /// Bernstein polynomial (degree `2d − 1` per direction) on the cell mapped to [0,1]^d.
+    /// Bernstein polynomial (degree `2d − 1` per direction) on the cell mapped to \[0,1\]^d.
     pub fn cell_det_polynomial(&self, c: usize) -> Bernstein<D> {
         let (lo, hi) = self.mesh.cell_bounds(c);
         let patches: Vec<Bernstein<D>> = (0..D)

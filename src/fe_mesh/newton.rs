@@ -12,7 +12,7 @@ use crate::error::Result;
 use crate::optimize::blocks::BlockLayout;
 use crate::optimize::global::GlobalObjective;
 use crate::optimize::path::{self, PathStart};
-use crate::optimize::small::Vector;
+use crate::optimize::small_matrix::Vector;
 use crate::optimize::solver::{HessianSolver, SolverSetup};
 use crate::optimize::stationary::{self, StationaryOptions};
 use crate::optimize::{invalid_cells, Problem};

@@ -14,7 +14,7 @@ use rayon::ThreadPool;
 use super::{Mesh, Solver};
 use crate::error::{check_finite, Error, Result};
 use crate::optimize::implicit::EXACT;
-use crate::optimize::small::Vector;
+use crate::optimize::small_matrix::Vector;
 use crate::optimize::solver::HessianSolver;
 
 impl Mesh {

@@ -8,8 +8,7 @@
 //! 16, 10, 5, 17, 12) and are checked against it by the Python tests. For quadrilaterals Gmsh's
 //! order is VTK's; for hexahedra the corners agree and the mid-edge and face nodes do not.
 
-use super::{CellType, Mesh};
-use crate::error::{Error, Result};
+use super::cell_type::CellType;
 use crate::optimize::lattice;
 
 /// How the nodes of a cell are listed in a connectivity array.
@@ -104,60 +103,6 @@ impl NodeOrder {
             NodeOrder::Vtk => "VTK",
             NodeOrder::Gmsh => "Gmsh",
         }
-    }
-}
-
-impl Mesh {
-    /// [`Mesh::new`] for a connectivity whose cells list their nodes in `order`; the mesh keeps
-    /// VTK's order inside and gives [`Mesh::connectivity_in`] back in any order.
-    pub fn new_ordered(
-        cell_type: CellType,
-        xyz: &[f64],
-        connectivity: &[i64],
-        order: NodeOrder,
-    ) -> Result<Mesh> {
-        let per = cell_type.node_count();
-        if connectivity.len() % per != 0 {
-            // Mesh::new words the error.
-            return Mesh::new(cell_type, xyz, connectivity);
-        }
-        let mut mesh = Mesh::new_unchecked(cell_type, xyz, &order.to_vtk(cell_type, connectivity))?;
-        mesh.order = order;
-        mesh.check_orientation()?;
-        Ok(mesh)
-    }
-
-    /// The node order the connectivity was given in.
-    pub fn node_order(&self) -> NodeOrder {
-        self.order
-    }
-
-    /// The connectivity (`#cells × nodes per cell`) with the nodes of each cell in `order`.
-    pub fn connectivity_in(&self, order: NodeOrder) -> Vec<i64> {
-        let vtk: Vec<i64> = self.connectivity.iter().map(|&n| n as i64).collect();
-        order.from_vtk(self.cell_type, &vtk)
-    }
-
-    /// Refuses a mesh every cell of which is inverted or folded in its reference shape: what a
-    /// connectivity in another node order than the one given, or cells oriented the wrong way,
-    /// look like.
-    pub(super) fn check_orientation(&self) -> Result<()> {
-        let cells = self.cell_count();
-        if cells == 0 || self.invalid_cell_count()? < cells {
-            return Ok(());
-        }
-        let plane = if self.dimension() == 2 {
-            " (quadrilaterals are taken in the x-y plane)"
-        } else {
-            ""
-        };
-        Err(Error::mesh(format!(
-            "all {cells} cells are inverted or folded in the given positions (det J <= 0 in every cell){plane}: \
-             most likely a wrong node order (the connectivity lists the nodes of each cell in another order \
-             than the {} node order it was given as; a Gmsh mesh needs the Gmsh node order) or cells oriented \
-             the wrong way (clockwise quadrilaterals, left-handed hexahedra)",
-            self.order.name()
-        )))
     }
 }
 
