@@ -145,7 +145,6 @@ impl<const D: usize, B: CubeMap<D>> Domain<D, B> {
             report.refined_cells = next.mesh.cell_count().saturating_sub(cells);
         }
         let (spent, exhausted) = (sweeps.spent(), sweeps.exhausted());
-        drop(sweeps);
         let polished = next.polish(&domain_options, &pool, &mut |_| progress(spent as usize, 0))?;
         let over = next.cells_over_tolerance()?;
         let summary = next.report(&pool)?;
