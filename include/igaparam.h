@@ -358,6 +358,18 @@ typedef struct {
    */
   int sweep_budget_exhausted;
   /**
+   * Newton iterations of the polish (`stationarity_tolerance > 0`; 0 when it is off or a
+   * cell stays invalid).
+   */
+  uint32_t newton_iterations;
+  /**
+   * Scaled max-norm of the global objective's gradient after the polish: at most
+   * `stationarity_tolerance` when it converged (the state `igaparam_spline_tangent` and
+   * `igaparam_spline_adjoint` differentiate), infinite when a cell stays invalid, 0 when the
+   * polish is off.
+   */
+  double gradient_norm;
+  /**
    * Wall-clock seconds of the call.
    */
   double seconds;
@@ -2190,6 +2202,54 @@ igaparam_status igaparam_spline_refit(igaparam_spline *spline,
  * spline read from a file and never refitted (its fit is unknown).
  */
 igaparam_status igaparam_spline_fit_rule(const igaparam_spline *spline, igaparam_fit_rule *out);
+
+/**
+ * The tangent product of the control points: for a motion `dx_boundary` of the domain's
+ * boundary vertices (`vertex_size` = d × num_vertices doubles, in the order of
+ * `igaparam_domain_copy_vertices`; entries of inner vertices are ignored), writes to `dp`
+ * (`size` = d × basis_count doubles) the first-order motion of the control points of a refit
+ * of `spline` to the domain so moved. The T-mesh follows its boundary vertices as the
+ * stationary point of its optimization (implicit function theorem), and the control points
+ * follow the T-mesh by the spline's fit rule, a linear map.
+ *
+ * A boundary vertex is one with a parametric coordinate 0 or 1 (see
+ * `igaparam_domain_copy_vertices`); it sits at its parameters' point on the boundary, so a
+ * host derives `dx_boundary` from its own change of the boundary curves or surfaces (for a
+ * B-spline boundary, the basis functions at the vertex's parameter times the change of the
+ * control points).
+ *
+ * Needs: a domain built (or updated) with `stationarity_tolerance > 0` that converged and with
+ * no boundary vertex moved off the boundary by the seam relief (`boundary_offset` 0 is the
+ * sure way), and a spline in the T-mesh's own space whose last fit or refit did not untangle
+ * (after one that did, `igaparam_spline_refit` once more carries the untangling's correction
+ * as a constant). Otherwise `IGAPARAM_STATUS_INVALID_ARGUMENT` says which. The domain's
+ * thread count is used; the result does not depend on it.
+ */
+igaparam_status igaparam_spline_tangent(const igaparam_spline *spline,
+                                        const igaparam_domain *domain,
+                                        size_t vertex_size,
+                                        const double *dx_boundary,
+                                        size_t size,
+                                        double *dp);
+
+/**
+ * The adjoint product of the control points, the transpose of `igaparam_spline_tangent`:
+ * given `dj_dp`, the partial derivatives of a scalar J of the control points (`size` = d ×
+ * basis_count doubles, in the order of `igaparam_spline_copy_control_points`), writes to
+ * `dj_dboundary` (`vertex_size` = d × num_vertices doubles) the total derivative of J with
+ * respect to every boundary vertex of the domain's T-mesh, through the fit and the T-mesh's
+ * optimum (0 at inner vertices). For a B-spline boundary, the derivative with respect to a
+ * boundary control point is the sum over boundary vertices of their derivative times the
+ * control point's basis function at the vertex's parameter. Same conditions as
+ * `igaparam_spline_tangent`; a spline fitted by quasi-interpolation is refused (its
+ * transpose is not provided).
+ */
+igaparam_status igaparam_spline_adjoint(const igaparam_spline *spline,
+                                        const igaparam_domain *domain,
+                                        size_t size,
+                                        const double *dj_dp,
+                                        size_t vertex_size,
+                                        double *dj_dboundary);
 
 /**
  * The default validity options.

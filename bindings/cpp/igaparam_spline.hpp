@@ -189,6 +189,26 @@ class Spline : public detail::Handle<igaparam_spline, igaparam_spline_free> {
     return report;
   }
 
+  /// The first-order motion of the control points (d per control point) of a refit to
+  /// `domain` for a motion of its boundary vertices (d per vertex; inner rows ignored), through
+  /// the T-mesh's optimum and the fit rule (igaparam_spline_tangent, with its conditions).
+  std::vector<double> tangent(const Domain& domain, const std::vector<double>& dx_boundary) const {
+    std::vector<double> dp(basis_count() * dimension());
+    detail::check(igaparam_spline_tangent(handle_, domain.get(), dx_boundary.size(), dx_boundary.data(),
+                                          dp.size(), dp.data()));
+    return dp;
+  }
+
+  /// The total derivative of a scalar J with respect to the boundary vertices of `domain`'s
+  /// T-mesh (d per vertex, 0 at inner ones), given dJ/dP (d per control point); the transpose
+  /// of tangent (igaparam_spline_adjoint).
+  std::vector<double> adjoint(const Domain& domain, const std::vector<double>& dj_dp) const {
+    std::vector<double> out(domain.vertex_count() * dimension());
+    detail::check(igaparam_spline_adjoint(handle_, domain.get(), dj_dp.size(), dj_dp.data(), out.size(),
+                                          out.data()));
+    return out;
+  }
+
   /// The rule the control points come from (that of the first fit).
   igaparam_fit_rule fit_rule() const {
     igaparam_fit_rule rule = IGAPARAM_FIT_INTERPOLATION;

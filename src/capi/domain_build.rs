@@ -95,6 +95,14 @@ pub struct igaparam_domain_report {
     /// 1 if the optimization stopped because it spent `max_total_sweeps` (the T-mesh is the
     /// state the sweeps reached: less optimized, possibly with invalid cells), else 0.
     pub sweep_budget_exhausted: c_int,
+    /// Newton iterations of the polish (`stationarity_tolerance > 0`; 0 when it is off or a
+    /// cell stays invalid).
+    pub newton_iterations: u32,
+    /// Scaled max-norm of the global objective's gradient after the polish: at most
+    /// `stationarity_tolerance` when it converged (the state `igaparam_spline_tangent` and
+    /// `igaparam_spline_adjoint` differentiate), infinite when a cell stays invalid, 0 when the
+    /// polish is off.
+    pub gradient_norm: f64,
     /// Wall-clock seconds of the call.
     pub seconds: f64,
 }
@@ -164,6 +172,8 @@ pub(super) fn c_report(r: &DomainReport) -> igaparam_domain_report {
         mean_quality: r.mean_quality,
         sweeps: r.sweeps,
         sweep_budget_exhausted: c_int::from(r.sweep_budget_exhausted),
+        newton_iterations: r.newton_iterations,
+        gradient_norm: r.gradient_norm,
         seconds: r.seconds,
     }
 }

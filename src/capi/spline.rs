@@ -42,11 +42,13 @@ mod fit_with;
 mod quality_bound;
 mod query;
 mod refit;
+mod sensitivity;
 mod validity;
 pub use adapt::*;
 pub use fit_with::*;
 pub use query::*;
 pub use refit::*;
+pub use sensitivity::*;
 pub use validity::*;
 
 /// A cubic truncated hierarchical B-spline (THB) map `S: [0,1]^d → Ω`, d = 2 or 3 (opaque).
@@ -167,6 +169,12 @@ impl std::ops::Deref for MapOf<'_> {
     fn deref(&self) -> &AnyMap {
         &self.0.map
     }
+}
+
+/// The error of a spline and a domain of different dimensions.
+fn dimension_mismatch(map: &AnyMap) -> Failure {
+    let d = dim(map);
+    Error::invalid(format!("the spline is {d}D and the domain {}D", 5 - d)).into()
 }
 
 fn dim(map: &AnyMap) -> usize {

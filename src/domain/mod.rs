@@ -13,6 +13,7 @@ mod polish;
 mod refine;
 mod relief;
 mod repair;
+mod sensitivity;
 mod solid;
 mod update;
 

@@ -100,7 +100,9 @@ impl<const D: usize, B: CubeMap<D>> Domain<D, B> {
     /// that a fold the relief opened stays open), the inner vertices to their current positions plus the
     /// harmonic extension of that motion (a motion of more than about four cell sizes in
     /// steps, each placed from the last and optimized), and all are optimized again with the
-    /// kernel; cells left folded get the seam relief of the build. The tree changes only with
+    /// kernel; cells left folded get the seam relief of the build, and a build with
+    /// `stationarity_tolerance > 0` gets its Newton polish again (the state
+    /// [`Domain::boundary_tangent`] differentiates). The tree changes only with
     /// [`UpdateOptions::refine`]. `progress(sweeps, 0)` is called after every sweep; returning
     /// false cancels. On any error the domain is unchanged.
     pub fn update(
@@ -142,16 +144,18 @@ impl<const D: usize, B: CubeMap<D>> Domain<D, B> {
             }
             report.refined_cells = next.mesh.cell_count().saturating_sub(cells);
         }
-        report.domain.sweeps = sweeps.spent();
-        report.domain.sweep_budget_exhausted = sweeps.exhausted();
+        let (spent, exhausted) = (sweeps.spent(), sweeps.exhausted());
+        let polished = next.polish(&domain_options, &pool, &mut |_| progress(spent as usize, 0))?;
         let over = next.cells_over_tolerance()?;
         let summary = next.report(&pool)?;
         report.domain = DomainReport {
             boundary_error: over.1,
             invalid_after_placement: report.domain.invalid_after_placement,
-            sweeps: report.domain.sweeps,
-            sweep_budget_exhausted: report.domain.sweep_budget_exhausted,
+            sweeps: spent,
+            sweep_budget_exhausted: exhausted,
             repair_rounds: report.domain.repair_rounds,
+            newton_iterations: polished.iterations,
+            gradient_norm: polished.gradient_norm,
             seconds: start.elapsed().as_secs_f64(),
             ..summary
         };

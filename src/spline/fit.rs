@@ -71,7 +71,7 @@ pub struct FitStages {
 }
 
 /// The `4^d` points `((i + ½)/4)` per direction of element `e`.
-fn samples_of<const D: usize, S: SplineSpace<D>>(
+pub(super) fn samples_of<const D: usize, S: SplineSpace<D>>(
     space: &S,
     e: usize,
 ) -> impl Iterator<Item = [f64; D]> {
@@ -97,7 +97,7 @@ fn value<const D: usize>(
 
 /// The points of element `e` a least-squares fit uses: its interpolation points (`points_of`),
 /// then its `4^d` samples.
-fn least_squares_points<'a, const D: usize, S: SplineSpace<D>>(
+pub(super) fn least_squares_points<'a, const D: usize, S: SplineSpace<D>>(
     space: &S,
     points_of: &'a [Vec<[f64; D]>],
     e: usize,
@@ -106,10 +106,50 @@ fn least_squares_points<'a, const D: usize, S: SplineSpace<D>>(
     points_of[e].iter().copied().chain(samples)
 }
 
+/// The least-squares points of every element beyond its samples (its interpolation points)
+/// and its functions: what [`least_squares_points`] and [`normal_equations`] take.
+pub(super) fn least_squares_layout<const D: usize, S: SplineSpace<D>>(
+    space: &S,
+) -> Result<LeastSquaresLayout<D>> {
+    let m = space.element_count();
+    let interpolation = space.interpolation_points();
+    let mut points_of: Vec<Vec<[f64; D]>> = vec![Vec::new(); m];
+    for (&x, e) in interpolation
+        .iter()
+        .zip(elements_of(space, &interpolation)?)
+    {
+        points_of[e].push(x);
+    }
+    let blocks: Vec<Vec<usize>> = (0..m).map(|e| space.extraction(e).0.to_vec()).collect();
+    Ok((points_of, blocks))
+}
+
+/// Per element, its interpolation points and its functions (see [`least_squares_layout`]).
+pub(super) type LeastSquaresLayout<const D: usize> = (Vec<Vec<[f64; D]>>, Vec<Vec<usize>>);
+
+/// The entries of the collocation matrix: row `p` holds the functions of element
+/// `elements[p]` with their `values[p]` at the `p`-th interpolation point.
+pub(super) fn collocation_entries<const D: usize, S: SplineSpace<D>>(
+    space: &S,
+    elements: &[usize],
+    values: &[&[f64]],
+) -> Vec<Entry> {
+    let mut entries: Vec<Entry> = Vec::new();
+    for (p, (v, &e)) in values.iter().zip(elements).enumerate() {
+        let (functions, _) = space.extraction(e);
+        for (&i, &w) in functions.iter().zip(v.iter()) {
+            if w != 0.0 {
+                entries.push((p, i, w));
+            }
+        }
+    }
+    entries
+}
+
 /// The normal equations of the least-squares fit of `f` at the points of every element (see
 /// [`least_squares_points`]; `blocks` holds each element's functions): the matrix, assembled
 /// block by block in element order, and the right-hand sides.
-fn normal_equations<const D: usize, S: SplineSpace<D>>(
+pub(super) fn normal_equations<const D: usize, S: SplineSpace<D>>(
     space: &S,
     points_of: &[Vec<[f64; D]>],
     blocks: &[Vec<usize>],
@@ -154,7 +194,7 @@ fn normal_equations<const D: usize, S: SplineSpace<D>>(
 }
 
 /// The element of each point, in point order; an error for a point outside \[0,1\]^d.
-fn elements_of<const D: usize, S: SplineSpace<D>>(
+pub(super) fn elements_of<const D: usize, S: SplineSpace<D>>(
     space: &S,
     points: &[[f64; D]],
 ) -> Result<Vec<usize>> {
@@ -256,15 +296,8 @@ impl<const D: usize, S: SplineSpace<D>> SplineMap<D, S> {
             .zip(&elements)
             .map(|(&x, &e)| Ok((value(&f, x)?, space.values_on(e, x))))
             .collect::<Result<_>>()?;
-        let mut entries: Vec<Entry> = Vec::new();
-        for (p, ((_, v), &e)) in rows.iter().zip(&elements).enumerate() {
-            let (functions, _) = space.extraction(e);
-            for (&i, &w) in functions.iter().zip(v) {
-                if w != 0.0 {
-                    entries.push((p, i, w));
-                }
-            }
-        }
+        let values: Vec<&[f64]> = rows.iter().map(|r| &r.1[..]).collect();
+        let entries = collocation_entries(&space, &elements, &values);
         let n = space.basis_count();
         let lu = SparseSolver::lu(n, &entries)?;
         let mut control: Vec<[f64; D]> = rows.iter().map(|r| r.0).collect();
@@ -303,16 +336,7 @@ impl<const D: usize, S: SplineSpace<D>> SplineMap<D, S> {
         f: impl Fn([f64; D]) -> Option<[f64; D]> + Sync,
     ) -> Result<(Self, FitReport)> {
         let start = Instant::now();
-        let m = space.element_count();
-        let interpolation = space.interpolation_points();
-        let mut points_of: Vec<Vec<[f64; D]>> = vec![Vec::new(); m];
-        for (&x, e) in interpolation
-            .iter()
-            .zip(elements_of(&space, &interpolation)?)
-        {
-            points_of[e].push(x);
-        }
-        let blocks: Vec<Vec<usize>> = (0..m).map(|e| space.extraction(e).0.to_vec()).collect();
+        let (points_of, blocks) = least_squares_layout(&space)?;
         let (normal, rhs) = normal_equations(&space, &points_of, &blocks, &f)?;
         let llt = normal.cholesky()?;
         let mut control = rhs;

@@ -21,6 +21,7 @@ mod piece;
 mod quality_bound;
 mod quasi;
 mod refit;
+mod sensitivity;
 mod smooth;
 mod space;
 mod thb;

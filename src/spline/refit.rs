@@ -75,6 +75,17 @@ enum Relation {
     Refinement,
 }
 
+/// An error unless the leaves of `space` are those of `mesh`.
+pub(super) fn relation_is_same<const D: usize>(space: &Tree<D>, mesh: &Tree<D>) -> Result<()> {
+    match relation(space, mesh)? {
+        Relation::Same => Ok(()),
+        Relation::Refinement => Err(Error::invalid(
+            "the spline was refined after its fit: its space is not the T-mesh's, and the \
+             sensitivities are given in the T-mesh's space only",
+        )),
+    }
+}
+
 /// Whether the leaves of `space` are those of `mesh` or refine them; an error otherwise.
 fn relation<const D: usize>(space: &Tree<D>, mesh: &Tree<D>) -> Result<Relation> {
     let mut same = true;
@@ -139,6 +150,7 @@ impl<const D: usize> SplineMap<D, ThbSpace<D>> {
             rule,
             correction: Vec::new(),
             boundary_offset: report.boundary_offset,
+            differentiable: report.untangled == 0,
         };
         if report.untangled > 0 {
             let source = QuadraticMap::new(mesh, positions)?;
@@ -242,12 +254,14 @@ impl<const D: usize> SplineMap<D, ThbSpace<D>> {
             }
         }
         report.boundary_offset = record.boundary_offset;
+        next.differentiable = true;
         let mut validity = map.validity(options);
         if !validity.certified_positive {
             let (after, untangled) = map.untangle(validity, options, untangle);
             validity = after;
             report.untangled = untangled.moved;
             if untangled.moved > 0 {
+                next.differentiable = false;
                 next.correction = difference(&map.control, &raw);
                 next.boundary_offset = next.boundary_offset.max(untangled.boundary_offset);
                 report.boundary_offset = next.boundary_offset;
@@ -279,4 +293,8 @@ pub struct FitRecord {
     /// The largest move of a boundary control point by the untangling, relative to the
     /// bounding box (see [`UntangleOptions::boundary_offset`]).
     pub boundary_offset: f64,
+    /// Whether the map is `A X + c` with the correction `c` of this record: its last fit or
+    /// refit did not untangle (the untangling is a non-linear step), so the sensitivities of
+    /// [`SplineMap::boundary_tangent`] apply.
+    pub differentiable: bool,
 }

@@ -69,20 +69,28 @@ impl<'a, const D: usize> QuadraticMap<'a, D> {
     /// The image of the parametric point `x`, `None` outside \[0,1\]^d.
     pub fn eval(&self, x: [f64; D]) -> Option<[f64; D]> {
         let c = self.leaf_of_cell[self.mesh.tree().leaf_at_point(&x)?];
-        let (lo, hi) = self.mesh.cell_bounds(c);
-        let shape: [[f64; 3]; D] = std::array::from_fn(|k| {
-            let xi = 2.0 * (x[k] - lo[k]) / (hi[k] - lo[k]) - 1.0;
-            [0.5 * xi * (xi - 1.0), 1.0 - xi * xi, 0.5 * xi * (xi + 1.0)]
-        });
         let mut y = [0.0; D];
-        for (l, p) in self.nodes[c].iter().enumerate() {
-            let lc = lattice::coords::<D>(l);
-            let w: f64 = (0..D).map(|k| shape[k][lc[k]]).product();
+        for (p, w) in self.nodes[c].iter().zip(lagrange_weights(self.mesh, c, x)) {
             for k in 0..D {
                 y[k] += w * p[k];
             }
         }
         Some(y)
+    }
+
+    /// The map's value at the parametric point `x` as a combination of the vertex positions:
+    /// the pairs (vertex, weight), a vertex possibly repeated (through the completion of the
+    /// virtual lattice points); `None` outside \[0,1\]^d. The map is linear in the positions,
+    /// and these are its coefficients at `x`, the same for every coordinate.
+    pub fn vertex_weights(&self, x: [f64; D]) -> Option<Vec<(usize, f64)>> {
+        let c = self.leaf_of_cell[self.mesh.tree().leaf_at_point(&x)?];
+        let (lat, ver) = self.mesh.cell_vertices(c);
+        let rows = lattice::completion::<D>(lat)?;
+        let mut out = Vec::new();
+        for (row, w) in rows.iter().zip(lagrange_weights(self.mesh, c, x)) {
+            out.extend(row.iter().map(|&(r, rw)| (ver[r] as usize, w * rw)));
+        }
+        Some(out)
     }
     /// `det J` of cell `c`'s quadratic map, with respect to the parametric coordinates, as a
     /// Bernstein polynomial (degree `2d − 1` per direction) on the cell mapped to \[0,1\]^d.
@@ -121,4 +129,20 @@ impl<'a, const D: usize> QuadraticMap<'a, D> {
             .filter(|&c| lower_bound(&self.cell_det_polynomial(c), depth) <= 0.0)
             .collect()
     }
+}
+
+/// The values at `x` of the `3^d` quadratic Lagrange functions of cell `c`'s lattice points, in
+/// lattice order.
+fn lagrange_weights<const D: usize>(mesh: &TMesh<D>, c: usize, x: [f64; D]) -> Vec<f64> {
+    let (lo, hi) = mesh.cell_bounds(c);
+    let shape: [[f64; 3]; D] = std::array::from_fn(|k| {
+        let xi = 2.0 * (x[k] - lo[k]) / (hi[k] - lo[k]) - 1.0;
+        [0.5 * xi * (xi - 1.0), 1.0 - xi * xi, 0.5 * xi * (xi + 1.0)]
+    });
+    (0..lattice::count(D))
+        .map(|l| {
+            let lc = lattice::coords::<D>(l);
+            (0..D).map(|k| shape[k][lc[k]]).product()
+        })
+        .collect()
 }

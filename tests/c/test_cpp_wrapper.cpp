@@ -226,6 +226,10 @@ void test_morph_loop() {
   double outer = 0;
   for (int c = 0; c < 4; c++) outer = std::fmax(outer, std::hypot(corners[2 * c], corners[2 * c + 1]));
   CHECK(std::fabs(outer - 2.2) < 1e-9);
+  // Sensitivities need a polished build (stationarity_tolerance > 0) and arrays of the sizes.
+  EXPECT_ERROR(IGAPARAM_STATUS_INVALID_ARGUMENT,
+               spline.tangent(domain, std::vector<double>(2 * domain.vertex_count())));
+  EXPECT_ERROR(IGAPARAM_STATUS_INVALID_ARGUMENT, spline.adjoint(domain, std::vector<double>(3)));
   // Wrong arrays and boundaries of the other kind throw, the domain unchanged.
   std::vector<igaparam::Curve> odd = quarter_annulus(2.0);
   odd[0].control_points.pop_back();

@@ -502,6 +502,94 @@ static void test_cancel(void) {
   igaparam_domain_free(d);
 }
 
+/* ---------------------------------------------------------------------------------------------
+ * Sensitivities of the control points (igaparam_spline_tangent / igaparam_spline_adjoint):
+ * the tangent against central differences of update + refit as the top bulges, the adjoint as
+ * its transpose, and bad arguments.
+ * ------------------------------------------------------------------------------------------- */
+
+/* The domain moved onto the loop of `bulge`, the spline refitted: vertices and control points. */
+static void moved(igaparam_domain *d, igaparam_spline *s, double bulge, double **x, double **p) {
+  loop_data l;
+  make_loop(&l, bulge);
+  size_t n;
+  EXPECT(igaparam_domain_set_boundary_curves(d, 4, l.curves), IGAPARAM_STATUS_OK);
+  EXPECT(igaparam_domain_update(d, NULL, NULL), IGAPARAM_STATUS_OK);
+  igaparam_refit_report r;
+  EXPECT(igaparam_spline_refit(s, d, &r), IGAPARAM_STATUS_OK);
+  CHECK(r.fit.untangled == 0, "the refit at bulge %g untangled", bulge);
+  *x = vertices(d, 2, &n);
+  *p = control_points(s, &n);
+}
+
+static double largest(const double *v, size_t n) {
+  double m = 0;
+  for (size_t i = 0; i < n; i++) m = fabs(v[i]) > m ? fabs(v[i]) : m;
+  return m;
+}
+
+static void test_sensitivities(void) {
+  loop_data l;
+  make_loop(&l, 0);
+  igaparam_domain *d = NULL;
+  EXPECT(igaparam_domain_new_from_curves(4, l.curves, &d), IGAPARAM_STATUS_OK);
+  igaparam_domain_options o = igaparam_domain_options_default();
+  o.threads = 2;
+  o.boundary_offset = 0;
+  o.stationarity_tolerance = 1e-12;
+  igaparam_domain_report built;
+  EXPECT(igaparam_domain_build(d, &o, &built), IGAPARAM_STATUS_OK);
+  CHECK(built.invalid_cells == 0 && built.gradient_norm <= 1e-12 && built.newton_iterations > 0,
+        "polished build: %zu invalid, gradient %g", built.invalid_cells, built.gradient_norm);
+  igaparam_spline *s = NULL;
+  igaparam_fit_report fit;
+  EXPECT(igaparam_spline_fit_domain(d, &s, &fit), IGAPARAM_STATUS_OK);
+  if (!s) {
+    igaparam_domain_free(d);
+    return;
+  }
+  if (fit.untangled) EXPECT(igaparam_spline_refit(s, d, NULL), IGAPARAM_STATUS_OK);
+  size_t nv, nb;
+  free(vertices(d, 2, &nv));
+  free(control_points(s, &nb));
+  const double h = 1e-4;
+  double *xp, *pp, *xm, *pm, *x0, *p0;
+  moved(d, s, h, &xp, &pp);
+  moved(d, s, -h, &xm, &pm);
+  moved(d, s, 0, &x0, &p0);
+  double *dx = malloc(2 * nv * sizeof *dx), *g = calloc(2 * nv, sizeof *g);
+  double *fd = malloc(2 * nb * sizeof *fd), *dp = malloc(2 * nb * sizeof *dp);
+  double *w = malloc(2 * nb * sizeof *w);
+  for (size_t i = 0; i < 2 * nv; i++) dx[i] = (xp[i] - xm[i]) / (2 * h);
+  for (size_t i = 0; i < 2 * nb; i++) fd[i] = (pp[i] - pm[i]) / (2 * h), w[i] = cos((double)i);
+  EXPECT(igaparam_spline_tangent(s, d, 2 * nv, dx, 2 * nb, dp), IGAPARAM_STATUS_OK);
+  double error = 0, wdp = 0, gdx = 0;
+  for (size_t i = 0; i < 2 * nb; i++) error = fmax(error, fabs(dp[i] - fd[i]));
+  CHECK(largest(fd, 2 * nb) > 0 && error <= 1e-6 * largest(fd, 2 * nb),
+        "tangent vs finite differences: %.3e of %.3e", error, largest(fd, 2 * nb));
+  /* A bad size fails before the output is written. */
+  EXPECT(igaparam_spline_adjoint(s, d, 2 * nb - 1, w, 2 * nv, g), IGAPARAM_STATUS_INVALID_ARGUMENT);
+  CHECK(strstr(message(), "dj_dp") != NULL && largest(g, 2 * nv) == 0, "bad size: %s", message());
+  EXPECT(igaparam_spline_adjoint(s, d, 2 * nb, w, 2 * nv, g), IGAPARAM_STATUS_OK);
+  for (size_t i = 0; i < 2 * nb; i++) wdp += w[i] * dp[i];
+  for (size_t i = 0; i < 2 * nv; i++) gdx += g[i] * dx[i];
+  CHECK(fabs(wdp - gdx) <= 1e-9 * fmax(fabs(wdp), fabs(gdx)), "w.dp %.15e, adjoint.dx %.15e", wdp,
+        gdx);
+  EXPECT(igaparam_spline_adjoint(NULL, d, 2 * nb, w, 2 * nv, g), IGAPARAM_STATUS_NULL_ARGUMENT);
+  EXPECT(igaparam_spline_tangent(s, NULL, 2 * nv, dx, 2 * nb, dp), IGAPARAM_STATUS_NULL_ARGUMENT);
+  EXPECT(igaparam_spline_tangent(s, d, 2 * nv, NULL, 2 * nb, dp), IGAPARAM_STATUS_NULL_ARGUMENT);
+  EXPECT(igaparam_spline_tangent(s, d, 2 * nv, dx, 2 * nb, NULL), IGAPARAM_STATUS_NULL_ARGUMENT);
+  /* Without the polish there is nothing to differentiate. */
+  o.stationarity_tolerance = 0;
+  EXPECT(igaparam_domain_build(d, &o, NULL), IGAPARAM_STATUS_OK);
+  EXPECT(igaparam_spline_tangent(s, d, 2 * nv, dx, 2 * nb, dp), IGAPARAM_STATUS_INVALID_ARGUMENT);
+  CHECK(strstr(message(), "stationarity_tolerance") != NULL, "unpolished: %s", message());
+  double *ptrs[] = {xp, pp, xm, pm, x0, p0, dx, g, fd, dp, w};
+  for (size_t i = 0; i < sizeof ptrs / sizeof *ptrs; i++) free(ptrs[i]);
+  igaparam_spline_free(s);
+  igaparam_domain_free(d);
+}
+
 int main(int argc, char **argv) {
   if (!read_dirs(argc, argv)) return 2;
   test_curves_equal_their_file();
@@ -511,6 +599,7 @@ int main(int argc, char **argv) {
   test_read_spline_refit();
   test_solid_update();
   test_cancel();
+  test_sensitivities();
   printf("%d passed, %d failed\n", passed, failed);
   return failed != 0;
 }

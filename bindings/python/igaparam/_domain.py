@@ -45,6 +45,13 @@ class DomainReport:
     #: Whether the optimization stopped because it spent ``max_total_sweeps`` (the T-mesh is
     #: the state its sweeps reached: check ``invalid_cells``).
     sweep_budget_exhausted: bool
+    #: Newton iterations of the polish (``stationarity_tolerance > 0``; 0 when it is off or a
+    #: cell stays invalid).
+    newton_iterations: int
+    #: Scaled max-norm of the global objective's gradient after the polish: at most
+    #: ``stationarity_tolerance`` when it converged (the state :meth:`Spline.tangent` and
+    #: :meth:`Spline.adjoint` differentiate), ``inf`` when a cell stays invalid, 0 when off.
+    gradient_norm: float
     seconds: float
 
     @classmethod

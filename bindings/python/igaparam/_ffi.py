@@ -12,7 +12,7 @@ import enum
 
 # The fingerprint of the header's declarations (see ``igaparam_abi_fingerprint``): the loader
 # refuses a library built from other declarations instead of calling it with wrong layouts.
-ABI_FINGERPRINT = 0x56efc36cf284d6b0
+ABI_FINGERPRINT = 0x85b82d3fdc5a827d
 
 # Major version of the library this header belongs to.
 VERSION_MAJOR = 0
@@ -263,6 +263,14 @@ class DomainReport(ctypes.Structure):
     sweep_budget_exhausted:
         1 if the optimization stopped because it spent `max_total_sweeps` (the T-mesh is the
         state the sweeps reached: less optimized, possibly with invalid cells), else 0.
+    newton_iterations:
+        Newton iterations of the polish (`stationarity_tolerance > 0`; 0 when it is off or a
+        cell stays invalid).
+    gradient_norm:
+        Scaled max-norm of the global objective's gradient after the polish: at most
+        `stationarity_tolerance` when it converged (the state `igaparam_spline_tangent` and
+        `igaparam_spline_adjoint` differentiate), infinite when a cell stays invalid, 0 when the
+        polish is off.
     seconds:
         Wall-clock seconds of the call.
     """
@@ -279,6 +287,8 @@ class DomainReport(ctypes.Structure):
         ("mean_quality", ctypes.c_double),
         ("sweeps", ctypes.c_uint32),
         ("sweep_budget_exhausted", ctypes.c_int),
+        ("newton_iterations", ctypes.c_uint32),
+        ("gradient_norm", ctypes.c_double),
         ("seconds", ctypes.c_double),
     ]
 
@@ -1533,6 +1543,16 @@ PROTOTYPES = {
         ctypes.c_int,
         [ctypes.c_void_p, ctypes.POINTER(ctypes.c_int)],
         'igaparam_status igaparam_spline_fit_rule(const igaparam_spline *spline, igaparam_fit_rule *out);\n\nWrites to `*out` the rule the control points of `spline` come from (that of its first fit,\nwhich `igaparam_spline_refit` uses). Fails with `IGAPARAM_STATUS_INVALID_ARGUMENT` for a\nspline read from a file and never refitted (its fit is unknown).',
+    ),
+    "igaparam_spline_tangent": (
+        ctypes.c_int,
+        [ctypes.c_void_p, ctypes.c_void_p, ctypes.c_size_t, ctypes.POINTER(ctypes.c_double), ctypes.c_size_t, ctypes.POINTER(ctypes.c_double)],
+        "igaparam_status igaparam_spline_tangent(const igaparam_spline *spline, const igaparam_domain *domain, size_t vertex_size, const double *dx_boundary, size_t size, double *dp);\n\nThe tangent product of the control points: for a motion `dx_boundary` of the domain's\nboundary vertices (`vertex_size` = d × num_vertices doubles, in the order of\n`igaparam_domain_copy_vertices`; entries of inner vertices are ignored), writes to `dp`\n(`size` = d × basis_count doubles) the first-order motion of the control points of a refit\nof `spline` to the domain so moved. The T-mesh follows its boundary vertices as the\nstationary point of its optimization (implicit function theorem), and the control points\nfollow the T-mesh by the spline's fit rule, a linear map.\n\nA boundary vertex is one with a parametric coordinate 0 or 1 (see\n`igaparam_domain_copy_vertices`); it sits at its parameters' point on the boundary, so a\nhost derives `dx_boundary` from its own change of the boundary curves or surfaces (for a\nB-spline boundary, the basis functions at the vertex's parameter times the change of the\ncontrol points).\n\nNeeds: a domain built (or updated) with `stationarity_tolerance > 0` that converged and with\nno boundary vertex moved off the boundary by the seam relief (`boundary_offset` 0 is the\nsure way), and a spline in the T-mesh's own space whose last fit or refit did not untangle\n(after one that did, `igaparam_spline_refit` once more carries the untangling's correction\nas a constant). Otherwise `IGAPARAM_STATUS_INVALID_ARGUMENT` says which. The domain's\nthread count is used; the result does not depend on it.",
+    ),
+    "igaparam_spline_adjoint": (
+        ctypes.c_int,
+        [ctypes.c_void_p, ctypes.c_void_p, ctypes.c_size_t, ctypes.POINTER(ctypes.c_double), ctypes.c_size_t, ctypes.POINTER(ctypes.c_double)],
+        "igaparam_status igaparam_spline_adjoint(const igaparam_spline *spline, const igaparam_domain *domain, size_t size, const double *dj_dp, size_t vertex_size, double *dj_dboundary);\n\nThe adjoint product of the control points, the transpose of `igaparam_spline_tangent`:\ngiven `dj_dp`, the partial derivatives of a scalar J of the control points (`size` = d ×\nbasis_count doubles, in the order of `igaparam_spline_copy_control_points`), writes to\n`dj_dboundary` (`vertex_size` = d × num_vertices doubles) the total derivative of J with\nrespect to every boundary vertex of the domain's T-mesh, through the fit and the T-mesh's\noptimum (0 at inner vertices). For a B-spline boundary, the derivative with respect to a\nboundary control point is the sum over boundary vertices of their derivative times the\ncontrol point's basis function at the vertex's parameter. Same conditions as\n`igaparam_spline_tangent`; a spline fitted by quasi-interpolation is refused (its\ntranspose is not provided).",
     ),
     "igaparam_validity_options_default": (
         ValidityOptions,

@@ -10,7 +10,10 @@ from typing import TYPE_CHECKING, Any
 
 from . import _capi
 from ._capi import FitRule
-from ._mesh import _check
+import numpy as np
+import numpy.typing as npt
+
+from ._mesh import _check, _ptr
 
 if TYPE_CHECKING:
     from ._domain import Domain
@@ -49,7 +52,7 @@ class RefitReport:
 
 
 class _Refit:
-    """The refit of a spline (mixed into :class:`~igaparam.Spline`, which sets
+    """The refit of a spline and the sensitivities of its control points (mixed into :class:`~igaparam.Spline`, which sets
     ``_fit_report_type`` to its :class:`FitReport`)."""
 
     _fit_report_type: Any
@@ -94,3 +97,72 @@ class _Refit:
         rule = ctypes.c_int()
         _check(self._lib.igaparam_spline_fit_rule(self._h(), ctypes.byref(rule)))
         return FitRule(rule.value)
+
+    def _boundary_product(self, function, domain, values, name, rows_in, rows_out):
+        d = self.dimension
+        array = np.ascontiguousarray(values, dtype=np.float64)
+        if array.shape != (rows_in, d):
+            raise ValueError(f"{name} has shape {array.shape}, expected ({rows_in}, {d})")
+        out = np.empty((rows_out, d), dtype=np.float64)
+        _check(
+            function(
+                self._h(),
+                domain._h(),
+                array.size,
+                _ptr(array, ctypes.c_double),
+                out.size,
+                _ptr(out, ctypes.c_double),
+            )
+        )
+        return out
+
+    def tangent(self, domain: "Domain", dx_boundary: npt.ArrayLike) -> npt.NDArray[np.float64]:
+        """The first-order motion of the control points of a refit to ``domain`` for a motion of
+        its boundary vertices (``igaparam_spline_tangent``): through the T-mesh's optimum
+        (implicit function theorem) and the fit rule.
+
+        Args:
+            domain: the domain this spline was fitted or refitted to.
+            dx_boundary: (num_vertices, d) motion of the T-mesh's vertices, in the order of
+                :attr:`Domain.physical_vertices`; rows of inner vertices are ignored. A boundary
+                vertex has a parametric coordinate 0 or 1 and sits at its parameters' point
+                on the boundary.
+
+        Returns:
+            (basis_count, d) float64 motion of the control points.
+
+        Raises:
+            IgaparamError: ``Status.INVALID_ARGUMENT`` unless the domain was built or updated
+                with ``stationarity_tolerance > 0`` (converged) and no seam relief offset
+                (``boundary_offset=0``), and this spline's last fit or refit did not untangle
+                (then one more :meth:`refit` carries the correction as a constant).
+        """
+        return self._boundary_product(
+            self._lib.igaparam_spline_tangent,
+            domain,
+            dx_boundary,
+            "dx_boundary",
+            domain.vertex_count,
+            self.basis_count,
+        )
+
+    def adjoint(self, domain: "Domain", dj_dp: npt.ArrayLike) -> npt.NDArray[np.float64]:
+        """The total derivative of a scalar J of the control points with respect to the
+        boundary vertices of ``domain``'s T-mesh (``igaparam_spline_adjoint``, the transpose of
+        :meth:`tangent`, with its conditions; not for a quasi-interpolation fit).
+
+        Args:
+            domain: the domain this spline was fitted or refitted to.
+            dj_dp: (basis_count, d) partial derivatives of J with respect to the control points.
+
+        Returns:
+            (num_vertices, d) float64: dJ/dx at the boundary vertices, 0 at inner ones.
+        """
+        return self._boundary_product(
+            self._lib.igaparam_spline_adjoint,
+            domain,
+            dj_dp,
+            "dj_dp",
+            self.basis_count,
+            domain.vertex_count,
+        )

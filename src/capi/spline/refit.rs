@@ -105,14 +105,7 @@ pub extern "C" fn igaparam_spline_refit(
         let (fit, validity, record) = match (&mut s.map, d.built()?) {
             (AnyMap::Two(m), Built::Planar((_, b))) => refit(m, b, record, &options)?,
             (AnyMap::Three(m), Built::Solid((_, b))) => refit(m, b, record, &options)?,
-            (map, _) => {
-                let d = dim(map);
-                return Err(Error::invalid(format!(
-                    "the spline is {d}D and the domain {}D",
-                    5 - d
-                ))
-                .into());
-            }
+            (map, _) => return Err(super::dimension_mismatch(map)),
         };
         write_optional(
             report,
