@@ -2252,6 +2252,50 @@ igaparam_status igaparam_spline_adjoint(const igaparam_spline *spline,
                                         double *dj_dboundary);
 
 /**
+ * The tangent product with respect to the boundary's own control points: for a motion `dc`
+ * of the control points of the domain's boundary curves or surfaces (`control_size` = d ×
+ * `igaparam_domain_control_count` doubles, the curves' or surfaces' control points one after
+ * the other in the order the domain was made from, each in its own order), writes to `dp`
+ * (`size` = d × basis_count doubles) the first-order motion of the control points of a refit
+ * of `spline` after `igaparam_domain_update` to the boundary so moved (weights and knots
+ * fixed). Each boundary vertex moves by the basis values at its parameters; then as
+ * `igaparam_spline_tangent`, with its conditions. A corner of two curves, or an edge row of two
+ * surfaces, is in two lists: a boundary vertex there follows one of them, so move both copies
+ * alike. Fails with `IGAPARAM_STATUS_INVALID_ARGUMENT` for a boundary of polylines or
+ * triangulated faces (use `igaparam_spline_tangent`).
+ */
+igaparam_status igaparam_spline_tangent_controls(const igaparam_spline *spline,
+                                                 const igaparam_domain *domain,
+                                                 size_t control_size,
+                                                 const double *dc,
+                                                 size_t size,
+                                                 double *dp);
+
+/**
+ * The adjoint product with respect to the boundary's own control points, the transpose of
+ * `igaparam_spline_tangent_controls`: given `dj_dp`, the partial derivatives of a scalar J of
+ * the spline's control points (`size` = d × basis_count doubles), writes to `dj_dc`
+ * (`control_size` = d × `igaparam_domain_control_count` doubles) the total derivative of J
+ * with respect to every control point of the boundary's curves or surfaces. Same conditions
+ * as `igaparam_spline_tangent_controls`; not for a quasi-interpolation fit.
+ */
+igaparam_status igaparam_spline_adjoint_controls(const igaparam_spline *spline,
+                                                 const igaparam_domain *domain,
+                                                 size_t size,
+                                                 const double *dj_dp,
+                                                 size_t control_size,
+                                                 double *dj_dc);
+
+/**
+ * Writes to `*out` the number of control points of the built domain's boundary: those of its
+ * curves (planar) or surfaces (solid) together, in the order of the sensitivities with respect
+ * to them (`igaparam_spline_tangent_controls`). Fails with
+ * `IGAPARAM_STATUS_INVALID_ARGUMENT` for a domain not built or a boundary of polylines or
+ * triangulated faces.
+ */
+igaparam_status igaparam_domain_control_count(const igaparam_domain *domain, size_t *out);
+
+/**
  * The default validity options.
  */
 igaparam_validity_options igaparam_validity_options_default(void);

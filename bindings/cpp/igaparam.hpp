@@ -534,6 +534,14 @@ class Domain : public detail::Handle<igaparam_domain, igaparam_domain_free> {
   }
 
   /// Number of vertices of the built T-mesh, hanging ones included.
+  /// Control points of the boundary's curves or surfaces together (igaparam_domain_control_count;
+  /// throws for polylines and triangulated faces).
+  std::size_t control_count() const {
+    std::size_t n = 0;
+    detail::check(igaparam_domain_control_count(handle_, &n));
+    return n;
+  }
+
   std::size_t vertex_count() const {
     std::size_t n = 0;
     detail::check(igaparam_domain_vertex_count(handle_, &n));

@@ -209,6 +209,26 @@ class Spline : public detail::Handle<igaparam_spline, igaparam_spline_free> {
     return out;
   }
 
+  /// The first-order motion of the control points (d per control point) of a refit to
+  /// `domain` for a motion of its boundary curves' or surfaces' control points (d per control
+  /// point, Domain::control_count of them; igaparam_spline_tangent_controls).
+  std::vector<double> tangent_controls(const Domain& domain, const std::vector<double>& dc) const {
+    std::vector<double> dp(basis_count() * dimension());
+    detail::check(igaparam_spline_tangent_controls(handle_, domain.get(), dc.size(), dc.data(), dp.size(),
+                                                   dp.data()));
+    return dp;
+  }
+
+  /// The total derivative of a scalar J with respect to the control points of `domain`'s
+  /// boundary curves or surfaces, given dJ/dP; the transpose of tangent_controls
+  /// (igaparam_spline_adjoint_controls).
+  std::vector<double> adjoint_controls(const Domain& domain, const std::vector<double>& dj_dp) const {
+    std::vector<double> out(domain.control_count() * dimension());
+    detail::check(igaparam_spline_adjoint_controls(handle_, domain.get(), dj_dp.size(), dj_dp.data(),
+                                                   out.size(), out.data()));
+    return out;
+  }
+
   /// The rule the control points come from (that of the first fit).
   igaparam_fit_rule fit_rule() const {
     igaparam_fit_rule rule = IGAPARAM_FIT_INTERPOLATION;

@@ -39,15 +39,22 @@ impl Orientation {
 pub(super) struct SplineFace {
     pub(super) surface: BSplineSurface,
     pub(super) orientation: Orientation,
+    /// The surface's place in the list the solid was made from.
+    pub(super) origin: usize,
 }
 
 impl SplineFace {
-    pub(super) fn eval(&self, a: f64, b: f64) -> Vec3 {
+    /// The surface's parameters at the in-plane coordinates `(a, b)`.
+    pub(super) fn parameters(&self, a: f64, b: f64) -> (f64, f64) {
         let (s, t) = self.orientation.apply(a, b);
         let ((u0, u1), (v0, v1)) = self.surface.domain();
         // (1 − s)·u0 + s·u1 is exact at both ends of the domain.
-        self.surface
-            .eval((1.0 - s) * u0 + s * u1, (1.0 - t) * v0 + t * v1)
+        ((1.0 - s) * u0 + s * u1, (1.0 - t) * v0 + t * v1)
+    }
+
+    pub(super) fn eval(&self, a: f64, b: f64) -> Vec3 {
+        let (u, v) = self.parameters(a, b);
+        self.surface.eval(u, v)
     }
 }
 

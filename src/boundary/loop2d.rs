@@ -108,6 +108,8 @@ impl Default for LoopOptions {
 #[derive(Clone, Debug, PartialEq)]
 pub struct BoundaryLoop2 {
     sides: [Curve2; 4],
+    /// The place of each side's curve in the list the loop was made from.
+    origin: [usize; 4],
     corner_angles: [f64; 4],
     tolerance: f64,
 }
@@ -276,6 +278,7 @@ impl BoundaryLoop2 {
         let chain = counter_clockwise(chain, diag)?;
         let corner_angles = corner_angles(&chain, options.max_corner_angle_deg)?;
         check_simple(&chain)?;
+        let from: Vec<usize> = chain.iter().map(|(i, _)| *i).collect();
         let mut it = chain.into_iter().map(|(_, c)| c);
         let v0 = it.next().unwrap();
         let u1 = it.next().unwrap();
@@ -283,6 +286,7 @@ impl BoundaryLoop2 {
         let u0 = it.next().unwrap().reversed();
         Ok(BoundaryLoop2 {
             sides: [u0, u1, v0, v1],
+            origin: [from[3], from[1], from[0], from[2]],
             corner_angles,
             tolerance: tol,
         })
@@ -302,6 +306,11 @@ impl BoundaryLoop2 {
     /// Builds the loop of a coastline: its four polylines between the corners.
     pub fn from_coastline(coast: &Coastline) -> Result<Self> {
         Self::from_curves(coast.curves()?.to_vec())
+    }
+
+    /// The place of a side's curve in the list the loop was made from.
+    pub(super) fn origin(&self, side: Side) -> usize {
+        self.origin[side.index()]
     }
 
     /// The curve of a side, running with increasing u (sides v = 0, 1) or v (sides u = 0, 1).

@@ -3,6 +3,7 @@
 //! projection onto a boundary curve.
 
 pub mod bspline;
+mod controls;
 mod crossing;
 pub mod curve;
 mod face;

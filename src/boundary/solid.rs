@@ -92,6 +92,7 @@ fn corner_clusters(surfaces: &[BSplineSurface], tol: f64) -> Result<(Vec<Vec3>, 
                 flip_s: false,
                 flip_t: false,
             },
+            origin: 0,
         }
         .eval(a, b)
     };
@@ -220,6 +221,7 @@ fn oriented_faces(
         faces.push(Face::Spline(SplineFace {
             surface: surfaces[sidx].clone(),
             orientation,
+            origin: sidx,
         }));
     }
     Ok(faces)
@@ -465,9 +467,16 @@ impl SolidBoundary {
         if p.iter().any(|x| x.is_nan()) {
             return [f64::NAN; 3];
         }
-        let face = (0..6).find(|&f| p[f / 2] == (f % 2) as f64);
-        match face {
-            Some(f) => self.eval_on_face(f, p),
+        let (f, a, b) = self.face_coordinates(p);
+        self.eval_face(f, a, b)
+    }
+
+    /// The face [`SolidBoundary::eval`] evaluates at the cube point `p` and the in-plane
+    /// coordinates there: the first face `p` lies on, or for a point off the boundary the
+    /// nearest face at the point clamped to the cube.
+    pub(super) fn face_coordinates(&self, p: [f64; 3]) -> (usize, f64, f64) {
+        let (f, q) = match (0..6).find(|&f| p[f / 2] == (f % 2) as f64) {
+            Some(f) => (f, p),
             None => {
                 let q = p.map(|x| x.clamp(0.0, 1.0));
                 let mut best = 0;
@@ -479,9 +488,16 @@ impl SolidBoundary {
                         best = f;
                     }
                 }
-                self.eval_on_face(best, q)
+                (best, q)
             }
-        }
+        };
+        let (_, ia, ib) = face_axes(f);
+        (f, q[ia], q[ib])
+    }
+
+    /// Face `f` (0 to 5).
+    pub(super) fn face(&self, f: usize) -> &Face {
+        &self.faces[f]
     }
 
     /// The physical point of face `face` (0 to 5, in the order of [`CUBE_FACE_NAMES`]) at its

@@ -5,6 +5,7 @@
 
 mod budget;
 mod build;
+mod controls;
 mod cube_map;
 mod frame;
 mod options;
@@ -18,6 +19,7 @@ mod solid;
 mod update;
 
 pub use build::Domain;
+pub use controls::BoundaryControls;
 pub use cube_map::{transfinite, CubeMap};
 pub use frame::Frame;
 pub use options::{

@@ -20,7 +20,7 @@ use super::fit::{
 };
 use super::refit::relation_is_same;
 use super::{FitRecord, FitRule, QuadraticMap, SplineMap, SplineSpace, ThbSpace};
-use crate::domain::{CubeMap, Domain};
+use crate::domain::{BoundaryControls, CubeMap, Domain};
 use crate::error::{check_finite, Error, Result};
 use crate::sparse::SparseSolver;
 use crate::tmesh::TMesh;
@@ -178,6 +178,68 @@ impl<const D: usize> SplineMap<D, ThbSpace<D>> {
         let dj_dx = self.rule_adjoint(domain.mesh(), record.rule, dj_dp)?;
         domain.boundary_adjoint(threads, &dj_dx)
     }
+}
+
+impl<const D: usize> SplineMap<D, ThbSpace<D>> {
+    /// The tangent product with respect to the boundary's own control points: the first-order
+    /// motion of the control points for a motion `dc` of the boundary's control points (one
+    /// point per [`BoundaryControls::control_count`], in the order of the curves or surfaces
+    /// the boundary was made from). The boundary vertices move by their basis values
+    /// ([`Domain::boundary_control_weights`]); then as [`SplineMap::boundary_tangent`].
+    pub fn control_tangent<B: BoundaryControls<D>>(
+        &self,
+        domain: &Domain<D, B>,
+        record: &FitRecord,
+        threads: usize,
+        dc: &[[f64; D]],
+    ) -> Result<Vec<[f64; D]>> {
+        check_controls(domain, dc.len())?;
+        check_finite("dc", dc.as_flattened())?;
+        let mut motion = vec![[0.0; D]; domain.mesh().vertex_count()];
+        for (v, j, w) in domain.boundary_control_weights()? {
+            for k in 0..D {
+                motion[v][k] += w * dc[j][k];
+            }
+        }
+        self.boundary_tangent(domain, record, threads, &motion)
+    }
+
+    /// The adjoint product with respect to the boundary's own control points: the total
+    /// derivative of a scalar `J` of the spline's control points, given `dj_dp = ∂J/∂P`, with
+    /// respect to each of the boundary's control points; the transpose of
+    /// [`SplineMap::control_tangent`].
+    pub fn control_adjoint<B: BoundaryControls<D>>(
+        &self,
+        domain: &Domain<D, B>,
+        record: &FitRecord,
+        threads: usize,
+        dj_dp: &[[f64; D]],
+    ) -> Result<Vec<[f64; D]>> {
+        let count = domain.boundary().control_count()?;
+        let weights = domain.boundary_control_weights()?;
+        let total = self.boundary_adjoint(domain, record, threads, dj_dp)?;
+        let mut out = vec![[0.0; D]; count];
+        for (v, j, w) in weights {
+            for k in 0..D {
+                out[j][k] += w * total[v][k];
+            }
+        }
+        Ok(out)
+    }
+}
+
+/// Checks `n` points against the boundary's control points.
+fn check_controls<const D: usize, B: BoundaryControls<D>>(
+    domain: &Domain<D, B>,
+    n: usize,
+) -> Result<()> {
+    let count = domain.boundary().control_count()?;
+    if n != count {
+        return Err(Error::invalid(format!(
+            "{n} points for the boundary's {count} control points"
+        )));
+    }
+    Ok(())
 }
 
 /// Refuses a map whose control points are not the linear rule's (plus a fixed correction).

@@ -230,6 +230,10 @@ void test_morph_loop() {
   EXPECT_ERROR(IGAPARAM_STATUS_INVALID_ARGUMENT,
                spline.tangent(domain, std::vector<double>(2 * domain.vertex_count())));
   EXPECT_ERROR(IGAPARAM_STATUS_INVALID_ARGUMENT, spline.adjoint(domain, std::vector<double>(3)));
+  CHECK(domain.control_count() > 0);
+  EXPECT_ERROR(IGAPARAM_STATUS_INVALID_ARGUMENT,
+               spline.tangent_controls(domain, std::vector<double>(2 * domain.control_count())));
+  EXPECT_ERROR(IGAPARAM_STATUS_INVALID_ARGUMENT, spline.adjoint_controls(domain, std::vector<double>(3)));
   // Wrong arrays and boundaries of the other kind throw, the domain unchanged.
   std::vector<igaparam::Curve> odd = quarter_annulus(2.0);
   odd[0].control_points.pop_back();

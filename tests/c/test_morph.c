@@ -575,6 +575,29 @@ static void test_sensitivities(void) {
   for (size_t i = 0; i < 2 * nv; i++) gdx += g[i] * dx[i];
   CHECK(fabs(wdp - gdx) <= 1e-9 * fmax(fabs(wdp), fabs(gdx)), "w.dp %.15e, adjoint.dx %.15e", wdp,
         gdx);
+  /* With respect to the curves' control points: the bulge raises the inner control points
+   * of the top curve (the fourth given), in y, by 0.5, 1, 1, 0.5 per unit. */
+  size_t nc = 0;
+  EXPECT(igaparam_domain_control_count(d, &nc), IGAPARAM_STATUS_OK);
+  CHECK(nc == 5 + 3 + 4 + 6, "%zu control points", nc);
+  double *dc = calloc(2 * nc, sizeof *dc), *gc = malloc(2 * nc * sizeof *gc);
+  const size_t top = 5 + 3 + 4;
+  for (int i = 1; i < 5; i++) dc[2 * (top + i) + 1] = (i == 1 || i == 4) ? 0.5 : 1.0;
+  EXPECT(igaparam_spline_tangent_controls(s, d, 2 * nc, dc, 2 * nb, dp), IGAPARAM_STATUS_OK);
+  error = 0;
+  for (size_t i = 0; i < 2 * nb; i++) error = fmax(error, fabs(dp[i] - fd[i]));
+  CHECK(error <= 1e-6 * largest(fd, 2 * nb), "controls tangent vs finite differences: %.3e", error);
+  EXPECT(igaparam_spline_adjoint_controls(s, d, 2 * nb, w, 2 * nc, gc), IGAPARAM_STATUS_OK);
+  double gdc = 0, wdpc = 0;
+  for (size_t i = 0; i < 2 * nb; i++) wdpc += w[i] * dp[i];
+  for (size_t i = 0; i < 2 * nc; i++) gdc += gc[i] * dc[i];
+  CHECK(fabs(wdpc - gdc) <= 1e-9 * fmax(fabs(wdpc), fabs(gdc)), "w.dp %.15e, adjoint.dc %.15e", wdpc,
+        gdc);
+  EXPECT(igaparam_spline_adjoint_controls(s, d, 2 * nb, w, 2 * nc - 2, gc),
+         IGAPARAM_STATUS_INVALID_ARGUMENT);
+  CHECK(strstr(message(), "dj_dc") != NULL, "bad size: %s", message());
+  free(dc);
+  free(gc);
   EXPECT(igaparam_spline_adjoint(NULL, d, 2 * nb, w, 2 * nv, g), IGAPARAM_STATUS_NULL_ARGUMENT);
   EXPECT(igaparam_spline_tangent(s, NULL, 2 * nv, dx, 2 * nb, dp), IGAPARAM_STATUS_NULL_ARGUMENT);
   EXPECT(igaparam_spline_tangent(s, d, 2 * nv, NULL, 2 * nb, dp), IGAPARAM_STATUS_NULL_ARGUMENT);

@@ -70,6 +70,24 @@ def test_control_points_follow_a_stretch_as_finite_differences_say():
         assert np.max(np.abs(dp - fd)) <= 1e-6 * np.max(np.abs(fd))
 
 
+def test_control_sensitivities_follow_the_curves_control_points():
+    curves = morph_loop.read_gismo(PUZZLE)
+    with polished(curves) as domain:
+        spline = differentiable_fit(domain)
+        # The stretch moves every curve control point by point * STRETCH per unit of s.
+        dc = np.concatenate([np.asarray(c.control_points) * STRETCH for c in curves])
+        assert dc.shape == (domain.control_count, 2)
+        dp = spline.tangent_controls(domain, dc)
+        # The same motion through the boundary vertices.
+        assert np.allclose(dp, spline.tangent(domain, domain.physical_vertices * STRETCH), rtol=0, atol=1e-12 * np.max(np.abs(dp)))
+        w = np.sin(np.arange(dp.size, dtype=float)).reshape(dp.shape)
+        g = spline.adjoint_controls(domain, w)
+        assert g.shape == dc.shape
+        assert np.isclose(np.sum(w * dp), np.sum(g * dc), rtol=1e-9, atol=0.0)
+        with pytest.raises(ValueError, match="dc"):
+            spline.tangent_controls(domain, dc[:-1])
+
+
 def test_sensitivities_refuse_bad_shapes_and_an_unpolished_domain():
     curves = morph_loop.read_gismo(PUZZLE)
     with Domain.from_curves(curves) as domain:

@@ -487,6 +487,13 @@ class Domain(_Handle):
         return self._count(self._lib.igaparam_domain_vertex_count)
 
     @property
+    def control_count(self) -> int:
+        """Control points of the boundary's curves (planar) or surfaces (solid) together, in
+        the order of :meth:`Spline.tangent_controls`; IgaparamError for polylines or
+        triangulated faces."""
+        return self._count(self._lib.igaparam_domain_control_count)
+
+    @property
     def cell_count(self) -> int:
         """Cells of the T-mesh."""
         return self._count(self._lib.igaparam_domain_cell_count)

@@ -12,7 +12,7 @@ import enum
 
 # The fingerprint of the header's declarations (see ``igaparam_abi_fingerprint``): the loader
 # refuses a library built from other declarations instead of calling it with wrong layouts.
-ABI_FINGERPRINT = 0x85b82d3fdc5a827d
+ABI_FINGERPRINT = 0x8970becffa7a3c8b
 
 # Major version of the library this header belongs to.
 VERSION_MAJOR = 0
@@ -1553,6 +1553,21 @@ PROTOTYPES = {
         ctypes.c_int,
         [ctypes.c_void_p, ctypes.c_void_p, ctypes.c_size_t, ctypes.POINTER(ctypes.c_double), ctypes.c_size_t, ctypes.POINTER(ctypes.c_double)],
         "igaparam_status igaparam_spline_adjoint(const igaparam_spline *spline, const igaparam_domain *domain, size_t size, const double *dj_dp, size_t vertex_size, double *dj_dboundary);\n\nThe adjoint product of the control points, the transpose of `igaparam_spline_tangent`:\ngiven `dj_dp`, the partial derivatives of a scalar J of the control points (`size` = d ×\nbasis_count doubles, in the order of `igaparam_spline_copy_control_points`), writes to\n`dj_dboundary` (`vertex_size` = d × num_vertices doubles) the total derivative of J with\nrespect to every boundary vertex of the domain's T-mesh, through the fit and the T-mesh's\noptimum (0 at inner vertices). For a B-spline boundary, the derivative with respect to a\nboundary control point is the sum over boundary vertices of their derivative times the\ncontrol point's basis function at the vertex's parameter. Same conditions as\n`igaparam_spline_tangent`; a spline fitted by quasi-interpolation is refused (its\ntranspose is not provided).",
+    ),
+    "igaparam_spline_tangent_controls": (
+        ctypes.c_int,
+        [ctypes.c_void_p, ctypes.c_void_p, ctypes.c_size_t, ctypes.POINTER(ctypes.c_double), ctypes.c_size_t, ctypes.POINTER(ctypes.c_double)],
+        "igaparam_status igaparam_spline_tangent_controls(const igaparam_spline *spline, const igaparam_domain *domain, size_t control_size, const double *dc, size_t size, double *dp);\n\nThe tangent product with respect to the boundary's own control points: for a motion `dc`\nof the control points of the domain's boundary curves or surfaces (`control_size` = d ×\n`igaparam_domain_control_count` doubles, the curves' or surfaces' control points one after\nthe other in the order the domain was made from, each in its own order), writes to `dp`\n(`size` = d × basis_count doubles) the first-order motion of the control points of a refit\nof `spline` after `igaparam_domain_update` to the boundary so moved (weights and knots\nfixed). Each boundary vertex moves by the basis values at its parameters; then as\n`igaparam_spline_tangent`, with its conditions. A corner of two curves, or an edge row of two\nsurfaces, is in two lists: a boundary vertex there follows one of them, so move both copies\nalike. Fails with `IGAPARAM_STATUS_INVALID_ARGUMENT` for a boundary of polylines or\ntriangulated faces (use `igaparam_spline_tangent`).",
+    ),
+    "igaparam_spline_adjoint_controls": (
+        ctypes.c_int,
+        [ctypes.c_void_p, ctypes.c_void_p, ctypes.c_size_t, ctypes.POINTER(ctypes.c_double), ctypes.c_size_t, ctypes.POINTER(ctypes.c_double)],
+        "igaparam_status igaparam_spline_adjoint_controls(const igaparam_spline *spline, const igaparam_domain *domain, size_t size, const double *dj_dp, size_t control_size, double *dj_dc);\n\nThe adjoint product with respect to the boundary's own control points, the transpose of\n`igaparam_spline_tangent_controls`: given `dj_dp`, the partial derivatives of a scalar J of\nthe spline's control points (`size` = d × basis_count doubles), writes to `dj_dc`\n(`control_size` = d × `igaparam_domain_control_count` doubles) the total derivative of J\nwith respect to every control point of the boundary's curves or surfaces. Same conditions\nas `igaparam_spline_tangent_controls`; not for a quasi-interpolation fit.",
+    ),
+    "igaparam_domain_control_count": (
+        ctypes.c_int,
+        [ctypes.c_void_p, ctypes.POINTER(ctypes.c_size_t)],
+        "igaparam_status igaparam_domain_control_count(const igaparam_domain *domain, size_t *out);\n\nWrites to `*out` the number of control points of the built domain's boundary: those of its\ncurves (planar) or surfaces (solid) together, in the order of the sensitivities with respect\nto them (`igaparam_spline_tangent_controls`). Fails with\n`IGAPARAM_STATUS_INVALID_ARGUMENT` for a domain not built or a boundary of polylines or\ntriangulated faces.",
     ),
     "igaparam_validity_options_default": (
         ValidityOptions,

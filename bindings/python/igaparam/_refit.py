@@ -166,3 +166,49 @@ class _Refit:
             self.basis_count,
             domain.vertex_count,
         )
+
+    def tangent_controls(self, domain: "Domain", dc: npt.ArrayLike) -> npt.NDArray[np.float64]:
+        """The first-order motion of the control points of a refit to ``domain`` for a motion
+        of its boundary's own control points (``igaparam_spline_tangent_controls``; weights and
+        knots fixed), with the conditions of :meth:`tangent`.
+
+        Args:
+            domain: the domain this spline was fitted or refitted to, made from B-spline or
+                NURBS curves or surfaces.
+            dc: (:attr:`Domain.control_count`, d) motion of the boundary's control points: the
+                curves' or surfaces' control points one after the other, in the order the
+                domain was made from (a shared corner or edge row appears once per curve or
+                surface: move the copies alike).
+
+        Returns:
+            (basis_count, d) float64 motion of the spline's control points.
+        """
+        return self._boundary_product(
+            self._lib.igaparam_spline_tangent_controls,
+            domain,
+            dc,
+            "dc",
+            domain.control_count,
+            self.basis_count,
+        )
+
+    def adjoint_controls(self, domain: "Domain", dj_dp: npt.ArrayLike) -> npt.NDArray[np.float64]:
+        """The total derivative of a scalar J of the spline's control points with respect to
+        the control points of ``domain``'s boundary curves or surfaces
+        (``igaparam_spline_adjoint_controls``, the transpose of :meth:`tangent_controls`).
+
+        Args:
+            domain: the domain this spline was fitted or refitted to.
+            dj_dp: (basis_count, d) partial derivatives of J with respect to the control points.
+
+        Returns:
+            (:attr:`Domain.control_count`, d) float64.
+        """
+        return self._boundary_product(
+            self._lib.igaparam_spline_adjoint_controls,
+            domain,
+            dj_dp,
+            "dj_dp",
+            self.basis_count,
+            domain.control_count,
+        )

@@ -1,11 +1,13 @@
-//! Sensitivities of a spline's control points to its domain's boundary:
-//! `igaparam_spline_tangent` and `igaparam_spline_adjoint`.
+//! Sensitivities of a spline's control points to its domain's boundary, with respect to the
+//! T-mesh's boundary vertices (`igaparam_spline_tangent`, `igaparam_spline_adjoint`) or to the
+//! boundary's own control points (`igaparam_spline_tangent_controls`,
+//! `igaparam_spline_adjoint_controls`), and the count of those (`igaparam_domain_control_count`).
 
 use super::{igaparam_spline, AnyMap};
 use crate::capi::domain::{current, igaparam_domain, Built};
-use crate::capi::ffi::{run, slice, slice_mut, Failure};
+use crate::capi::ffi::{non_null_mut, run, slice, slice_mut, Failure};
 use crate::capi::igaparam_status;
-use crate::domain::{CubeMap, Domain};
+use crate::domain::{BoundaryControls, Domain};
 use crate::error::{Error, Result};
 use crate::spline::{FitRecord, SplineMap};
 
@@ -16,6 +18,50 @@ enum Product {
     Tangent,
     /// Control-point derivatives in, boundary-vertex derivatives out.
     Adjoint,
+    /// Boundary control-point motion in, control-point motion out.
+    ControlTangent,
+    /// Control-point derivatives in, boundary control-point derivatives out.
+    ControlAdjoint,
+}
+
+/// What the arrays of a product hold: one point per T-mesh vertex, per control point of the
+/// spline, or per control point of the boundary.
+#[derive(Clone, Copy, PartialEq)]
+enum Points {
+    Vertices,
+    Spline,
+    Boundary,
+}
+
+impl Points {
+    /// The points of a product's input and output.
+    fn of(product: Product) -> (Points, Points) {
+        match product {
+            Product::Tangent => (Points::Vertices, Points::Spline),
+            Product::Adjoint => (Points::Spline, Points::Vertices),
+            Product::ControlTangent => (Points::Boundary, Points::Spline),
+            Product::ControlAdjoint => (Points::Spline, Points::Boundary),
+        }
+    }
+
+    /// How many points of this kind `map` and `domain` have, and what they are called.
+    fn count<const D: usize, B: BoundaryControls<D>>(
+        self,
+        map: &SplineMap<D>,
+        domain: &Domain<D, B>,
+    ) -> Result<(usize, &'static str)> {
+        Ok(match self {
+            Points::Vertices => (
+                domain.mesh().vertex_count(),
+                "vertex of the domain's T-mesh",
+            ),
+            Points::Spline => (map.basis_count(), "control point of the spline"),
+            Points::Boundary => (
+                domain.boundary().control_count()?,
+                "control point of the boundary",
+            ),
+        })
+    }
 }
 
 /// `flat` (`n × D` doubles) as points.
@@ -37,7 +83,7 @@ struct Call<'a> {
 
 /// The product of `map` with `input` (flat), checked against the sizes it needs; the result
 /// flat, `out_len` doubles.
-fn apply<const D: usize, B: CubeMap<D>>(
+fn apply<const D: usize, B: BoundaryControls<D>>(
     map: &SplineMap<D>,
     domain: &Domain<D, B>,
     call: &Call<'_>,
@@ -48,24 +94,13 @@ fn apply<const D: usize, B: CubeMap<D>>(
         input,
         output: out_len,
     } = *call;
-    let vertices = D * domain.mesh().vertex_count();
-    let controls = D * map.basis_count();
-    let (needed_in, needed_out) = match product {
-        Product::Tangent => (vertices, controls),
-        Product::Adjoint => (controls, vertices),
-    };
-    for (what, len, needed) in [
-        (input.1, input.0.len(), needed_in),
-        (out_len.1, out_len.0, needed_out),
-    ] {
-        if len != needed {
+    let (from, to) = Points::of(product);
+    for (what, len, points) in [(input.1, input.0.len(), from), (out_len.1, out_len.0, to)] {
+        let (count, name) = points.count(map, domain)?;
+        if len != D * count {
             return Err(Error::invalid(format!(
-                "{what} has {len} doubles, expected {needed} ({D} per {})",
-                if needed == vertices {
-                    "vertex of the domain's T-mesh"
-                } else {
-                    "control point"
-                }
+                "{what} has {len} doubles, expected {} ({D} per {name})",
+                D * count
             )));
         }
     }
@@ -74,6 +109,8 @@ fn apply<const D: usize, B: CubeMap<D>>(
     let result = match product {
         Product::Tangent => map.boundary_tangent(domain, record, threads, &input)?,
         Product::Adjoint => map.boundary_adjoint(domain, record, threads, &input)?,
+        Product::ControlTangent => map.control_tangent(domain, record, threads, &input)?,
+        Product::ControlAdjoint => map.control_adjoint(domain, record, threads, &input)?,
     };
     Ok(result.into_iter().flatten().collect())
 }
@@ -180,4 +217,80 @@ pub extern "C" fn igaparam_spline_adjoint(
         (dj_dp, size, "dj_dp"),
         (dj_dboundary, vertex_size, "dj_dboundary"),
     )
+}
+
+/// The tangent product with respect to the boundary's own control points: for a motion `dc`
+/// of the control points of the domain's boundary curves or surfaces (`control_size` = d ×
+/// `igaparam_domain_control_count` doubles, the curves' or surfaces' control points one after
+/// the other in the order the domain was made from, each in its own order), writes to `dp`
+/// (`size` = d × basis_count doubles) the first-order motion of the control points of a refit
+/// of `spline` after `igaparam_domain_update` to the boundary so moved (weights and knots
+/// fixed). Each boundary vertex moves by the basis values at its parameters; then as
+/// `igaparam_spline_tangent`, with its conditions. A corner of two curves, or an edge row of two
+/// surfaces, is in two lists: a boundary vertex there follows one of them, so move both copies
+/// alike. Fails with `IGAPARAM_STATUS_INVALID_ARGUMENT` for a boundary of polylines or
+/// triangulated faces (use `igaparam_spline_tangent`).
+#[no_mangle]
+pub extern "C" fn igaparam_spline_tangent_controls(
+    spline: *const igaparam_spline,
+    domain: *const igaparam_domain,
+    control_size: usize,
+    dc: *const f64,
+    size: usize,
+    dp: *mut f64,
+) -> igaparam_status {
+    run_product(
+        "igaparam_spline_tangent_controls",
+        spline,
+        domain,
+        Product::ControlTangent,
+        (dc, control_size, "dc"),
+        (dp, size, "dp"),
+    )
+}
+
+/// The adjoint product with respect to the boundary's own control points, the transpose of
+/// `igaparam_spline_tangent_controls`: given `dj_dp`, the partial derivatives of a scalar J of
+/// the spline's control points (`size` = d × basis_count doubles), writes to `dj_dc`
+/// (`control_size` = d × `igaparam_domain_control_count` doubles) the total derivative of J
+/// with respect to every control point of the boundary's curves or surfaces. Same conditions
+/// as `igaparam_spline_tangent_controls`; not for a quasi-interpolation fit.
+#[no_mangle]
+pub extern "C" fn igaparam_spline_adjoint_controls(
+    spline: *const igaparam_spline,
+    domain: *const igaparam_domain,
+    size: usize,
+    dj_dp: *const f64,
+    control_size: usize,
+    dj_dc: *mut f64,
+) -> igaparam_status {
+    run_product(
+        "igaparam_spline_adjoint_controls",
+        spline,
+        domain,
+        Product::ControlAdjoint,
+        (dj_dp, size, "dj_dp"),
+        (dj_dc, control_size, "dj_dc"),
+    )
+}
+
+/// Writes to `*out` the number of control points of the built domain's boundary: those of its
+/// curves (planar) or surfaces (solid) together, in the order of the sensitivities with respect
+/// to them (`igaparam_spline_tangent_controls`). Fails with
+/// `IGAPARAM_STATUS_INVALID_ARGUMENT` for a domain not built or a boundary of polylines or
+/// triangulated faces.
+#[no_mangle]
+pub extern "C" fn igaparam_domain_control_count(
+    domain: *const igaparam_domain,
+    out: *mut usize,
+) -> igaparam_status {
+    run("igaparam_domain_control_count", || {
+        let d = current(domain)?;
+        let n = match d.built()? {
+            Built::Planar((_, b)) => b.boundary().control_count()?,
+            Built::Solid((_, b)) => b.boundary().control_count()?,
+        };
+        *non_null_mut(out, "out")? = n;
+        Ok(())
+    })
 }
