@@ -177,3 +177,10 @@ def test_a_read_spline_gets_its_rule_at_its_first_refit(loop, tmp_path):
 
 def test_exports():
     assert {"Curve", "Surface", "UpdateReport", "RefitReport", "FitRule"} <= set(igaparam.__all__)
+
+
+def test_the_loop_example_checks_the_sensitivities_against_finite_differences():
+    out = io.StringIO()
+    summary = morph_loop.sensitivity_check(BOUNDARY / "puzzle3_bdry.xml", threads=2, out=out)
+    assert summary["central"] != 0.0
+    assert summary["relative_error"] <= 1e-6, out.getvalue()
