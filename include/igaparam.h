@@ -1935,12 +1935,14 @@ igaparam_status igaparam_spline_fit_domain(const igaparam_domain *domain,
                                            igaparam_fit_report *report);
 
 /**
- * Reads a THB-spline map written by `igaparam_spline_write_gismo` (G+Smo XML, a
- * `THBSpline2` or `THBSpline3` geometry) from `path` (NUL-terminated UTF-8) and writes the new
- * handle to `*out`. Fails with `IGAPARAM_STATUS_IO` if the file cannot be read or holds no
+ * Reads a THB-spline map written by `igaparam_spline_write_gismo` or by G+Smo (G+Smo XML, a
+ * cubic `THBSpline2` or `THBSpline3` geometry whose level-0 knots are clamped and uniform with
+ * 2^s spans; its tree as the file gives it, balanced or not) from `path` (NUL-terminated UTF-8)
+ * and writes the new handle to `*out`. Fails with `IGAPARAM_STATUS_IO` if the file cannot be read or holds no
  * such map.
  */
-igaparam_status igaparam_spline_read_gismo(const char *path, igaparam_spline **out);
+igaparam_status igaparam_spline_read_gismo(const char *path,
+                                           igaparam_spline **out);
 
 /**
  * Releases a spline created by this library; NULL is a no-op. Called on a spline in use (from

@@ -10,6 +10,17 @@ use igaparam::tmesh::{Tree, UNIT};
 
 /// A balanced tree refined `steps` times at random leaves (at most `max_level` deep).
 fn random_tree<const D: usize>(seed: u64, steps: usize, max_level: u8) -> Tree<D> {
+    random_tree_graded(seed, steps, max_level, true)
+}
+
+/// A tree refined `steps` times at random leaves (at most `max_level` deep), balanced after
+/// every step when `balance` is set.
+fn random_tree_graded<const D: usize>(
+    seed: u64,
+    steps: usize,
+    max_level: u8,
+    balance: bool,
+) -> Tree<D> {
     let mut rng = Lcg(seed);
     let mut tree = Tree::<D>::new();
     tree.refine_uniformly(1).unwrap();
@@ -19,7 +30,9 @@ fn random_tree<const D: usize>(seed: u64, steps: usize, max_level: u8) -> Tree<D
         if tree.cells()[leaf].level < max_level {
             tree.refine(leaf).unwrap();
         }
-        tree.balance().unwrap();
+        if balance {
+            tree.balance().unwrap();
+        }
     }
     tree
 }
@@ -73,7 +86,11 @@ fn cubic_maps_are_reproduced_on_random_balanced_trees() {
 }
 
 fn basis_properties<const D: usize>(seed: u64, steps: usize, max_level: u8) {
-    let space = ThbSpace::new(random_tree::<D>(seed, steps, max_level)).unwrap();
+    basis_properties_on(random_tree::<D>(seed, steps, max_level), seed);
+}
+
+fn basis_properties_on<const D: usize>(tree: Tree<D>, seed: u64) {
+    let space = ThbSpace::new(tree).unwrap();
     for x in probe_points::<D>(seed, 300) {
         let b = space.basis_at(x).unwrap();
         let sum: f64 = b.values.iter().sum();
@@ -129,6 +146,21 @@ fn thb_basis_is_a_non_negative_partition_of_unity_linearly_independent_and_neste
         basis_properties::<2>(seed, 25, 6);
     }
     basis_properties::<3>(14, 6, 4);
+}
+
+#[test]
+fn thb_basis_keeps_its_properties_on_trees_that_are_not_balanced() {
+    // Random refinement without balancing, as a G+Smo file may hold.
+    let mut unbalanced = 0;
+    for seed in [21, 22, 23] {
+        let tree = random_tree_graded::<2>(seed, 40, 7, false);
+        unbalanced += usize::from(!tree.is_balanced());
+        basis_properties_on(tree, seed);
+    }
+    let tree = random_tree_graded::<3>(24, 10, 4, false);
+    unbalanced += usize::from(!tree.is_balanced());
+    basis_properties_on(tree, 24);
+    assert_eq!(unbalanced, 4, "a random tree came out balanced");
 }
 
 /// Cox–de Boor value of B-spline `i` of `level` at `x ∈ [0, 1)`.

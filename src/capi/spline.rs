@@ -207,9 +207,10 @@ pub extern "C" fn igaparam_spline_fit_domain(
     })
 }
 
-/// Reads a THB-spline map written by `igaparam_spline_write_gismo` (G+Smo XML, a
-/// `THBSpline2` or `THBSpline3` geometry) from `path` (NUL-terminated UTF-8) and writes the new
-/// handle to `*out`. Fails with `IGAPARAM_STATUS_IO` if the file cannot be read or holds no
+/// Reads a THB-spline map written by `igaparam_spline_write_gismo` or by G+Smo (G+Smo XML, a
+/// cubic `THBSpline2` or `THBSpline3` geometry whose level-0 knots are clamped and uniform with
+/// 2^s spans; its tree as the file gives it, balanced or not) from `path` (NUL-terminated UTF-8)
+/// and writes the new handle to `*out`. Fails with `IGAPARAM_STATUS_IO` if the file cannot be read or holds no
 /// such map.
 #[no_mangle]
 pub extern "C" fn igaparam_spline_read_gismo(

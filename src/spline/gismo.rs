@@ -216,8 +216,9 @@ fn read_thb_geometry<const D: usize>(geometry: Node<'_, '_>) -> Result<SplineMap
         .map_err(|e| Error::io(format!("line {}: {}", line(thb), e.message)))?;
     let mut tree = Tree::<D>::new();
     tree.refine_uniformly(shift)?;
+    // The file's tree as it is: G+Smo does not balance its trees, and balancing would add
+    // functions the file has no coefficients for.
     apply_boxes(&mut tree, &boxes)?;
-    tree.balance()?;
     let space = ThbSpace::new(tree)?;
     if values.len() != D * space.basis_count() {
         return Err(Error::io(format!(

@@ -1,4 +1,4 @@
-//! Cubic truncated hierarchical B-splines over the levels of a balanced tree.
+//! Cubic truncated hierarchical B-splines over the levels of a quadtree or octree.
 //!
 //! Level `l` has the clamped uniform cubic knots with `2^l` spans per direction and their tensor
 //! B-splines; `Ω_l` is the union of the leaves of level ≥ `l`, i.e. of the tree cells of level
@@ -19,7 +19,8 @@ use crate::tmesh::{Cell, Tree, MAX_LEVEL, UNIT};
 /// many of those are refined.
 type Counts<const D: usize> = HashMap<[u32; D], (u32, u32)>;
 
-/// A cubic THB-spline space over a strongly balanced quadtree (d = 2) or octree (d = 3); its
+/// A cubic THB-spline space over a quadtree (d = 2) or octree (d = 3) — a T-mesh's tree is
+/// strongly balanced, a tree read from a G+Smo file need not be; its
 /// elements are the tree's leaves, in the order of [`Tree::leaves`] (that of the T-mesh cells).
 #[derive(Clone, Debug)]
 pub struct ThbSpace<const D: usize> {
@@ -165,13 +166,9 @@ fn leaf_extraction<const D: usize>(
 }
 
 impl<const D: usize> ThbSpace<D> {
-    /// The THB space of a strongly 2:1 balanced tree.
+    /// The THB space of a tree (balanced or not: Kraft's selection and the truncation need no
+    /// grading; a balanced tree bounds the functions per element).
     pub fn new(tree: Tree<D>) -> Result<Self> {
-        if !tree.is_balanced() {
-            return Err(Error::invalid(
-                "the tree is not 2:1 balanced; call Tree::balance first",
-            ));
-        }
         let cells = tree.cells();
         let counts = level_counts(cells);
         let functions = active_functions(&counts);

@@ -1412,7 +1412,7 @@ PROTOTYPES = {
     "igaparam_spline_read_gismo": (
         ctypes.c_int,
         [ctypes.c_char_p, ctypes.POINTER(ctypes.c_void_p)],
-        'igaparam_status igaparam_spline_read_gismo(const char *path, igaparam_spline **out);\n\nReads a THB-spline map written by `igaparam_spline_write_gismo` (G+Smo XML, a\n`THBSpline2` or `THBSpline3` geometry) from `path` (NUL-terminated UTF-8) and writes the new\nhandle to `*out`. Fails with `IGAPARAM_STATUS_IO` if the file cannot be read or holds no\nsuch map.',
+        'igaparam_status igaparam_spline_read_gismo(const char *path, igaparam_spline **out);\n\nReads a THB-spline map written by `igaparam_spline_write_gismo` or by G+Smo (G+Smo XML, a\ncubic `THBSpline2` or `THBSpline3` geometry whose level-0 knots are clamped and uniform with\n2^s spans; its tree as the file gives it, balanced or not) from `path` (NUL-terminated UTF-8)\nand writes the new handle to `*out`. Fails with `IGAPARAM_STATUS_IO` if the file cannot be read or holds no\nsuch map.',
     ),
     "igaparam_spline_free": (
         None,
