@@ -19,7 +19,7 @@ use crate::error::{check_finite, Error, Result};
 use crate::optimize::blocks::BlockLayout;
 use crate::optimize::global::GlobalObjective;
 use crate::optimize::implicit::EXACT;
-use crate::optimize::solver::{HessianSolver, Preconditioner, SolverSetup};
+use crate::optimize::solver::{HessianSolver, SolverSetup};
 use crate::optimize::stationary::scaled_gradient_norm;
 
 /// Largest distance, in frame coordinates, between a boundary vertex and its point on the
@@ -113,10 +113,8 @@ impl<const D: usize, B: CubeMap<D>> Domain<D, B> {
             )));
         }
         let hessian = eval.hessian.take().expect("Hessian evaluated");
-        let preconditioner =
-            Preconditioner::new(pool, &problem, &setup, &hessian, &self.framed)?
-                .ok_or_else(|| unavailable("the Hessian at the T-mesh has no factorisation"))?;
-        Ok(HessianSolver::new(setup, hessian, Arc::new(preconditioner)))
+        HessianSolver::fresh(pool, &problem, &setup, hessian, &self.framed)?
+            .ok_or_else(|| unavailable("the Hessian at the T-mesh has no factorisation"))
     }
 
     /// Checks that every boundary vertex sits at its point on the boundary.

@@ -193,6 +193,21 @@ impl<const D: usize> HessianSolver<D> {
         }
     }
 
+    /// A solver of `hessian` (at positions `x` of `problem`) with a preconditioner made from
+    /// it ([`Preconditioner::new`]); `None` where none can be made.
+    pub fn fresh(
+        pool: &ThreadPool,
+        problem: &super::Problem<D>,
+        setup: &Arc<SolverSetup>,
+        hessian: BlockMatrix<D>,
+        x: &[Vector<D>],
+    ) -> Result<Option<Self>> {
+        let Some(p) = Preconditioner::new(pool, problem, setup, &hessian, x)? else {
+            return Ok(None);
+        };
+        Ok(Some(Self::new(setup.clone(), hessian, Arc::new(p))))
+    }
+
     /// The Hessian this solver is for.
     pub fn hessian(&self) -> &BlockMatrix<D> {
         &self.hessian

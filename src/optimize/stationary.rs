@@ -165,14 +165,7 @@ impl<const D: usize> Newton<'_, D> {
         x: &[Vector<D>],
         hessian: BlockMatrix<D>,
     ) -> Result<Option<HessianSolver<D>>> {
-        let Some(p) = Preconditioner::new(self.pool, self.problem, self.setup, &hessian, x)? else {
-            return Ok(None);
-        };
-        Ok(Some(HessianSolver::new(
-            self.setup.clone(),
-            hessian,
-            Arc::new(p),
-        )))
+        HessianSolver::fresh(self.pool, self.problem, self.setup, hessian, x)
     }
 
     /// The Newton step at `x` for the `gradient` (scaled max-norm `gradient_norm`), and the

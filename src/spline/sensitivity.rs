@@ -58,6 +58,7 @@ impl<const D: usize> SplineMap<D, ThbSpace<D>> {
             )));
         }
         let zero = vec![[0.0; D]; mesh.vertex_count()];
+        // The map's coefficients do not depend on the positions it is made with.
         let weights = QuadraticMap::new(mesh, &zero)?;
         let mut out = zero.clone();
         let mut scatter = |x: [f64; D], y: [f64; D]| -> Result<()> {
@@ -249,7 +250,7 @@ fn check_differentiable(record: &FitRecord) -> Result<()> {
     }
     Err(Error::invalid(
         "no sensitivities of the control points: the last fit or refit untangled the map, a \
-         non-linear step whose derivative is not provided (refit once more after a small \
-         update to carry its correction as a constant)",
+         non-linear step whose derivative is not provided (one more refit, to the same \
+         T-mesh or an updated one, carries its correction as a constant)",
     ))
 }

@@ -19,6 +19,10 @@ pub struct QuadraticMap<'a, const D: usize> {
     leaf_of_cell: Vec<usize>,
     /// Per cell, the positions of its 3^d lattice points.
     nodes: Vec<Vec<[f64; D]>>,
+    /// The distinct completions of the cells' lattice points ([`lattice::completion`]: per
+    /// lattice point, its (real point, weight) terms), and each cell's among them.
+    completions: Vec<Vec<Vec<(usize, f64)>>>,
+    completion_of_cell: Vec<usize>,
 }
 
 impl<'a, const D: usize> QuadraticMap<'a, D> {
@@ -31,16 +35,24 @@ impl<'a, const D: usize> QuadraticMap<'a, D> {
                 mesh.vertex_count()
             )));
         }
-        let mut completions: HashMap<Vec<usize>, Vec<Vec<(usize, f64)>>> = HashMap::new();
+        let mut index: HashMap<&[usize], usize> = HashMap::new();
+        let mut completions = Vec::new();
+        let mut completion_of_cell = Vec::with_capacity(mesh.cell_count());
         let mut nodes = Vec::with_capacity(mesh.cell_count());
         for c in 0..mesh.cell_count() {
             let (lat, ver) = mesh.cell_vertices(c);
-            if !completions.contains_key(lat) {
-                let rows = lattice::completion::<D>(lat)
-                    .ok_or_else(|| Error::mesh(format!("cell {c} misses a corner")))?;
-                completions.insert(lat.to_vec(), rows);
-            }
-            let rows = &completions[lat];
+            let i = match index.get(lat) {
+                Some(&i) => i,
+                None => {
+                    let rows = lattice::completion::<D>(lat)
+                        .ok_or_else(|| Error::mesh(format!("cell {c} misses a corner")))?;
+                    completions.push(rows);
+                    index.insert(lat, completions.len() - 1);
+                    completions.len() - 1
+                }
+            };
+            completion_of_cell.push(i);
+            let rows = &completions[i];
             nodes.push(
                 rows.iter()
                     .map(|row| {
@@ -63,6 +75,8 @@ impl<'a, const D: usize> QuadraticMap<'a, D> {
             mesh,
             leaf_of_cell,
             nodes,
+            completions,
+            completion_of_cell,
         })
     }
 
@@ -84,14 +98,15 @@ impl<'a, const D: usize> QuadraticMap<'a, D> {
     /// and these are its coefficients at `x`, the same for every coordinate.
     pub fn vertex_weights(&self, x: [f64; D]) -> Option<Vec<(usize, f64)>> {
         let c = self.leaf_of_cell[self.mesh.tree().leaf_at_point(&x)?];
-        let (lat, ver) = self.mesh.cell_vertices(c);
-        let rows = lattice::completion::<D>(lat)?;
+        let (_, ver) = self.mesh.cell_vertices(c);
+        let rows = &self.completions[self.completion_of_cell[c]];
         let mut out = Vec::new();
         for (row, w) in rows.iter().zip(lagrange_weights(self.mesh, c, x)) {
             out.extend(row.iter().map(|&(r, rw)| (ver[r] as usize, w * rw)));
         }
         Some(out)
     }
+
     /// `det J` of cell `c`'s quadratic map, with respect to the parametric coordinates, as a
     /// Bernstein polynomial (degree `2d − 1` per direction) on the cell mapped to \[0,1\]^d.
     pub fn cell_det_polynomial(&self, c: usize) -> Bernstein<D> {
