@@ -1,6 +1,6 @@
 //! Gives the shared library a SONAME carrying the major version (`libigaparam.so.0`) on ELF
 //! platforms, so that programs linked against it keep working across compatible updates; gives
-//! the tests the target triple (`IGAPARAM_BUILD_TARGET`: `tests/c_api.rs` asks the `cc` crate for
+//! the tests the target triple (`IGAPARAM_BUILD_TARGET`: `tests/it/c_api.rs` asks the `cc` crate for
 //! that target's C compiler); and gives the library the fingerprint of the declarations of
 //! `include/igaparam.h` (`IGAPARAM_ABI_FINGERPRINT`, returned by `igaparam_abi_fingerprint`),
 //! which the generated Python declarations carry too (`bindings/python/gen_ffi.py` computes it

@@ -19,6 +19,9 @@ modes=("$@")
 ((${#modes[@]} > 0)) || modes=(asan valgrind)
 programs=(test_capi test_domain test_spline test_handles)
 work=build/asan
+# The release library's target directory (CARGO_TARGET_DIR when set, as scripts/test.sh does);
+# the ASan build goes to its asan/ subdirectory.
+cargo_dir=${CARGO_TARGET_DIR:-$root/target}
 mkdir -p "$work"
 cc=${CC:-cc}
 
@@ -65,9 +68,9 @@ for mode in "${modes[@]}"; do
         continue
       fi
       echo "+ cargo +nightly build --release (-Zsanitizer=address)"
-      RUSTFLAGS="-Zsanitizer=address" CARGO_TARGET_DIR=target/asan CARGO_BUILD_JOBS=2 \
+      RUSTFLAGS="-Zsanitizer=address" CARGO_TARGET_DIR="$cargo_dir/asan" CARGO_BUILD_JOBS=2 \
         cargo +nightly build --release --lib --target x86_64-unknown-linux-gnu
-      build "$work/asan" target/asan/x86_64-unknown-linux-gnu/release/libigaparam.so \
+      build "$work/asan" "$cargo_dir/asan/x86_64-unknown-linux-gnu/release/libigaparam.so" \
         -fsanitize=address -fno-omit-frame-pointer
       ASAN_OPTIONS=detect_leaks=1:abort_on_error=0 run_all "$work/asan" env || status=1
       ;;
@@ -78,7 +81,7 @@ for mode in "${modes[@]}"; do
       fi
       echo "+ cargo build --release"
       CARGO_BUILD_JOBS=2 cargo build --release --lib
-      build "$work/valgrind" target/release/libigaparam.so
+      build "$work/valgrind" "$cargo_dir/release/libigaparam.so"
       run_all "$work/valgrind" valgrind --error-exitcode=99 --leak-check=full \
         --errors-for-leak-kinds=definite --show-leak-kinds=definite || status=1
       ;;

@@ -159,3 +159,22 @@ pub fn mapped_square(
     ])
     .unwrap()
 }
+
+/// The spline map fitted to a domain's optimized T-mesh, certified and untangled where needed,
+/// with the default options (`SplineMap::fit_tmesh_checked`): the map, the fit's report and
+/// the validity report.
+pub fn checked_fit<const D: usize, B: igaparam::domain::CubeMap<D>>(
+    domain: &igaparam::domain::Domain<D, B>,
+) -> (
+    igaparam::spline::SplineMap<D>,
+    igaparam::spline::FitReport,
+    igaparam::spline::ValidityReport,
+) {
+    igaparam::spline::SplineMap::fit_tmesh_checked(
+        domain.mesh(),
+        domain.positions(),
+        &igaparam::spline::ValidityOptions::default(),
+        &igaparam::spline::UntangleOptions::default(),
+    )
+    .unwrap()
+}

@@ -1,7 +1,7 @@
 //! The twisted wing of the bundled data: 12,250 H27 cells, 982 inverted after the boundary moves.
 //! Slow in debug builds; the test suite runs with `--release`.
 
-mod common;
+use crate::common;
 
 use igaparam::RelocateOptions;
 

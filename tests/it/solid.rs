@@ -2,6 +2,8 @@
 
 use std::collections::HashMap;
 
+use crate::common;
+
 use igaparam::boundary::*;
 use igaparam::spline::{
     FitReport, QuadraticMap, SplineMap, UntangleOptions, ValidityOptions, ValidityReport,
@@ -444,13 +446,7 @@ fn check_relieved(
 fn certified_fit(
     domain: &igaparam::domain::SolidDomain,
 ) -> (SplineMap<3>, FitReport, ValidityReport) {
-    let (map, fit, validity) = SplineMap::fit_tmesh_checked(
-        domain.mesh(),
-        domain.positions(),
-        &ValidityOptions::default(),
-        &UntangleOptions::default(),
-    )
-    .unwrap();
+    let (map, fit, validity) = common::checked_fit(domain);
     println!("{fit:?}\n{validity:?}");
     assert!(
         validity.certified_positive,

@@ -1,7 +1,7 @@
 //! Resource limits: thread counts beyond the cores are capped (same result, bit for bit), and a
 //! domain build beyond its cell budget is refused at once instead of exhausting memory.
 
-mod common;
+use crate::common;
 
 use common::{boundary_mask, grid, mapped_square, MappedCube};
 use igaparam::boundary::{BoundaryLoop2, Coastline};

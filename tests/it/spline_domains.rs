@@ -4,7 +4,7 @@
 
 use std::time::Instant;
 
-mod common;
+use crate::common;
 
 use common::{curved_box, planar_boundary, MappedCube};
 use igaparam::domain::{PlanarDomain, PlanarOptions};
@@ -224,13 +224,7 @@ fn certification_agrees_with_a_dense_evaluation() {
         &mut |_, _| true,
     )
     .unwrap();
-    let (map, fit, validity) = SplineMap::fit_tmesh_checked(
-        domain.mesh(),
-        domain.positions(),
-        &ValidityOptions::default(),
-        &UntangleOptions::default(),
-    )
-    .unwrap();
+    let (map, fit, validity) = common::checked_fit(&domain);
     assert!(fit.untangled > 0 && validity.certified_positive);
     check_dense(&map, &validity, 4);
 
@@ -242,13 +236,7 @@ fn certification_agrees_with_a_dense_evaluation() {
     let (solid, _) =
         igaparam::domain::Domain::build(MappedCube(curved_box), &options, &mut |_, _| true)
             .unwrap();
-    let (map, _, validity) = SplineMap::fit_tmesh_checked(
-        solid.mesh(),
-        solid.positions(),
-        &ValidityOptions::default(),
-        &UntangleOptions::default(),
-    )
-    .unwrap();
+    let (map, _, validity) = common::checked_fit(&solid);
     assert!(validity.certified_positive);
     check_dense(&map, &validity, 2);
 }

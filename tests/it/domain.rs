@@ -1,6 +1,6 @@
 //! Planar domains: adapted, optimized T-meshes from four boundary curves.
 
-mod common;
+use crate::common;
 
 use common::{boundary_data, curved_box, mapped_square, MappedCube};
 use igaparam::boundary::{BoundaryLoop2, Coastline};
@@ -14,13 +14,7 @@ fn build(boundary: BoundaryLoop2, options: &PlanarOptions) -> (PlanarDomain, Pla
 fn distance_from_parametric<const D: usize, B: igaparam::domain::CubeMap<D>>(
     domain: &igaparam::domain::Domain<D, B>,
 ) -> f64 {
-    domain
-        .mesh()
-        .parametric()
-        .iter()
-        .zip(domain.positions())
-        .map(|(a, b)| (0..D).map(|k| (a[k] - b[k]).abs()).fold(0.0, f64::max))
-        .fold(0.0, f64::max)
+    distance_from(domain, |p| p)
 }
 
 #[test]
@@ -309,15 +303,7 @@ fn duck_brep_gives_a_valid_t_mesh() {
             .num_threads(threads)
             .build()
             .unwrap();
-        pool.install(|| {
-            igaparam::spline::SplineMap::fit_tmesh_checked(
-                domain.mesh(),
-                domain.positions(),
-                &igaparam::spline::ValidityOptions::default(),
-                &igaparam::spline::UntangleOptions::default(),
-            )
-            .unwrap()
-        })
+        pool.install(|| common::checked_fit(&domain))
     };
     let (one, report, validity) = fit(1);
     println!("{report:?}\n{validity:?}");

@@ -2,9 +2,8 @@
 //! its tree kept (`Domain::update`), and the spline map refitted in the same space
 //! (`SplineMap::refit_tmesh`).
 
-mod common;
-#[path = "common/morph.rs"]
-mod morph;
+use crate::common;
+use crate::morph_cases as morph;
 
 use common::{curved_box, MappedCube};
 use igaparam::boundary::{BSplineCurve, BoundaryLoop2, SolidBoundary};

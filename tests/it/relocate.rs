@@ -1,7 +1,7 @@
 //! Properties of mesh relocation: fixed points, invariances, untangling, constraints,
 //! determinism, and the bundled airfoil case.
 
-mod common;
+use crate::common;
 
 use common::{boundary_mask, grid, load_case, Lcg};
 use igaparam::{CellType, Mesh, Method, Placement, RelocateOptions, TargetKind};

@@ -1,7 +1,7 @@
 //! THB-spline spaces over balanced trees: basis properties, interpolation, refinement,
 //! certification and output.
 
-mod common;
+use crate::common;
 
 use common::Lcg;
 use igaparam::spline::{QuadraticMap, SplineMap, SplineSpace, ThbSpace, ValidityOptions};

@@ -1,7 +1,7 @@
 //! G+Smo XML read by a real XML parser: comments, CDATA and entities, several patches and the
 //! `<MultiPatch>` references by id, for the B-rep reader and the THB-spline reader.
 
-mod common;
+use crate::common;
 
 use igaparam::boundary::{parse_gismo_xml, BoundaryLoop2, GismoGeometry};
 use igaparam::spline::{read_gismo_thb, write_gismo_thb, SplineMap, ThbSpace};

@@ -2,7 +2,7 @@
 //! of poor quality until every element is certified valid with a smallest mean ratio above the
 //! target (`--nocapture` prints the rounds).
 
-mod common;
+use crate::common;
 
 use common::planar_boundary;
 use igaparam::domain::{PlanarDomain, PlanarOptions};

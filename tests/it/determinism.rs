@@ -5,15 +5,13 @@
 //! the stages that use the caller's pool (the fit, the certification) run on exactly that many
 //! workers, and those that build their own pool (the T-mesh optimization) on that many capped
 //! to the machine's cores (`igaparam::threads::effective_threads`). Relocation is compared in
-//! tests/relocate.rs and tests/limits.rs. Small inputs: about a second in all.
+//! tests/it/relocate.rs and tests/it/limits.rs. Small inputs: about a second in all.
 
-mod common;
+use crate::common;
 
 use common::{curved_box, planar_boundary, MappedCube};
 use igaparam::domain::{Domain, DomainOptions, DomainReport, PlanarDomain, PlanarOptions};
-use igaparam::spline::{
-    adapt, AdaptOptions, AdaptReport, FitReport, SplineMap, UntangleOptions, ValidityOptions,
-};
+use igaparam::spline::{adapt, AdaptOptions, AdaptReport, FitReport};
 
 const THREADS: [usize; 3] = [1, 2, 4];
 
@@ -74,13 +72,7 @@ fn planar_run(n: usize) -> PlanarRun {
         let (domain, report) =
             PlanarDomain::build(planar_boundary("male_bdry.xml"), &options, &mut |_, _| true)
                 .unwrap();
-        let (map, fit, validity) = SplineMap::fit_tmesh_checked(
-            domain.mesh(),
-            domain.positions(),
-            &ValidityOptions::default(),
-            &UntangleOptions::default(),
-        )
-        .unwrap();
+        let (map, fit, validity) = common::checked_fit(&domain);
         let positions = domain.positions().to_vec();
         (
             positions,

@@ -1,7 +1,7 @@
 //! T-mesh properties: strong balance after every refinement, hanging vertices, and the optimizer
 //! on T-meshes (the identity map is a fixed point; perturbed maps are repaired).
 
-mod common;
+use crate::common;
 
 use common::Lcg;
 use igaparam::optimize::{invalid_cells, optimize, NodeSolverOptions, Problem, SweepOptions};

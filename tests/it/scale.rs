@@ -3,7 +3,7 @@
 //! same qualities, the positions scaled. Every tolerance of the library is relative to the data's
 //! own size, so none of this may change with the units.
 
-mod common;
+use crate::common;
 
 use common::{boundary_data, boundary_mask, bump_top, curved_box, grid, MappedCube};
 use igaparam::boundary::{read_gismo_curves, BoundaryLoop2, Curve2};

@@ -2,9 +2,8 @@
 //! (`SplineMap::boundary_tangent` / `boundary_adjoint`): against central finite differences of
 //! update + refit along a morph of the boundary, and the adjoint as the tangent's transpose.
 
-mod common;
-#[path = "common/morph.rs"]
-mod morph;
+use crate::common;
+use crate::morph_cases as morph;
 
 use common::{curved_box, MappedCube};
 use igaparam::boundary::{BSplineCurve, BSplineSurface, SolidBoundary};
