@@ -6,9 +6,10 @@ cd "$(dirname "${BASH_SOURCE[0]}")/.."
 
 # xvfb (with xauth for xvfb-run) and Mesa's OpenGL drivers: VTK renders the pictures through X,
 # on a virtual display when there is no real one. OpenMPI (libopenmpi-dev, openmpi-bin): the
-# example igaparam_relocate_mpi and its tests (the library itself links no MPI).
+# example igaparam_relocate_mpi and its tests (the library itself links no MPI). valgrind: the
+# memcheck run of the C API tests (scripts/test.sh, scripts/asan.sh).
 packages=(cmake g++ pkg-config libvtk9-dev libopenmesh-dev libeigen3-dev xvfb xauth libgl1-mesa-dri
-  libopenmpi-dev openmpi-bin)
+  libopenmpi-dev openmpi-bin valgrind)
 
 if command -v dpkg >/dev/null 2>&1; then
   missing=()

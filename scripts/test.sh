@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Builds everything and runs all tests: the lints (cargo fmt --check, cargo clippy, cargo doc,
 # warnings as errors), the Rust tests (cargo test --release), then the C/C++ tests and example
-# runs (ctest), then the Python bindings' tests (pytest, in the virtual environment build/venv).
+# runs (ctest) and the C API tests under valgrind memcheck, then the Python bindings' tests
+# (pytest, in the virtual environment build/venv).
 # Runs every suite, and exits non-zero if any of them failed.
 set -euo pipefail
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
@@ -62,6 +63,11 @@ cargo test --release --no-fail-fast || { status=1; echo "test.sh: cargo test fai
 # (the relocated airfoil, the adaptive series) order the tests that read what another wrote.
 echo "+ ctest --test-dir build --output-on-failure -j2"
 ctest --test-dir build --output-on-failure -j2 || { status=1; echo "test.sh: ctest failed" >&2; }
+
+# The C API's own tests and its handle tests under valgrind memcheck (zero errors, zero definite
+# leaks); scripts/asan.sh runs all the C programs under AddressSanitizer and valgrind.
+IGAPARAM_SANITIZE_PROGRAMS="test_capi test_handles" bash scripts/asan.sh valgrind ||
+  { status=1; echo "test.sh: valgrind memcheck failed" >&2; }
 
 # Python bindings: bindings/python installed into build/venv, tested against the library just built.
 python_tests() {
