@@ -84,9 +84,15 @@ for mode in "${modes[@]}"; do
         [[ -z ${IGAPARAM_NO_SKIP:-} ]] || status=1
         continue
       fi
-      echo "+ cargo build --release"
-      CARGO_BUILD_JOBS=2 cargo build --release --lib
-      build "$work/valgrind" "$cargo_dir/release/libigaparam.so"
+      # IGAPARAM_SANITIZE_LIBRARY: a release library already built (scripts/test.sh passes the
+      # one its other tests ran against), else cargo builds it.
+      lib=${IGAPARAM_SANITIZE_LIBRARY:-}
+      if [[ -z $lib ]]; then
+        echo "+ cargo build --release"
+        CARGO_BUILD_JOBS=2 cargo build --release --lib
+        lib="$cargo_dir/release/libigaparam.so"
+      fi
+      build "$work/valgrind" "$lib"
       run_all "$work/valgrind" valgrind --error-exitcode=99 --leak-check=full \
         --errors-for-leak-kinds=definite --show-leak-kinds=definite || status=1
       ;;

@@ -66,7 +66,8 @@ ctest --test-dir build --output-on-failure -j2 || { status=1; echo "test.sh: cte
 
 # The C API's own tests and its handle tests under valgrind memcheck (zero errors, zero definite
 # leaks); scripts/asan.sh runs all the C programs under AddressSanitizer and valgrind.
-IGAPARAM_SANITIZE_PROGRAMS="test_capi test_handles" bash scripts/asan.sh valgrind ||
+IGAPARAM_SANITIZE_PROGRAMS="test_capi test_handles" \
+  IGAPARAM_SANITIZE_LIBRARY="$CARGO_TARGET_DIR/release/libigaparam.so" bash scripts/asan.sh valgrind ||
   { status=1; echo "test.sh: valgrind memcheck failed" >&2; }
 
 # Python bindings: bindings/python installed into build/venv, tested against the library just built.
