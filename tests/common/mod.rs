@@ -178,3 +178,18 @@ pub fn checked_fit<const D: usize, B: igaparam::domain::CubeMap<D>>(
     )
     .unwrap()
 }
+
+/// A structured grid of `n^d` cells on [0,1]^d (`grid`) whose top side is bent into a bump (2D)
+/// or whose top face is domed (3D) by `depth` (`bump_top`), with the boundary prescribed;
+/// everything scaled by `s`.
+pub fn bumped(cell_type: CellType, n: usize, depth: f64, s: f64) -> igaparam::Mesh {
+    let d = cell_type.dimension();
+    let (xyz, conn) = grid(cell_type, n);
+    let mask = boundary_mask(&xyz, d);
+    let scaled: Vec<f64> = xyz.iter().map(|v| v * s).collect();
+    let mut mesh = igaparam::Mesh::new(cell_type, &scaled, &conn).unwrap();
+    mesh.set_fixed(&mask).unwrap();
+    let moved: Vec<f64> = bump_top(&xyz, d, depth).iter().map(|v| v * s).collect();
+    mesh.move_nodes(None, &moved).unwrap();
+    mesh
+}

@@ -5,7 +5,7 @@
 
 use crate::common;
 
-use common::{boundary_data, boundary_mask, bump_top, curved_box, grid, MappedCube};
+use common::{boundary_data, bumped, curved_box, grid, MappedCube};
 use igaparam::boundary::{read_gismo_curves, BoundaryLoop2, Curve2};
 use igaparam::domain::{Domain, DomainOptions, PlanarDomain, PlanarOptions, PlanarReport};
 use igaparam::spline::{QuadraticMap, SplineMap, ThbSpace, UntangleOptions, ValidityOptions};
@@ -32,22 +32,6 @@ const SWEEPS_ROUND_OFF: f64 = 1e-7;
 /// Whether `s` is a power of two.
 fn exact(s: f64) -> bool {
     s.to_bits() & ((1u64 << 52) - 1) == 0
-}
-
-/// A unit grid whose top side is bent into a deep bump (2D) or whose top face is pushed down
-/// into a dome (3D), far enough that the harmonic placement folds cells; the boundary prescribed.
-/// Everything scaled by `s`.
-fn bumped(cell_type: CellType, n: usize, depth: f64, s: f64) -> Mesh {
-    let d = cell_type.dimension();
-    let (xyz, conn) = grid(cell_type, n);
-    let mask = boundary_mask(&xyz, d);
-    let scaled: Vec<f64> = xyz.iter().map(|v| v * s).collect();
-    let mut mesh = Mesh::new(cell_type, &scaled, &conn).unwrap();
-    mesh.set_fixed(&mask).unwrap();
-    let moved = bump_top(&xyz, d, depth);
-    let moved: Vec<f64> = moved.iter().map(|v| v * s).collect();
-    mesh.move_nodes(None, &moved).unwrap();
-    mesh
 }
 
 fn relocate(mesh: &mut Mesh, options: &RelocateOptions) -> RelocateReport {

@@ -3,7 +3,7 @@
 
 use crate::common;
 
-use common::{boundary_mask, bump_top, grid, load_case, Lcg};
+use common::{load_case, Lcg};
 use igaparam::{CellType, ErrorKind, Mesh, Placement, RelocateOptions, RelocateReport};
 
 /// Tight stationarity: the finite differences below resolve the optimum's motion to ~1e-8.
@@ -31,17 +31,9 @@ fn relocate(mesh: &mut Mesh, options: &RelocateOptions) -> RelocateReport {
     report
 }
 
-/// A unit grid whose top side is bent into a bump (2D) or whose top face is domed (3D), with the
-/// boundary prescribed.
+/// A unit grid with its top side bent into a bump of depth 0.2 (`common::bumped`).
 fn bumped(cell_type: CellType, n: usize) -> Mesh {
-    let d = cell_type.dimension();
-    let (xyz, conn) = grid(cell_type, n);
-    let mut mesh = Mesh::new(cell_type, &xyz, &conn).unwrap();
-    let mask = boundary_mask(&xyz, d);
-    mesh.set_fixed(&mask).unwrap();
-    let moved = bump_top(&xyz, d, 0.2);
-    mesh.move_nodes(None, &moved).unwrap();
-    mesh
+    common::bumped(cell_type, n, 0.2, 1.0)
 }
 
 /// A random motion of the prescribed coordinates (zero at free ones), scaled to `size`.
