@@ -17,6 +17,7 @@ export PATH="$PATH:${CARGO_HOME:-$HOME/.cargo}/bin"  # where rustup puts cargo
 # The cargo commands below share the CMake build's target directory, so that the dependencies
 # the build compiled in the release profile are not compiled a second time for the tests.
 export CARGO_TARGET_DIR="$PWD/build/cargo"
+library="$CARGO_TARGET_DIR/release/libigaparam.so"  # what valgrind and the Python tests load
 
 status=0
 
@@ -67,7 +68,7 @@ ctest --test-dir build --output-on-failure -j2 || { status=1; echo "test.sh: cte
 # The C API's own tests and its handle tests under valgrind memcheck (zero errors, zero definite
 # leaks); scripts/asan.sh runs all the C programs under AddressSanitizer and valgrind.
 IGAPARAM_SANITIZE_PROGRAMS="test_capi test_handles" \
-  IGAPARAM_SANITIZE_LIBRARY="$CARGO_TARGET_DIR/release/libigaparam.so" bash scripts/asan.sh valgrind ||
+  IGAPARAM_SANITIZE_LIBRARY="$library" bash scripts/asan.sh valgrind ||
   { status=1; echo "test.sh: valgrind memcheck failed" >&2; }
 
 # Python bindings: bindings/python installed into build/venv, tested against the library just built.
@@ -86,11 +87,11 @@ python_tests() {
   "$venv/bin/python" -m pip install -q meshio pygismo vtk gmsh scipy || return 1
   # The package bundles the library the CMake build made (no second cargo build); the wheel test
   # installs it again into a new venv the way a user does, with cargo's cache.
-  IGAPARAM_PREBUILT_LIBRARY="$PWD/build/cargo/release/libigaparam.so" \
+  IGAPARAM_PREBUILT_LIBRARY="$library" \
     "$venv/bin/python" -m pip install -q --force-reinstall --no-deps bindings/python || return 1
   # IGAPARAM_NO_SKIP=1 (exported above): a skipped test (no meshio, no pygismo, no C++ example) fails.
   echo "+ IGAPARAM_LIBRARY=build/cargo/release/libigaparam.so IGAPARAM_NO_SKIP=1 python -m pytest -q tests/python"
-  IGAPARAM_LIBRARY="$PWD/build/cargo/release/libigaparam.so" IGAPARAM_BUILD_DIR="$PWD/build" \
+  IGAPARAM_LIBRARY="$library" IGAPARAM_BUILD_DIR="$PWD/build" \
     "$venv/bin/python" -m pytest -q -rs -p no:cacheprovider tests/python
 }
 python_tests || { status=1; echo "test.sh: Python tests failed" >&2; }
