@@ -1175,7 +1175,9 @@ typedef struct {
 #define IGAPARAM_ORDER_GMSH 1
 
 /**
- * Harmonic extension of the prescribed displacements (a discrete Laplace equation).
+ * Harmonic extension of the prescribed displacements (a discrete Laplace equation): every free
+ * coordinate starts from its reference position plus that extension, whatever position
+ * `igaparam_mesh_move_nodes` gave it.
  */
 #define IGAPARAM_PLACEMENT_LAPLACIAN 0
 
@@ -1327,8 +1329,9 @@ igaparam_status igaparam_domain_new_from_file(const char *path, igaparam_domain 
  * The polylines may be given in any order and direction: they are chained end to end into a
  * counter-clockwise loop, the first one becoming the side u = 0. Errors:
  * `IGAPARAM_STATUS_NOT_FINITE` for a NaN or infinite coordinate, `IGAPARAM_STATUS_INVALID_ARGUMENT`
- * for a polyline of fewer than two distinct points, a loop that does not close, one of zero area
- * or a corner whose interior angle reaches 180 degrees. The arrays are copied.
+ * for a polyline of fewer than two distinct points, a loop that does not close, one of zero area,
+ * a loop that crosses or touches itself (the message names the two polylines and the point) or
+ * a corner whose interior angle reaches 180 degrees. The arrays are copied.
  */
 igaparam_status igaparam_domain_new_from_polylines(const size_t *counts,
                                                    const double *const *points,
@@ -1350,8 +1353,9 @@ igaparam_status igaparam_domain_new_from_polylines(const size_t *counts,
  * `IGAPARAM_STATUS_INVALID_ARGUMENT` for a count other than 4, a degree of 0, a knot count
  * other than control points + degree + 1, decreasing knots or a knot repeated more than
  * degree + 1 times, a weight that is not positive, and curves whose ends do not meet, whose
- * loop encloses no area or has a corner whose interior angle reaches 180 degrees (each message
- * names the curve or corner). The arrays are copied.
+ * loop encloses no area, crosses or touches itself (the curves' polygons are checked, sampled
+ * 16 points per control point) or has a corner whose interior angle reaches 180 degrees (each
+ * message names the curves or corner). The arrays are copied.
  */
 igaparam_status igaparam_domain_new_from_curves(size_t count,
                                                 const igaparam_curve *curves,
@@ -1655,7 +1659,11 @@ igaparam_status igaparam_mesh_set_fixed(igaparam_mesh *mesh, size_t num_nodes, c
 /**
  * Sets the positions of `count` nodes: node `indices[i]` moves to `xyz[3i..3i+3]`. `indices`
  * may be NULL, meaning nodes `0..count-1`. Typically used for the boundary nodes before
- * `igaparam_mesh_relocate`; the reference shape is not changed.
+ * `igaparam_mesh_relocate`; the reference shape is not changed. A free coordinate moved here is
+ * where the next relocation starts only with `IGAPARAM_PLACEMENT_CURRENT`: the default
+ * `IGAPARAM_PLACEMENT_LAPLACIAN` computes every free coordinate from the motion of the
+ * prescribed ones, and `IGAPARAM_PLACEMENT_INCREMENTAL` from the last relocation's result, so
+ * there the move of a free coordinate has no effect.
  */
 igaparam_status igaparam_mesh_move_nodes(igaparam_mesh *mesh,
                                          size_t count,

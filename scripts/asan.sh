@@ -1,26 +1,36 @@
 #!/usr/bin/env bash
-# The C API test programs (tests/c/test_capi.c, test_domain.c, test_spline.c) under
-# AddressSanitizer and under valgrind memcheck: bash scripts/asan.sh [asan|valgrind ...]
-# (default: both).
+# The C API test programs (tests/c/test_capi.c, test_domain.c, test_spline.c, test_handles.c,
+# test_morph.c, test_sensitivity.c) under AddressSanitizer and under valgrind memcheck, and a short
+# run of every fuzz target: bash scripts/asan.sh [asan|fuzz|valgrind ...] (default: all three).
 #
-# - asan: the library built with -Zsanitizer=address (nightly Rust) and the programs with
-#   -fsanitize=address, leaks reported (LeakSanitizer); any error fails the run.
+# - asan: the library built by nightly Rust with -Zsanitizer=address (the unoptimized `asan`
+#   profile, debug assertions and overflow checks on) and the programs with -fsanitize=address,
+#   leaks reported (LeakSanitizer); any error fails the run.
+# - fuzz: every target of fuzz/ (libFuzzer, AddressSanitizer) for IGAPARAM_FUZZ_SECONDS each
+#   (default 10), from the seeds of the bundled data and the kept inputs, with a fresh corpus;
+#   a crash, a timeout or running out of memory fails the run (the input is kept in
+#   build/asan/fuzz/TARGET/). scripts/fuzz.sh runs them for longer.
+#   The asan and fuzz modes share one nightly build: the fuzz workspace's targets and the
+#   library's C API, with the same flags (ASan and libFuzzer's coverage instrumentation), so
+#   every dependency is compiled once.
 # - valgrind: the programs against the ordinary release library under memcheck, zero errors and
 #   zero definite leaks required.
 #
-# scripts/test.sh runs the valgrind mode on test_capi and test_handles (half a minute); the ASan
-# build of the library and the valgrind runs of the domain and spline programs take several
-# minutes more on a 2-core machine, so the full run is this script's. A tool that is missing is
-# reported and skipped.
+# scripts/test.sh runs all three: asan on test_capi, test_handles, test_morph and
+# test_sensitivity, fuzz for 10 s per target (about 2 minutes to build, 2 to run), valgrind on
+# test_capi and test_handles (half a minute); the domain and spline programs take several minutes
+# more (30 times slower under valgrind), so the full run is this script's. A tool that is
+# missing is reported and skipped, or fails the run under IGAPARAM_NO_SKIP (as scripts/test.sh
+# sets it).
 set -euo pipefail
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
 export PATH="$PATH:${CARGO_HOME:-$HOME/.cargo}/bin"
 root=$PWD
 
 modes=("$@")
-((${#modes[@]} > 0)) || modes=(asan valgrind)
+((${#modes[@]} > 0)) || modes=(asan fuzz valgrind)
 # IGAPARAM_SANITIZE_PROGRAMS: the programs to run (names separated by spaces), default all four.
-read -r -a programs <<<"${IGAPARAM_SANITIZE_PROGRAMS:-test_capi test_domain test_spline test_handles}"
+read -r -a programs <<<"${IGAPARAM_SANITIZE_PROGRAMS:-test_capi test_domain test_spline test_handles test_morph test_sensitivity}"
 work=build/asan
 # The release library's target directory (CARGO_TARGET_DIR when set, as scripts/test.sh does);
 # the ASan build goes to its asan/ subdirectory.
@@ -62,20 +72,79 @@ run_all() {
   return "$status"
 }
 
+# The nightly build shared by the asan and fuzz modes, made once: the fuzz targets and the
+# library (cdylib) in the fuzz workspace, with AddressSanitizer and the coverage instrumentation
+# that cargo-fuzz gives libFuzzer. Returns 0 when built, 1 when the build failed or nightly is
+# missing under IGAPARAM_NO_SKIP, 2 when nightly is missing otherwise (the run is skipped).
+nightly_dir="$cargo_dir/asan/x86_64-unknown-linux-gnu/asan"
+nightly_built=
+nightly_build() {
+  [[ -z $nightly_built ]] || return "$nightly_built"
+  nightly_built=1
+  if ! cargo +nightly --version >/dev/null 2>&1; then
+    echo "asan.sh: no nightly Rust toolchain: AddressSanitizer and fuzz runs skipped"
+    # IGAPARAM_NO_SKIP (scripts/test.sh): a missing tool fails.
+    [[ -n ${IGAPARAM_NO_SKIP:-} ]] || nightly_built=2
+    return "$nightly_built"
+  fi
+  local coverage="-Cpasses=sancov-module -Cllvm-args=-sanitizer-coverage-level=4"
+  coverage+=" -Cllvm-args=-sanitizer-coverage-inline-8bit-counters"
+  coverage+=" -Cllvm-args=-sanitizer-coverage-pc-table"
+  coverage+=" -Cllvm-args=-sanitizer-coverage-trace-compares --cfg fuzzing"
+  echo "+ cargo +nightly build --profile asan (-Zsanitizer=address, libFuzzer coverage)"
+  RUSTFLAGS="-Zsanitizer=address $coverage" CARGO_TARGET_DIR="$cargo_dir/asan" \
+    CARGO_BUILD_JOBS=2 cargo +nightly build --manifest-path fuzz/Cargo.toml --profile asan \
+    --target x86_64-unknown-linux-gnu -p igaparam-fuzz -p igaparam || return 1
+  nightly_built=0
+}
+
+# Runs every fuzz target for IGAPARAM_FUZZ_SECONDS from its seeds; fails on any failure.
+fuzz_all() {
+  # shellcheck source=scripts/fuzz_seeds.sh
+  source scripts/fuzz_seeds.sh
+  local seconds=${IGAPARAM_FUZZ_SECONDS:-10} target status=0
+  for target in "${fuzz_targets[@]}"; do
+    local dir=$work/fuzz/$target
+    fuzz_seeds "$target" "$dir/seeds"
+    rm -rf "$dir/corpus" "$dir/artifacts"
+    mkdir -p "$dir/corpus" "$dir/artifacts"
+    echo "+ fuzz $target ($seconds s)"
+    if ! "$nightly_dir/$target" "$dir/corpus" "$dir/seeds" -max_total_time="$seconds" \
+      -timeout=20 -rss_limit_mb=2560 -print_final_stats=1 -artifact_prefix="$dir/artifacts/" \
+      >"$dir/log" 2>&1; then
+      status=1
+      tail -n 60 "$dir/log" >&2
+      echo "asan.sh: fuzz target $target FAILED; the input is in $dir/artifacts/" >&2
+    else
+      echo "asan.sh: fuzz $target:" \
+        "$(grep -o 'stat::number_of_executed_units: *[0-9]*' "$dir/log" | grep -o '[0-9]*$') runs," \
+        "no failure"
+    fi
+  done
+  return "$status"
+}
+
 status=0
 for mode in "${modes[@]}"; do
   case $mode in
     asan)
-      if ! cargo +nightly --version >/dev/null 2>&1; then
-        echo "asan.sh: no nightly Rust toolchain: AddressSanitizer run skipped"
+      built=0
+      nightly_build || built=$?
+      if ((built != 0)); then
+        ((built == 2)) || status=1
         continue
       fi
-      echo "+ cargo +nightly build --release (-Zsanitizer=address)"
-      RUSTFLAGS="-Zsanitizer=address" CARGO_TARGET_DIR="$cargo_dir/asan" CARGO_BUILD_JOBS=2 \
-        cargo +nightly build --release --lib --target x86_64-unknown-linux-gnu
-      build "$work/asan" "$cargo_dir/asan/x86_64-unknown-linux-gnu/release/libigaparam.so" \
-        -fsanitize=address -fno-omit-frame-pointer
+      build "$work/asan" "$nightly_dir/libigaparam.so" -fsanitize=address -fno-omit-frame-pointer
       ASAN_OPTIONS=detect_leaks=1:abort_on_error=0 run_all "$work/asan" env || status=1
+      ;;
+    fuzz)
+      built=0
+      nightly_build || built=$?
+      if ((built != 0)); then
+        ((built == 2)) || status=1
+        continue
+      fi
+      fuzz_all || status=1
       ;;
     valgrind)
       if ! command -v valgrind >/dev/null; then

@@ -16,8 +16,10 @@ export PATH="$PATH:${CARGO_HOME:-$HOME/.cargo}/bin"
 
 seconds=${1:-60}
 shift || true
+# shellcheck source=scripts/fuzz_seeds.sh
+source scripts/fuzz_seeds.sh
 targets=("$@")
-((${#targets[@]} > 0)) || targets=(gismo_xml gismo_thb vtu coastline obj capi)
+((${#targets[@]} > 0)) || targets=("${fuzz_targets[@]}")
 
 if ! cargo +nightly --version >/dev/null 2>&1; then
   echo "fuzz.sh: no nightly Rust toolchain (rustup toolchain install nightly): fuzzing skipped"
@@ -31,37 +33,12 @@ if ! cargo fuzz --version >/dev/null 2>&1; then
   }
 fi
 
-# Seeds of each target from the bundled data, in build/fuzz/seeds/TARGET.
-seeds() {
-  local target=$1 dir=build/fuzz/seeds/$1
-  rm -rf "$dir"
-  mkdir -p "$dir"
-  case $target in
-    gismo_xml) cp tests/data/boundary/*.xml "$dir" ;;
-    coastline) cp tests/data/boundary/*.txt "$dir" ;;
-    vtu) cp tests/data/airfoil_0012_q9.vtu "$dir" ;;
-    obj)
-      # One face alone, and the six faces of the duck separated by NUL bytes (a solid).
-      cp tests/data/boundary/duck_faces/xmin.obj "$dir"
-      local face
-      for face in xmin xmax ymin ymax zmin zmax; do
-        cat "tests/data/boundary/duck_faces/$face.obj"
-        [[ $face == zmax ]] || printf '\0'
-      done >"$dir/duck_faces"
-      ;;
-  esac
-  local kept
-  for kept in "tests/data/fuzz/seeds/$target" "tests/data/fuzz/regressions/$target"; do
-    [[ -d $kept ]] && cp "$kept"/* "$dir" 2>/dev/null || true
-  done
-}
-
 echo "+ cargo +nightly fuzz build"
 CARGO_BUILD_JOBS=2 cargo +nightly fuzz build
 
 status=0
 for target in "${targets[@]}"; do
-  seeds "$target"
+  fuzz_seeds "$target" "build/fuzz/seeds/$target"
   corpus=build/fuzz/corpus/$target
   artifacts=build/fuzz/artifacts/$target
   mkdir -p "$corpus" "$artifacts"

@@ -76,6 +76,31 @@ fn parse_weights(geometry: Node<'_, '_>, rational: bool) -> Result<Option<Vec<f6
     }
 }
 
+/// The basis types a curve or surface of a B-rep is made of.
+const BASIS_TYPES: [&str; 4] = [
+    "BSplineBasis",
+    "NurbsBasis",
+    "TensorBSplineBasis2",
+    "TensorNurbsBasis2",
+];
+
+/// Refuses a `<Basis>` inside geometry `g` whose type is none of [`BASIS_TYPES`] (its knot
+/// vectors would otherwise be read as if it were a B-spline basis).
+fn check_basis_types(g: Node<'_, '_>) -> Result<()> {
+    match descendants(g, "Basis")
+        .into_iter()
+        .find(|b| !BASIS_TYPES.contains(&b.attribute("type").unwrap_or("")))
+    {
+        Some(b) => Err(Error::io(format!(
+            "line {}: basis type {:?} is not supported (only {})",
+            line(b),
+            b.attribute("type").unwrap_or(""),
+            BASIS_TYPES.join(", ")
+        ))),
+        None => Ok(()),
+    }
+}
+
 /// One `<Geometry>` element as a curve or surface.
 fn parse_geometry(g: Node<'_, '_>) -> Result<GismoGeometry> {
     let line = line(g);
@@ -84,6 +109,7 @@ fn parse_geometry(g: Node<'_, '_>) -> Result<GismoGeometry> {
     let knots = descendants(g, "KnotVector");
     match ty {
         "BSpline" | "Nurbs" => {
+            check_basis_types(g)?;
             let kv = knots.first().ok_or_else(|| {
                 Error::io(format!("line {line}: BSpline geometry has no <KnotVector>"))
             })?;
@@ -95,6 +121,7 @@ fn parse_geometry(g: Node<'_, '_>) -> Result<GismoGeometry> {
             ))
         }
         "TensorBSpline2" | "TensorNurbs2" => {
+            check_basis_types(g)?;
             let [k1, k2] = knots[..] else {
                 return Err(Error::io(format!(
                     "line {line}: TensorBSpline2 geometry needs two <KnotVector> elements, it has {}",

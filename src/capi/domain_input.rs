@@ -357,8 +357,9 @@ pub extern "C" fn igaparam_domain_new_from_file(
 /// The polylines may be given in any order and direction: they are chained end to end into a
 /// counter-clockwise loop, the first one becoming the side u = 0. Errors:
 /// `IGAPARAM_STATUS_NOT_FINITE` for a NaN or infinite coordinate, `IGAPARAM_STATUS_INVALID_ARGUMENT`
-/// for a polyline of fewer than two distinct points, a loop that does not close, one of zero area
-/// or a corner whose interior angle reaches 180 degrees. The arrays are copied.
+/// for a polyline of fewer than two distinct points, a loop that does not close, one of zero area,
+/// a loop that crosses or touches itself (the message names the two polylines and the point) or
+/// a corner whose interior angle reaches 180 degrees. The arrays are copied.
 #[no_mangle]
 pub extern "C" fn igaparam_domain_new_from_polylines(
     counts: *const usize,
@@ -388,8 +389,9 @@ pub extern "C" fn igaparam_domain_new_from_polylines(
 /// `IGAPARAM_STATUS_INVALID_ARGUMENT` for a count other than 4, a degree of 0, a knot count
 /// other than control points + degree + 1, decreasing knots or a knot repeated more than
 /// degree + 1 times, a weight that is not positive, and curves whose ends do not meet, whose
-/// loop encloses no area or has a corner whose interior angle reaches 180 degrees (each message
-/// names the curve or corner). The arrays are copied.
+/// loop encloses no area, crosses or touches itself (the curves' polygons are checked, sampled
+/// 16 points per control point) or has a corner whose interior angle reaches 180 degrees (each
+/// message names the curves or corner). The arrays are copied.
 #[no_mangle]
 pub extern "C" fn igaparam_domain_new_from_curves(
     count: usize,

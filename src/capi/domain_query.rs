@@ -66,8 +66,8 @@ pub extern "C" fn igaparam_domain_vertex_count(
     out: *mut usize,
 ) -> igaparam_status {
     run("igaparam_domain_vertex_count", || {
-        let n = with_built!(held(domain)?.built()?, d => d.mesh().vertex_count());
-        *non_null_mut(out, "out")? = n;
+        let out = non_null_mut(out, "out")?;
+        *out = with_built!(held(domain)?.built()?, d => d.mesh().vertex_count());
         Ok(())
     })
 }
@@ -80,8 +80,8 @@ pub extern "C" fn igaparam_domain_cell_count(
     out: *mut usize,
 ) -> igaparam_status {
     run("igaparam_domain_cell_count", || {
-        let n = with_built!(held(domain)?.built()?, d => d.mesh().cell_count());
-        *non_null_mut(out, "out")? = n;
+        let out = non_null_mut(out, "out")?;
+        *out = with_built!(held(domain)?.built()?, d => d.mesh().cell_count());
         Ok(())
     })
 }
@@ -202,8 +202,8 @@ pub extern "C" fn igaparam_domain_write_vtu(
     path: *const c_char,
 ) -> igaparam_status {
     run("igaparam_domain_write_vtu", || {
-        let grid = with_built!(held(domain)?.built()?, d => d.to_grid());
         let path = c_path(path, "path")?;
+        let grid = with_built!(held(domain)?.built()?, d => d.to_grid());
         crate::io::vtu::write(path, &grid)?;
         Ok(())
     })

@@ -195,7 +195,11 @@ pub extern "C" fn igaparam_mesh_set_fixed(
 
 /// Sets the positions of `count` nodes: node `indices[i]` moves to `xyz[3i..3i+3]`. `indices`
 /// may be NULL, meaning nodes `0..count-1`. Typically used for the boundary nodes before
-/// `igaparam_mesh_relocate`; the reference shape is not changed.
+/// `igaparam_mesh_relocate`; the reference shape is not changed. A free coordinate moved here is
+/// where the next relocation starts only with `IGAPARAM_PLACEMENT_CURRENT`: the default
+/// `IGAPARAM_PLACEMENT_LAPLACIAN` computes every free coordinate from the motion of the
+/// prescribed ones, and `IGAPARAM_PLACEMENT_INCREMENTAL` from the last relocation's result, so
+/// there the move of a free coordinate has no effect.
 #[no_mangle]
 pub extern "C" fn igaparam_mesh_move_nodes(
     mesh: *mut igaparam_mesh,

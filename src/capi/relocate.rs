@@ -12,7 +12,9 @@ use crate::fe_mesh::{Method, Placement, RelocateOptions, Stage};
 
 /// Where free nodes start: one of the `IGAPARAM_PLACEMENT_*` values.
 pub type igaparam_placement = c_int;
-/// Harmonic extension of the prescribed displacements (a discrete Laplace equation).
+/// Harmonic extension of the prescribed displacements (a discrete Laplace equation): every free
+/// coordinate starts from its reference position plus that extension, whatever position
+/// `igaparam_mesh_move_nodes` gave it.
 pub const IGAPARAM_PLACEMENT_LAPLACIAN: igaparam_placement = 0;
 /// The current positions, as they are.
 pub const IGAPARAM_PLACEMENT_CURRENT: igaparam_placement = 1;

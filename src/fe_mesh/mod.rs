@@ -232,7 +232,10 @@ impl Mesh {
     }
 
     /// Sets the positions of some nodes: `xyz` holds 3 values per node; `indices` names the
-    /// nodes, or `None` for nodes `0..xyz.len()/3`. Nothing changes on error.
+    /// nodes, or `None` for nodes `0..xyz.len()/3`. Nothing changes on error. A free
+    /// coordinate moved here is where the next relocation starts only with
+    /// [`Placement::Current`]; [`Placement::Laplacian`] and [`Placement::Incremental`] compute
+    /// the free coordinates from the prescribed motion (and the last result).
     pub fn move_nodes(&mut self, indices: Option<&[usize]>, xyz: &[f64]) -> Result<()> {
         if xyz.len() % 3 != 0 {
             return Err(Error::invalid(format!(

@@ -14,7 +14,9 @@ use crate::optimize::{
 /// Where the free nodes start before the optimizer runs.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Placement {
-    /// Harmonic extension of the prescribed displacements (discrete Laplace equation).
+    /// Harmonic extension of the prescribed displacements (discrete Laplace equation): every
+    /// free coordinate starts from its reference position plus that extension, whatever
+    /// position [`Mesh::move_nodes`](crate::Mesh::move_nodes) gave it.
     Laplacian,
     /// The current positions, as they are.
     Current,

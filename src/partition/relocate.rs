@@ -40,10 +40,8 @@ fn check_options(options: &RelocateOptions) -> Result<rayon::ThreadPool> {
             "stationarity_tolerance > 0 needs the Newton stage on the whole Hessian, which a partition does not make; use 0",
         ));
     }
-    rayon::ThreadPoolBuilder::new()
-        .num_threads(options.threads)
-        .build()
-        .map_err(|e| Error::invalid(format!("cannot start {} threads: {e}", options.threads)))
+    // Capped to the cores, as every other stage: 4096 threads on 2 cores would only slow it down.
+    crate::threads::pool(options.threads)
 }
 
 impl Partition {

@@ -97,6 +97,13 @@ fn level0_shift<const D: usize>(tensor: Node<'_, '_>) -> Result<u8> {
     }
     let mut shift = None;
     for (_, b) in bases {
+        if b.attribute("type") != Some("BSplineBasis") {
+            return Err(Error::io(format!(
+                "line {}: a univariate basis of the tensor basis must be of type \"BSplineBasis\", not {:?}",
+                line(b),
+                b.attribute("type").unwrap_or("")
+            )));
+        }
         let kv = xml::children(b, "KnotVector")
             .next()
             .ok_or_else(|| Error::io(format!("line {}: <Basis> has no <KnotVector>", line(b))))?;
@@ -146,9 +153,37 @@ fn boxes<const D: usize>(thb: Node<'_, '_>, shift: u8) -> Result<Vec<(u8, Vec<f6
                 corners.len()
             )));
         }
+        check_box_corners::<D>(&corners, level)
+            .map_err(|m| Error::io(format!("line {at}: {m}")))?;
         out.push((level, corners));
     }
     Ok(out)
+}
+
+/// Why the corners of a box of (absolute) level `level` are not a box of that level's knot
+/// spans: each a whole span index in `[0, 2^level]`, the lower corner below the upper one in
+/// every direction.
+fn check_box_corners<const D: usize>(
+    corners: &[f64],
+    level: u8,
+) -> std::result::Result<(), String> {
+    let spans = (1u64 << level) as f64;
+    if let Some(v) = corners
+        .iter()
+        .find(|v| v.fract() != 0.0 || !(0.0..=spans).contains(*v))
+    {
+        return Err(format!(
+            "bad box: corner value {v} is not a knot-span index of level {level} (a whole number from 0 to {spans})"
+        ));
+    }
+    if let Some(k) = (0..D).find(|&k| corners[k] >= corners[D + k]) {
+        return Err(format!(
+            "bad box: in direction {k} its lower corner {} is not below its upper corner {}",
+            corners[k],
+            corners[D + k]
+        ));
+    }
+    Ok(())
 }
 
 /// Refuses, before anything is refined, a file whose level-0 basis and boxes would make far

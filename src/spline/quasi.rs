@@ -143,8 +143,11 @@ impl<const D: usize> SplineMap<D, ThbSpace<D>> {
     /// refinement), unchanged: the spaces are nested and the quasi-interpolant of the map's
     /// own pieces reproduces it. Local and exact; the report's residual is the largest
     /// difference between the two maps at the new space's Greville points (round-off).
+    /// Each element may be marked once: an index out of range or repeated is refused, naming
+    /// its positions in `marked`.
     pub fn refine(&self, marked: &[usize]) -> Result<(Self, FitReport)> {
         let start = Instant::now();
+        check_marked(marked, self.element_count())?;
         let space = self.space.refine(marked)?;
         let pieces: Vec<Piece<D>> = (0..self.element_count())
             .into_par_iter()
@@ -213,4 +216,23 @@ impl<const D: usize> SplineMap<D, ThbSpace<D>> {
         let report = map.quasi_report(residual, start);
         Ok((map, report))
     }
+}
+
+/// Refuses a marking with an element out of range or marked twice, naming the positions in
+/// `marked` (the caller's indices).
+fn check_marked(marked: &[usize], count: usize) -> Result<()> {
+    let mut first = std::collections::HashMap::with_capacity(marked.len());
+    for (i, &e) in marked.iter().enumerate() {
+        if e >= count {
+            return Err(Error::invalid(format!(
+                "elements[{i}] = {e} is out of range (the map has {count} elements)"
+            )));
+        }
+        if let Some(j) = first.insert(e, i) {
+            return Err(Error::invalid(format!(
+                "elements[{i}] = {e} repeats elements[{j}]: mark each element once"
+            )));
+        }
+    }
+    Ok(())
 }

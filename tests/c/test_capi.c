@@ -848,6 +848,39 @@ static void test_orders_and_files(void) {
   structured_grid_free(&lattice);
 }
 
+/* A free node moved by igaparam_mesh_move_nodes is where the relocation starts only with
+ * IGAPARAM_PLACEMENT_CURRENT: the Laplacian placement computes every free coordinate from the
+ * prescribed motion (here none, so the free node goes back to its reference position), as the
+ * header says. */
+static void test_moved_free_node(void) {
+  structured_grid g;
+  grid_init(&g, IGAPARAM_CELL_QUAD4, 2);
+  igaparam_mesh *mesh = new_fixed_mesh(&g);
+  int64_t centre = (int64_t)structured_grid_node(&g, 1, 1, 0);
+  CHECK(!structured_grid_on_boundary(&g, (size_t)centre));
+  const double *reference = g.xyz + 3 * centre;
+  double moved[3] = {reference[0] + 0.1, reference[1] - 0.05, reference[2]};
+  igaparam_relocate_options options = igaparam_relocate_options_default();
+  options.optimize = 0;
+  const igaparam_placement placements[2] = {IGAPARAM_PLACEMENT_LAPLACIAN,
+                                            IGAPARAM_PLACEMENT_CURRENT};
+  const double *expected[2] = {reference, moved};
+  for (int k = 0; k < 2; k++) {
+    EXPECT_OK(igaparam_mesh_move_nodes(mesh, 1, &centre, moved));
+    options.placement = placements[k];
+    EXPECT_OK(igaparam_mesh_relocate(mesh, &options, NULL));
+    size_t len = 0;
+    double *xyz = copy_positions(mesh, &len);
+    const double *p = xyz + 3 * centre;
+    CHECKF(fabs(p[0] - expected[k][0]) < 1e-12 && fabs(p[1] - expected[k][1]) < 1e-12,
+          "placement %d: the moved free node is at (%g, %g), expected (%g, %g)", (int)placements[k],
+          p[0], p[1], expected[k][0], expected[k][1]);
+    free(xyz);
+  }
+  igaparam_mesh_free(mesh);
+  structured_grid_free(&g);
+}
+
 int main(void) {
   printf("igaparam %s\n", igaparam_version());
   init_primers();
@@ -866,6 +899,7 @@ int main(void) {
   test_threads_agree(IGAPARAM_CELL_QUAD9, 12);
   test_threads_agree(IGAPARAM_CELL_HEX8, 4);
   test_orders_and_files();
+  test_moved_free_node();
 
   igaparam_mesh_free(primer_mesh);
   printf("%d passed, %d failed\n", passed, failed);

@@ -95,6 +95,17 @@ static void test_constructor_errors(void) {
   EXPECT(igaparam_domain_new_from_polylines(lc, lp, &d), IGAPARAM_STATUS_INVALID_ARGUMENT);
   CHECK(d == UNTOUCHED, "a failed constructor wrote its handle");
 
+  /* A loop that crosses itself: the top side dips below the bottom one and comes back. */
+  const double c0[] = {0, 0, 1, 0};                /* bottom */
+  const double c1[] = {1, 0, 1, 1};                /* right */
+  const double c2[] = {1, 1, 0.5, -0.5, 0, 1};     /* top, through (0.5, -0.5) */
+  const double c3[] = {0, 1, 0, 0};                /* left */
+  const double *cp[4] = {c3, c0, c1, c2};
+  size_t cc[4] = {2, 2, 2, 3};
+  EXPECT(igaparam_domain_new_from_polylines(cc, cp, &d), IGAPARAM_STATUS_INVALID_ARGUMENT);
+  CHECK(strstr(message(), "crosses itself") != NULL, "crossing loop: %s", message());
+  CHECK(d == UNTOUCHED, "a failed constructor wrote its handle");
+
   /* A zero-area loop: every point the same. */
   double flat[4 * 2 * 2] = {0};
   for (int i = 0; i < 16; i += 2) flat[i] = i / 4;
@@ -136,6 +147,10 @@ static void test_unit_square(void) {
   EXPECT(igaparam_domain_write_vtu(d, joined(out_dir, "unbuilt.vtu")),
          IGAPARAM_STATUS_INVALID_ARGUMENT);
   EXPECT(igaparam_domain_vertex_count(NULL, &n), IGAPARAM_STATUS_NULL_ARGUMENT);
+  /* A NULL argument is NULL_ARGUMENT also on an unbuilt domain. */
+  EXPECT(igaparam_domain_write_vtu(d, NULL), IGAPARAM_STATUS_NULL_ARGUMENT);
+  EXPECT(igaparam_domain_vertex_count(d, NULL), IGAPARAM_STATUS_NULL_ARGUMENT);
+  EXPECT(igaparam_domain_cell_count(d, NULL), IGAPARAM_STATUS_NULL_ARGUMENT);
   EXPECT(igaparam_domain_build(NULL, NULL, NULL), IGAPARAM_STATUS_NULL_ARGUMENT);
 
   /* Bad options leave the domain unbuilt and the report unwritten. */

@@ -399,6 +399,32 @@ static double distance(const igaparam_spline *a, const igaparam_spline *b) {
   return worst;
 }
 
+/* The .vtu file at `path`, read back: its piece has `points` points and `cells` cells, the point
+ * arrays quality and det, the cell arrays level and element, and it is whole. */
+static void check_spline_vtu(const char *path, size_t points, size_t cells) {
+  FILE *f = fopen(path, "rb");
+  CHECK(f != NULL, "%s: cannot open it", path);
+  if (!f) return;
+  fseek(f, 0, SEEK_END);
+  long size = ftell(f);
+  fseek(f, 0, SEEK_SET);
+  char *text = calloc((size_t)size + 1, 1);
+  size_t got = fread(text, 1, (size_t)size, f);
+  fclose(f);
+  const char *piece = strstr(text, "<Piece ");
+  const char *p = piece ? strstr(piece, "NumberOfPoints=\"") : NULL;
+  const char *c = piece ? strstr(piece, "NumberOfCells=\"") : NULL;
+  unsigned long long np = p ? strtoull(p + strlen("NumberOfPoints=\""), NULL, 10) : 0;
+  unsigned long long nc = c ? strtoull(c + strlen("NumberOfCells=\""), NULL, 10) : 0;
+  CHECK(got == (size_t)size && np == points && nc == cells,
+        "%s: %llu points, %llu cells in the file; %zu and %zu expected", path, np, nc, points, cells);
+  const char *names[4] = {"Name=\"quality\"", "Name=\"det\"", "Name=\"level\"",
+                          "Name=\"element\""};
+  for (int i = 0; i < 4; i++) CHECK(strstr(text, names[i]) != NULL, "%s: no %s", path, names[i]);
+  CHECK(strstr(text, "</VTKFile>") != NULL, "%s: truncated", path);
+  free(text);
+}
+
 static void test_refine_and_files(const igaparam_spline *s) {
   igaparam_spline *r = NULL;
   EXPECT(igaparam_spline_clone(s, &r), IGAPARAM_STATUS_OK);
@@ -427,9 +453,10 @@ static void test_refine_and_files(const igaparam_spline *s) {
   EXPECT(igaparam_spline_dimension(back, &d), IGAPARAM_STATUS_OK);
   CHECK(d == 2, "dimension %zu", d);
   EXPECT(igaparam_spline_write_vtu(s, joined(out_dir, "male_spline.vtu"), 4), IGAPARAM_STATUS_OK);
-  FILE *f = fopen(joined(out_dir, "male_spline.vtu"), "r");
-  CHECK(f != NULL, "no .vtu written");
-  if (f) fclose(f);
+  size_t ne = 0;
+  EXPECT(igaparam_spline_element_count(s, &ne), IGAPARAM_STATUS_OK);
+  /* 4 x 4 quads on a 5 x 5 grid of points per element. */
+  check_spline_vtu(joined(out_dir, "male_spline.vtu"), 25 * ne, 16 * ne);
   igaparam_spline_free(back);
   igaparam_spline_free(r);
 }
@@ -488,6 +515,11 @@ static void test_errors(igaparam_spline *s) {
   size_t marked[1] = {ne};
   EXPECT(igaparam_spline_refine(s, 1, marked, NULL), IGAPARAM_STATUS_INVALID_ARGUMENT);
   EXPECT(igaparam_spline_refine(s, 1, NULL, NULL), IGAPARAM_STATUS_NULL_ARGUMENT);
+  /* An element marked twice is refused, naming the caller's positions (not a cell index). */
+  size_t twice[3] = {1, 0, 1};
+  EXPECT(igaparam_spline_refine(s, 3, twice, NULL), IGAPARAM_STATUS_INVALID_ARGUMENT);
+  CHECK(strstr(message(), "elements[2] = 1 repeats elements[0]") != NULL, "repeated element: %s",
+        message());
   size_t still = 0;
   EXPECT(igaparam_spline_basis_count(s, &still), IGAPARAM_STATUS_OK);
   CHECK(still == nb, "a failed refinement changed the basis: %zu -> %zu", nb, still);

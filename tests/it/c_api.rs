@@ -86,8 +86,12 @@ fn build(source: &str, dir: &Path, defines: &[(&str, String)]) -> PathBuf {
 fn run(source: &str, args: &[&Path], defines: &[(&str, String)]) {
     let dir = work_dir(source.split('.').next().unwrap());
     let program = build(source, &dir, defines);
+    // Without cargo's LD_LIBRARY_PATH, which comes before the program's RUNPATH and may name
+    // the target directory, where a CMake build leaves its own (possibly older)
+    // libigaparam.so.0: the program must load the library built along with this test.
     let out = Command::new(&program)
         .args(args)
+        .env_remove("LD_LIBRARY_PATH")
         .current_dir(&dir)
         .output()
         .expect("the test program runs");

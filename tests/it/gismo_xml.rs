@@ -175,3 +175,82 @@ fn thb_files_asking_for_absurd_refinement_are_refused() {
     // The map as written still reads back.
     assert!(same_map(&read_gismo_thb::<2>(&text).unwrap(), &map));
 }
+
+/// A file cut short (a transfer that stopped at 99% or halfway) is an I/O error, not a map or a
+/// boundary made of what was read.
+#[test]
+fn a_file_cut_short_is_refused() {
+    let thb = write_gismo_thb(&thb_map(refined_tree([1, 1]), 1.0));
+    for text in [puzzle(), thb.clone()] {
+        for fraction in [0.99, 0.5] {
+            let mut cut = (text.len() as f64 * fraction) as usize;
+            while !text.is_char_boundary(cut) {
+                cut -= 1;
+            }
+            let cut = &text[..cut];
+            let e = match parse_gismo_xml(cut) {
+                Err(e) => e,
+                Ok(g) => panic!("{fraction} of the file read as {} geometries", g.len()),
+            };
+            assert_eq!(e.kind, igaparam::ErrorKind::Io, "{}", e.message);
+            assert!(
+                read_gismo_thb::<2>(cut).is_err(),
+                "{fraction} of the file read"
+            );
+        }
+    }
+    assert!(read_gismo_thb::<2>(&thb).is_ok());
+}
+
+/// `<box>` entries that are not boxes of knot spans of their level are refused with their line
+/// (they used to be clamped or skipped in silence).
+#[test]
+fn malformed_boxes_are_refused() {
+    let text = write_gismo_thb(&thb_map(refined_tree([1, 1]), 1.0));
+    let start = text.find("<box").unwrap();
+    let end = text[start..].find("</box>").unwrap() + start + "</box>".len();
+    let first = &text[start..end];
+    assert!(read_gismo_thb::<2>(&text).is_ok(), "{first}");
+    for (bad, says) in [
+        ("<box level=\"2\">0 0 1.5 2</box>", "not a knot-span index"),
+        ("<box level=\"2\">0 0 5 2</box>", "not a knot-span index"),
+        ("<box level=\"2\">-1 0 1 2</box>", "not a knot-span index"),
+        ("<box level=\"2\">0 0 NaN 2</box>", "not a knot-span index"),
+        ("<box level=\"2\">2 0 1 2</box>", "lower corner"),
+        ("<box level=\"2\">0 1 1 1</box>", "lower corner"),
+    ] {
+        let e = read_gismo_thb::<2>(&text.replacen(first, bad, 1))
+            .err()
+            .unwrap_or_else(|| panic!("{bad} was read"));
+        assert_eq!(e.kind, igaparam::ErrorKind::Io, "{bad}: {}", e.message);
+        assert!(
+            e.message.contains(says) && e.message.contains("line "),
+            "{bad}: {}",
+            e.message
+        );
+    }
+}
+
+/// Bases of a type the readers do not know are refused, not read as B-spline bases.
+#[test]
+fn unknown_basis_types_are_refused() {
+    let thb = write_gismo_thb(&thb_map(refined_tree([1, 1]), 1.0));
+    let other = thb.replacen(
+        "<Basis type=\"BSplineBasis\" index=\"1\">",
+        "<Basis type=\"LegendreBasis\" index=\"1\">",
+        1,
+    );
+    assert_ne!(other, thb);
+    let e = read_gismo_thb::<2>(&other).unwrap_err();
+    assert!(e.message.contains("LegendreBasis"), "{}", e.message);
+    let text = puzzle();
+    let other = text.replacen(
+        "<Basis type=\"BSplineBasis\">",
+        "<Basis type=\"Bernstein\">",
+        1,
+    );
+    assert_ne!(other, text);
+    let e = parse_gismo_xml(&other).unwrap_err();
+    assert_eq!(e.kind, igaparam::ErrorKind::Io);
+    assert!(e.message.contains("Bernstein"), "{}", e.message);
+}

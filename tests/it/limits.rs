@@ -4,7 +4,7 @@
 use crate::common;
 
 use common::{boundary_mask, grid, mapped_square, MappedCube};
-use igaparam::boundary::{BoundaryLoop2, Coastline};
+use igaparam::boundary::{parse_gismo_xml, BoundaryLoop2, Coastline, Curve2, GismoGeometry};
 use igaparam::domain::{
     Domain, DomainOptions, PlanarDomain, DEFAULT_MAX_CELLS, DEFAULT_MAX_TOTAL_SWEEPS,
 };
@@ -185,4 +185,26 @@ fn the_sweeps_of_all_stages_stay_within_the_total_budget() {
     )
     .unwrap_err();
     assert_eq!(e.kind, ErrorKind::InvalidArgument, "{}", e.message);
+}
+
+/// The puzzle piece with one control point's x changed from 0.3116 to 2.3116 (the second of the
+/// slow inputs a fuzzer found: it built for 25 s and 10,036 sweeps): its curve now runs across
+/// itself, and the loop is refused at once, naming the curve and the point.
+#[test]
+fn the_puzzle_with_one_coefficient_changed_is_refused_at_once() {
+    let text = std::fs::read_to_string(common::boundary_data("puzzle3_bdry.xml")).unwrap();
+    let from = "0.3115868720132141 0.003615359295051681";
+    assert_eq!(text.matches(from).count(), 1, "the bundled file changed");
+    let text = text.replacen(from, "2.3115868720132141 0.003615359295051681", 1);
+    let curves = parse_gismo_xml(&text)
+        .unwrap()
+        .into_iter()
+        .map(|g| match g {
+            GismoGeometry::Curve(c) => Curve2::spline(c).unwrap(),
+            GismoGeometry::Surface(_) => panic!("a surface"),
+        })
+        .collect();
+    let e = BoundaryLoop2::from_curves(curves).unwrap_err();
+    assert_eq!(e.kind, ErrorKind::InvalidArgument, "{}", e.message);
+    assert!(e.message.contains("crosses itself"), "{}", e.message);
 }

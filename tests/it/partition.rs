@@ -6,6 +6,7 @@ use std::sync::{Arc, Barrier, Mutex};
 
 use igaparam::fe_mesh::{CellType, Mesh, Method, RelocateOptions};
 use igaparam::partition::{Exchange, PartInput, Partition, Ranks};
+use igaparam::threads::{cores, MAX_THREADS};
 use igaparam::Result;
 
 /// All-to-all among threads: each writes its blocks into the mailbox, waits, reads its own.
@@ -116,11 +117,27 @@ fn case() -> Case {
 }
 
 fn options() -> RelocateOptions {
+    options_with(1)
+}
+
+fn options_with(threads: usize) -> RelocateOptions {
     RelocateOptions {
         method: Method::Sweeps,
-        threads: 1,
+        threads,
         ..Default::default()
     }
+}
+
+/// The threads of this process now (Linux: /proc/self/status), 0 where unknown.
+fn process_threads() -> usize {
+    std::fs::read_to_string("/proc/self/status")
+        .ok()
+        .and_then(|s| {
+            s.lines()
+                .find_map(|l| l.strip_prefix("Threads:"))
+                .and_then(|n| n.trim().parse().ok())
+        })
+        .unwrap_or(0)
 }
 
 /// A rank's part: strips of cells by centre x, nodes owned by the lowest rank holding them,
@@ -211,6 +228,12 @@ fn input(p: &Part) -> PartInput<'_> {
 
 /// Relocates on `size` ranks; returns the whole mesh's positions from the owners.
 fn relocate_on(size: usize) -> Vec<f64> {
+    relocate_with(size, 1).0
+}
+
+/// Relocates on `size` ranks with `threads` per rank; returns the whole mesh's positions from
+/// the owners and the most threads the process had at a progress call.
+fn relocate_with(size: usize, threads: usize) -> (Vec<f64>, usize) {
     let parts = on_ranks(size, move |rank, ex| {
         let c = case();
         let p = part_of(&c, rank, size, true);
@@ -218,22 +241,28 @@ fn relocate_on(size: usize) -> Vec<f64> {
         let mut part = Partition::new(&mut ranks, Ok(&input(&p))).unwrap();
         part.set_fixed(&p.fixed).unwrap();
         part.set_positions(&p.moved).unwrap();
+        let mut most = 0;
+        let mut progress = |_, _, _| {
+            most = most.max(process_threads());
+            true
+        };
         let report = part
-            .relocate(&mut ranks, Ok(options()), &mut |_, _, _| true)
+            .relocate(&mut ranks, Ok(options_with(threads)), &mut progress)
             .unwrap();
         assert_eq!(report.relocation.invalid_after, 0);
         assert_eq!(report.relocation.cells, c.conn.len() / 4);
-        (p, part.positions())
+        (p, part.positions(), most)
     });
     let mut whole = case().moved;
-    for (p, x) in parts {
+    let most = parts.iter().map(|p| p.2).max().unwrap_or(0);
+    for (p, x, _) in parts {
         for (l, &g) in p.gids.iter().enumerate() {
             if p.owned[l] == 1 {
                 whole[3 * g as usize..3 * g as usize + 3].copy_from_slice(&x[3 * l..3 * l + 3]);
             }
         }
     }
-    whole
+    (whole, most)
 }
 
 #[test]
@@ -255,6 +284,23 @@ fn ranks_reproduce_the_whole_mesh_bit_for_bit() {
             .all(|(a, b)| a.to_bits() == b.to_bits());
         assert!(same, "{size} ranks differ from the whole mesh");
     }
+}
+
+/// The thread count is capped to the cores on a partition too: 4096 per rank starts no more
+/// threads than the machine has cores (per rank), and gives the 1-thread result bit for bit.
+#[test]
+fn partition_thread_counts_are_capped_to_the_cores() {
+    let (one, _) = relocate_with(2, 1);
+    let (many, most) = relocate_with(2, MAX_THREADS);
+    assert!(one
+        .iter()
+        .zip(&many)
+        .all(|(a, b)| a.to_bits() == b.to_bits()));
+    // The test harness's own threads, the two ranks and their pools: far below 4096.
+    assert!(
+        most > 0 && most < 64 + 2 * cores(),
+        "{most} threads at once"
+    );
 }
 
 /// Builds the parts on 3 ranks after `spoil(rank, part)`; returns every rank's error message.

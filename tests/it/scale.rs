@@ -92,9 +92,21 @@ fn check_relocation(
     options: &RelocateOptions,
     tolerance: f64,
 ) {
+    check_relocation_at(&SCALES, cell_type, n, depth, options, tolerance);
+}
+
+/// [`check_relocation`] at the given scales.
+fn check_relocation_at(
+    scales: &[f64],
+    cell_type: CellType,
+    n: usize,
+    depth: f64,
+    options: &RelocateOptions,
+    tolerance: f64,
+) {
     let unit = run(cell_type, n, depth, 1.0, options);
     assert_eq!(unit.invalid, unit.report.invalid_after);
-    for s in SCALES {
+    for &s in scales {
         let tolerance = if exact(s) { 0.0 } else { tolerance };
         let r = run(cell_type, n, depth, s, options);
         let name = format!("{} at scale {s:e} ({:?})", cell_type.name(), options.method);
@@ -197,6 +209,24 @@ fn incremental_placement_is_alike_at_every_scale() {
             "scale {s:e}: positions differ by {error:e}"
         );
     }
+}
+
+/// Far outside [1e-100, 1e100], where the squares of the coordinates under- or overflow (the
+/// audit found every cell counted invalid at 1e-160 and the report disagreeing with the count at
+/// 1e160): the relocation still gives the unit result, and its report agrees with the count.
+#[test]
+fn relocation_reports_alike_at_extreme_scales() {
+    let sweeps = options(Method::Sweeps, 0.0);
+    let extreme = [1e-300, 1e-160, 1e160, 1e300];
+    check_relocation_at(&extreme, CellType::Quad9, 4, 0.6, &sweeps, SWEEPS_ROUND_OFF);
+    check_relocation_at(
+        &[1e-110, 1e110],
+        CellType::Hex27,
+        2,
+        0.4,
+        &sweeps,
+        SWEEPS_ROUND_OFF,
+    );
 }
 
 #[test]

@@ -1045,7 +1045,9 @@ ORDER_VTK = 0
 # Gmsh's node order (`.msh` files, the Gmsh API).
 ORDER_GMSH = 1
 
-# Harmonic extension of the prescribed displacements (a discrete Laplace equation).
+# Harmonic extension of the prescribed displacements (a discrete Laplace equation): every free
+# coordinate starts from its reference position plus that extension, whatever position
+# `igaparam_mesh_move_nodes` gave it.
 PLACEMENT_LAPLACIAN = 0
 
 # The current positions, as they are.
@@ -1137,12 +1139,12 @@ PROTOTYPES = {
     "igaparam_domain_new_from_polylines": (
         ctypes.c_int,
         [ctypes.POINTER(ctypes.c_size_t), ctypes.POINTER(ctypes.POINTER(ctypes.c_double)), ctypes.POINTER(ctypes.c_void_p)],
-        'igaparam_status igaparam_domain_new_from_polylines(const size_t *counts, const double *const *points, igaparam_domain **out);\n\nCreates a domain bounded by four polylines.\n\n- `counts`: 4 entries; `counts[i]` is the number of points of polyline i (at least 2).\n- `points`: 4 pointers; `points[i]` holds `counts[i] × 2` doubles (x0 y0 x1 y1 ...).\n- `out`: receives the new handle, to be released with `igaparam_domain_free`.\n\nThe polylines may be given in any order and direction: they are chained end to end into a\ncounter-clockwise loop, the first one becoming the side u = 0. Errors:\n`IGAPARAM_STATUS_NOT_FINITE` for a NaN or infinite coordinate, `IGAPARAM_STATUS_INVALID_ARGUMENT`\nfor a polyline of fewer than two distinct points, a loop that does not close, one of zero area\nor a corner whose interior angle reaches 180 degrees. The arrays are copied.',
+        'igaparam_status igaparam_domain_new_from_polylines(const size_t *counts, const double *const *points, igaparam_domain **out);\n\nCreates a domain bounded by four polylines.\n\n- `counts`: 4 entries; `counts[i]` is the number of points of polyline i (at least 2).\n- `points`: 4 pointers; `points[i]` holds `counts[i] × 2` doubles (x0 y0 x1 y1 ...).\n- `out`: receives the new handle, to be released with `igaparam_domain_free`.\n\nThe polylines may be given in any order and direction: they are chained end to end into a\ncounter-clockwise loop, the first one becoming the side u = 0. Errors:\n`IGAPARAM_STATUS_NOT_FINITE` for a NaN or infinite coordinate, `IGAPARAM_STATUS_INVALID_ARGUMENT`\nfor a polyline of fewer than two distinct points, a loop that does not close, one of zero area,\na loop that crosses or touches itself (the message names the two polylines and the point) or\na corner whose interior angle reaches 180 degrees. The arrays are copied.',
     ),
     "igaparam_domain_new_from_curves": (
         ctypes.c_int,
         [ctypes.c_size_t, ctypes.POINTER(Curve), ctypes.POINTER(ctypes.c_void_p)],
-        'igaparam_status igaparam_domain_new_from_curves(size_t count, const igaparam_curve *curves, igaparam_domain **out);\n\nCreates a domain bounded by four B-spline or NURBS curves given as arrays (see\n`igaparam_curve`).\n\n- `count`: the number of curves, 4;\n- `curves`: `count` curve descriptions;\n- `out`: receives the new handle, to be released with `igaparam_domain_free`.\n\nThe curves are read as `igaparam_domain_new_from_file` reads those of a G+Smo file (a domain\nmade from the same curves is the same, bit for bit): in any order and direction, chained end\nto end into a counter-clockwise loop, the first one becoming the side u = 0. Errors:\n`IGAPARAM_STATUS_NULL_ARGUMENT` for a NULL array (weights may be NULL),\n`IGAPARAM_STATUS_NOT_FINITE` for a NaN or infinite knot, coordinate or weight,\n`IGAPARAM_STATUS_INVALID_ARGUMENT` for a count other than 4, a degree of 0, a knot count\nother than control points + degree + 1, decreasing knots or a knot repeated more than\ndegree + 1 times, a weight that is not positive, and curves whose ends do not meet, whose\nloop encloses no area or has a corner whose interior angle reaches 180 degrees (each message\nnames the curve or corner). The arrays are copied.',
+        "igaparam_status igaparam_domain_new_from_curves(size_t count, const igaparam_curve *curves, igaparam_domain **out);\n\nCreates a domain bounded by four B-spline or NURBS curves given as arrays (see\n`igaparam_curve`).\n\n- `count`: the number of curves, 4;\n- `curves`: `count` curve descriptions;\n- `out`: receives the new handle, to be released with `igaparam_domain_free`.\n\nThe curves are read as `igaparam_domain_new_from_file` reads those of a G+Smo file (a domain\nmade from the same curves is the same, bit for bit): in any order and direction, chained end\nto end into a counter-clockwise loop, the first one becoming the side u = 0. Errors:\n`IGAPARAM_STATUS_NULL_ARGUMENT` for a NULL array (weights may be NULL),\n`IGAPARAM_STATUS_NOT_FINITE` for a NaN or infinite knot, coordinate or weight,\n`IGAPARAM_STATUS_INVALID_ARGUMENT` for a count other than 4, a degree of 0, a knot count\nother than control points + degree + 1, decreasing knots or a knot repeated more than\ndegree + 1 times, a weight that is not positive, and curves whose ends do not meet, whose\nloop encloses no area, crosses or touches itself (the curves' polygons are checked, sampled\n16 points per control point) or has a corner whose interior angle reaches 180 degrees (each\nmessage names the curves or corner). The arrays are copied.",
     ),
     "igaparam_domain_new_solid_from_file": (
         ctypes.c_int,
@@ -1272,7 +1274,7 @@ PROTOTYPES = {
     "igaparam_mesh_move_nodes": (
         ctypes.c_int,
         [ctypes.c_void_p, ctypes.c_size_t, ctypes.POINTER(ctypes.c_int64), ctypes.POINTER(ctypes.c_double)],
-        'igaparam_status igaparam_mesh_move_nodes(igaparam_mesh *mesh, size_t count, const int64_t *indices, const double *xyz);\n\nSets the positions of `count` nodes: node `indices[i]` moves to `xyz[3i..3i+3]`. `indices`\nmay be NULL, meaning nodes `0..count-1`. Typically used for the boundary nodes before\n`igaparam_mesh_relocate`; the reference shape is not changed.',
+        "igaparam_status igaparam_mesh_move_nodes(igaparam_mesh *mesh, size_t count, const int64_t *indices, const double *xyz);\n\nSets the positions of `count` nodes: node `indices[i]` moves to `xyz[3i..3i+3]`. `indices`\nmay be NULL, meaning nodes `0..count-1`. Typically used for the boundary nodes before\n`igaparam_mesh_relocate`; the reference shape is not changed. A free coordinate moved here is\nwhere the next relocation starts only with `IGAPARAM_PLACEMENT_CURRENT`: the default\n`IGAPARAM_PLACEMENT_LAPLACIAN` computes every free coordinate from the motion of the\nprescribed ones, and `IGAPARAM_PLACEMENT_INCREMENTAL` from the last relocation's result, so\nthere the move of a free coordinate has no effect.",
     ),
     "igaparam_mesh_reset_reference": (
         ctypes.c_int,

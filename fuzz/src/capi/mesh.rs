@@ -23,9 +23,6 @@ pub const CELL_CODES: [(igaparam_cell_type, usize); 9] = [
 /// A live mesh and what the checks need to know of it.
 struct Handle {
     ptr: *mut igaparam_mesh,
-    /// Made at a moderate scale (see `Meshes::new_mesh`), where the relocation's report and the
-    /// invalid cell count must agree (issue 17 item 3: they do not at extreme scales).
-    moderate: bool,
 }
 
 /// The meshes of one input; freed when dropped.
@@ -241,8 +238,7 @@ impl Meshes {
             assert!(!out.is_null(), "{function} gave a NULL handle");
             assert_eq!(node_count(out), num_nodes);
             assert_eq!(cell_count(out), num_cells);
-            let moderate = (1e-6..=1e6).contains(&scale) && xyz.iter().all(|v| v.abs() < 1e6);
-            self.push(Handle { ptr: out, moderate });
+            self.push(Handle { ptr: out });
         } else {
             assert!(out.is_null(), "{function} wrote a handle on failure");
         }
@@ -413,15 +409,14 @@ impl Meshes {
             r.min_quality <= r.mean_quality + 1e-12 && r.mean_quality <= 1.0,
             "{r:?}"
         );
-        if self.live[i].moderate {
-            let invalid = count("igaparam_mesh_invalid_cell_count", |o| {
-                igaparam_mesh_invalid_cell_count(m, o)
-            });
-            assert_eq!(
-                invalid, r.invalid_after,
-                "report and invalid cell count differ"
-            );
-        }
+        // At every scale (the mesh is optimized in coordinates scaled to its own size).
+        let invalid = count("igaparam_mesh_invalid_cell_count", |o| {
+            igaparam_mesh_invalid_cell_count(m, o)
+        });
+        assert_eq!(
+            invalid, r.invalid_after,
+            "report and invalid cell count differ"
+        );
     }
 
     fn copy(&mut self, c: &mut Choices) {
@@ -541,10 +536,7 @@ impl Meshes {
             fixed(m),
             "format {format}: the masks read back differ"
         );
-        self.push(Handle {
-            ptr: read,
-            moderate: self.live[i.expect("a mesh")].moderate,
-        });
+        self.push(Handle { ptr: read });
     }
 
     fn other(&mut self, c: &mut Choices) {
