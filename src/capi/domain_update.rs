@@ -1,8 +1,9 @@
 //! Moving the boundary of a built domain: `igaparam_domain_set_boundary_*` replace the boundary
 //! (by one of the same kind and orientation, from the same inputs as the constructors) and
-//! `igaparam_domain_update` moves the T-mesh onto it, keeping its tree.
+//! `igaparam_domain_update` moves the T-mesh onto it, keeping its tree (its options struct is
+//! generated from the core's in `options_gen.rs`).
 
-use std::ffi::{c_char, c_void};
+use std::ffi::c_char;
 
 use super::domain::{held, igaparam_domain, Built, DomainData};
 use super::domain_build::{c_report, igaparam_domain_report};
@@ -11,34 +12,12 @@ use super::domain_input::{
     solid_file_boundary, surfaces_boundary, triangulations_boundary,
 };
 use super::ffi::{c_path, options_or, run, write_optional, Failure};
+use super::igaparam_status;
+use super::options_gen::igaparam_domain_update_options;
 use super::progress::optimization_progress;
-use super::{igaparam_progress_fn, igaparam_status};
 use crate::boundary::{BoundaryLoop2, SolidBoundary};
 use crate::domain::{UpdateOptions, UpdateReport};
 use crate::error::Error;
-
-/// Options of `igaparam_domain_update`; get the defaults from
-/// `igaparam_domain_update_options_default`. The boundary tolerance, levels, repair rounds and
-/// boundary offset are those the domain was built with.
-#[repr(C)]
-#[derive(Clone, Copy, Debug)]
-pub struct igaparam_domain_update_options {
-    /// Largest number of optimization sweeps per step of the motion (default 200).
-    pub max_sweeps: u32,
-    /// Worker threads, at most 4096, capped to the machine's cores; 0 (default) uses one per core.
-    pub threads: u32,
-    /// 0 (default): keep the tree, and only report whether its tolerance still holds. 1: refine
-    /// the boundary cells whose error exceeds the build's tolerance (below its `max_level`)
-    /// until none does, and repair cells left folded as the build does; the T-mesh, and with
-    /// it the spline space of a fit, then changes (a spline fitted before can no longer be
-    /// refitted to it).
-    pub refine: i32,
-    /// Progress callback, or NULL (default). Called with `IGAPARAM_STAGE_OPTIMIZATION`, `done`
-    /// sweeps so far and `total` 0; returning non-zero cancels the update.
-    pub progress: igaparam_progress_fn,
-    /// Passed to `progress` as its first argument.
-    pub progress_user: *mut c_void,
-}
 
 /// What `igaparam_domain_update` did.
 #[repr(C)]
@@ -66,14 +45,7 @@ pub struct igaparam_domain_update_report {
 /// The default update options.
 #[no_mangle]
 pub extern "C" fn igaparam_domain_update_options_default() -> igaparam_domain_update_options {
-    let d = UpdateOptions::default();
-    igaparam_domain_update_options {
-        max_sweeps: d.max_sweeps,
-        threads: d.threads as u32,
-        refine: d.refine as i32,
-        progress: None,
-        progress_user: std::ptr::null_mut(),
-    }
+    igaparam_domain_update_options::from(&UpdateOptions::default())
 }
 
 /// A new boundary of either kind.
@@ -288,11 +260,7 @@ pub extern "C" fn igaparam_domain_update(
         let mut held = held(domain)?;
         let (d, watch) = held.split();
         let raw = options_or(options, igaparam_domain_update_options_default());
-        let opts = UpdateOptions {
-            max_sweeps: raw.max_sweeps,
-            threads: raw.threads as usize,
-            refine: raw.refine != 0,
-        };
+        let opts = raw.to_core()?;
         let mut progress = optimization_progress(raw.progress, raw.progress_user, watch);
         let r = match d.built_mut()? {
             Built::Planar((boundary, built)) => {

@@ -12,9 +12,9 @@ use super::ffi::{
 };
 use super::handle::{acquire, handle_type, into_raw, release, Guarded};
 use super::mesh::cell_type;
-use super::relocate::{igaparam_relocate_options, igaparam_relocate_report};
+use super::options_gen::igaparam_relocate_options;
 use super::relocate::{
-    igaparam_relocate_options_default, relocate_options, relocation_progress, report_of,
+    igaparam_relocate_options_default, igaparam_relocate_report, relocation_progress, report_of,
 };
 use super::{igaparam_cell_type, igaparam_status};
 use crate::error::{Error, Result};
@@ -290,7 +290,7 @@ pub extern "C" fn igaparam_partition_relocate(
         let mut host = host_exchange(exchange)?;
         let mut ranks = Ranks::new(&mut host);
         let raw = options_or(options, igaparam_relocate_options_default());
-        let opts = relocate_options(&raw);
+        let opts = raw.to_core();
         let mut held = match acquire(part, "part") {
             Ok(held) => held,
             Err(f) => {

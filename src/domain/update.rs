@@ -30,15 +30,16 @@ use crate::optimize::QualitySummary;
 /// boundary offset are those the domain was built with ([`Domain::options`]).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct UpdateOptions {
-    /// Largest number of optimization sweeps per step of the motion.
+    /// Largest number of optimization sweeps per step of the motion (default 200).
     pub max_sweeps: u32,
-    /// Worker threads; 0 uses one per core.
+    /// Worker threads, at most 4096, capped to the machine's cores; 0 (default) uses one per core.
     pub threads: usize,
-    /// Whether to refine where the boundary moved out of tolerance (boundary cells below the
-    /// build's `max_level` whose error exceeds the build's tolerance, until none does) and to
-    /// repair cells left folded as the build does. The tree, and with it the spline space of
-    /// the domain, then changes. Off by default: the tree is kept and the report only says
-    /// whether its tolerance still holds.
+    /// Whether to refine where the boundary moved out of tolerance. Off (false, 0 in C; the
+    /// default): keep the tree, and only report whether its tolerance still holds. On (true,
+    /// 1): refine the boundary cells whose error exceeds the build's tolerance (below its
+    /// `max_level`) until none does, and repair cells left folded as the build does; the
+    /// T-mesh, and with it the spline space of a fit, then changes (a spline fitted before can
+    /// no longer be refitted to it).
     pub refine: bool,
 }
 

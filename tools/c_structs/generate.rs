@@ -1,0 +1,688 @@
+//! The generator of `src/capi/options_gen.rs`, the C mirrors of the core option structs: their
+//! fields (names, types, order), their doc comments and the conversions both ways, read from the
+//! core structs' sources with `syn`. It depends on `syn` only, not on the crate, so that it runs
+//! when a changed core struct has made the checked-in mirrors fail to compile
+//! (`tools/c_structs/main.rs`); `tests/c_structs.rs` checks the checked-in file with it.
+//!
+//! The rules, so that the C layout of the existing structs is what it was:
+//! - `f64` and `u32` stay; `u8` (a level) becomes `uint32_t`, saturating to 255 on the way in
+//!   (the core's range check then refuses it);
+//! - `usize` stays `size_t`, except the counts named in [`U32_COUNTS`], which are `uint32_t`;
+//! - `bool` becomes `int` (non-zero is true), or the type [`TYPE_OVERRIDES`] names;
+//! - an enum of [`ENUMS`] becomes its C integer type, checked on the way in (an error names the
+//!   `IGAPARAM_*` values allowed), and its field's C doc ends with the values and the default;
+//! - a struct that has a mirror itself becomes that mirror;
+//! - anything else fails here, naming the field.
+//!
+//! The C-only fields (the progress callback and its user pointer) are appended from
+//! [`Mirror::c_only`]. Rustdoc links of the core docs become plain names, the names cbindgen
+//! renames (`cbindgen.toml`, `[export.rename]`) take their C names, and each paragraph is
+//! filled again to the width of the file (so write the core docs as prose paragraphs). Plain
+//! `//` comments of the core fields stay in the core.
+
+use std::collections::HashMap;
+use std::fmt::Write as _;
+use std::io::Write as _;
+use std::path::Path;
+use std::process::{Command, Stdio};
+
+/// A C struct generated from a core struct.
+struct Mirror {
+    /// The C struct's name.
+    c_name: &'static str,
+    /// The core struct's name, its path in the crate and the file that defines it.
+    core: &'static str,
+    core_path: &'static str,
+    source: &'static str,
+    /// The C struct's own doc comment (the entry points it belongs to are C names).
+    doc: &'static str,
+    /// Fields of the C struct only, appended after the core's.
+    c_only: &'static [CField],
+}
+
+/// A field of a C struct that the core struct does not have.
+struct CField {
+    name: &'static str,
+    ty: &'static str,
+    /// Its value in the mirror of core options.
+    init: &'static str,
+    doc: &'static str,
+}
+
+/// An enum of the core that a C struct holds as an integer with `IGAPARAM_*` constants.
+struct CEnum {
+    core: &'static str,
+    core_path: &'static str,
+    source: &'static str,
+    /// The C type and the prefix of its constants.
+    c_type: &'static str,
+    prefix: &'static str,
+    /// Variants whose constant is not their name in upper snake case.
+    renames: &'static [(&'static str, &'static str)],
+    /// The conversion from C: generated under this name, or `existing` when it is hand-written.
+    from_c: &'static str,
+    existing: bool,
+    /// What a value is called in the error message.
+    what: &'static str,
+}
+
+/// `usize` fields of the core declared `uint32_t` in C.
+const U32_COUNTS: &[&str] = &["threads", "samples"];
+
+/// C types other than the rule's: (C struct, field, type).
+const TYPE_OVERRIDES: &[(&str, &str, &str)] =
+    &[("igaparam_domain_update_options", "refine", "i32")];
+
+/// The progress callback's user pointer, the last field of the options with a callback.
+const PROGRESS_USER: CField = CField {
+    name: "progress_user",
+    ty: "*mut c_void",
+    init: "std::ptr::null_mut()",
+    doc: "Passed to `progress` as its first argument.",
+};
+
+/// A progress callback field documented by `doc`.
+const fn progress(doc: &'static str) -> CField {
+    CField {
+        name: "progress",
+        ty: "igaparam_progress_fn",
+        init: "None",
+        doc,
+    }
+}
+
+const MIRRORS: &[Mirror] = &[
+    Mirror {
+        c_name: "igaparam_domain_options",
+        core: "DomainOptions",
+        core_path: "crate::domain::DomainOptions",
+        source: "src/domain/options.rs",
+        doc: "Options of `igaparam_domain_build`; get the defaults from `igaparam_domain_options_default`\n(planar) or `igaparam_domain_options_default_solid`.",
+        c_only: &[
+            progress("Progress callback, or NULL (default). Called with `IGAPARAM_STAGE_OPTIMIZATION`, `done`\nsweeps so far and `total` 0, also between the rounds of the adaptation of the tree (with\n`done` 0); returning non-zero cancels the build."),
+            PROGRESS_USER,
+        ],
+    },
+    Mirror {
+        c_name: "igaparam_domain_update_options",
+        core: "UpdateOptions",
+        core_path: "crate::domain::UpdateOptions",
+        source: "src/domain/update.rs",
+        doc: "Options of `igaparam_domain_update`; get the defaults from\n`igaparam_domain_update_options_default`. The boundary tolerance, levels, repair rounds and\nboundary offset are those the domain was built with.",
+        c_only: &[
+            progress("Progress callback, or NULL (default). Called with `IGAPARAM_STAGE_OPTIMIZATION`, `done`\nsweeps so far and `total` 0; returning non-zero cancels the update."),
+            PROGRESS_USER,
+        ],
+    },
+    Mirror {
+        c_name: "igaparam_relocate_options",
+        core: "RelocateOptions",
+        core_path: "crate::fe_mesh::RelocateOptions",
+        source: "src/fe_mesh/relocate.rs",
+        doc: "Options of `igaparam_mesh_relocate`; get the defaults from `igaparam_relocate_options_default`.",
+        c_only: &[progress("Progress callback, or NULL (default)."), PROGRESS_USER],
+    },
+    Mirror {
+        c_name: "igaparam_validity_options",
+        core: "ValidityOptions",
+        core_path: "crate::spline::ValidityOptions",
+        source: "src/spline/validity.rs",
+        doc: "Options of `igaparam_spline_check_validity`; get the defaults from\n`igaparam_validity_options_default`.",
+        c_only: &[],
+    },
+    Mirror {
+        c_name: "igaparam_quality_bound_options",
+        core: "QualityBoundOptions",
+        core_path: "crate::spline::QualityBoundOptions",
+        source: "src/spline/quality_bound.rs",
+        doc: "Options of `igaparam_spline_quality_bound`; get the defaults from\n`igaparam_quality_bound_options_default`.",
+        c_only: &[],
+    },
+];
+
+const ENUMS: &[CEnum] = &[
+    CEnum {
+        core: "TargetKind",
+        core_path: "crate::optimize::TargetKind",
+        source: "src/optimize/problem.rs",
+        c_type: "igaparam_target",
+        prefix: "IGAPARAM_TARGET_",
+        renames: &[("Reference", "INITIAL")],
+        // Hand-written in `capi/mesh.rs`, which the mesh's entry points share.
+        from_c: "target",
+        existing: true,
+        what: "target",
+    },
+    CEnum {
+        core: "Placement",
+        core_path: "crate::fe_mesh::Placement",
+        source: "src/fe_mesh/relocate.rs",
+        c_type: "igaparam_placement",
+        prefix: "IGAPARAM_PLACEMENT_",
+        renames: &[],
+        from_c: "placement",
+        existing: false,
+        what: "placement",
+    },
+    CEnum {
+        core: "Method",
+        core_path: "crate::fe_mesh::Method",
+        source: "src/fe_mesh/relocate.rs",
+        c_type: "igaparam_method",
+        prefix: "IGAPARAM_METHOD_",
+        renames: &[],
+        from_c: "method",
+        existing: false,
+        what: "method",
+    },
+    CEnum {
+        core: "FitChoice",
+        core_path: "crate::spline::FitChoice",
+        source: "src/spline/fit_options.rs",
+        c_type: "igaparam_fit_choice",
+        prefix: "IGAPARAM_FIT_CHOICE_",
+        renames: &[],
+        from_c: "fit_choice",
+        existing: false,
+        what: "choice",
+    },
+];
+
+const HEADER: &str =
+    "//! GENERATED by `tools/c_structs/generate.rs` from the core option structs: do not edit.
+//! Change the core struct (its fields and their doc comments) and run
+//! `IGAPARAM_BLESS=1 cargo test --release --test c_structs` (or, when this file no longer
+//! compiles, `cargo run --release --manifest-path tools/c_structs/Cargo.toml`), then bless the
+//! header (`IGAPARAM_BLESS=1 cargo test --release --test header`).
+//!
+//! The C mirrors of the core options: `#[repr(C)]` structs whose field docs are the core's, the
+//! mirror of core options (`From`), the core options of a mirror (`to_core`, a conversion only:
+//! the core's `validate` checks the values) and the conversions of the enums they hold.
+// The docs are the header's comments, plain text: an interval such as `[1, 2)` is no link.
+#![allow(rustdoc::broken_intra_doc_links)]
+
+use std::ffi::{c_int, c_void};
+
+use super::mesh::{igaparam_target, target, IGAPARAM_TARGET_INITIAL, IGAPARAM_TARGET_MASTER};
+use super::option_enums::*;
+use super::progress::igaparam_progress_fn;
+use crate::error::Result;
+";
+
+/// A field of a core struct.
+struct Field {
+    name: String,
+    /// The last segment of its type's path.
+    ty: String,
+    doc: Vec<String>,
+}
+
+fn parse(root: &Path, source: &str) -> syn::File {
+    let text =
+        std::fs::read_to_string(root.join(source)).unwrap_or_else(|e| panic!("{source}: {e}"));
+    syn::parse_file(&text).unwrap_or_else(|e| panic!("{source}: {e}"))
+}
+
+/// The lines of the `///` comments among `attrs`, one leading space removed.
+fn doc_lines(attrs: &[syn::Attribute]) -> Vec<String> {
+    attrs
+        .iter()
+        .filter(|a| a.path().is_ident("doc"))
+        .filter_map(|a| match &a.meta {
+            syn::Meta::NameValue(syn::MetaNameValue {
+                value:
+                    syn::Expr::Lit(syn::ExprLit {
+                        lit: syn::Lit::Str(s),
+                        ..
+                    }),
+                ..
+            }) => Some(s.value()),
+            _ => None,
+        })
+        .flat_map(|s| {
+            s.lines()
+                .map(|l| l.strip_prefix(' ').unwrap_or(l).to_string())
+                .collect::<Vec<_>>()
+        })
+        .collect()
+}
+
+fn last_ident(ty: &syn::Type) -> String {
+    match ty {
+        syn::Type::Path(p) => p.path.segments.last().unwrap().ident.to_string(),
+        _ => String::new(),
+    }
+}
+
+fn core_struct(file: &syn::File, name: &str) -> Vec<Field> {
+    let found = file.items.iter().find_map(|item| match item {
+        syn::Item::Struct(s) if s.ident == name => Some(s),
+        _ => None,
+    });
+    let s = found.unwrap_or_else(|| panic!("no struct {name}"));
+    s.fields
+        .iter()
+        .filter(|f| matches!(f.vis, syn::Visibility::Public(_)))
+        .map(|f| Field {
+            name: f.ident.as_ref().unwrap().to_string(),
+            ty: last_ident(&f.ty),
+            doc: doc_lines(&f.attrs),
+        })
+        .collect()
+}
+
+/// The variants of enum `name`, and the one marked `#[default]` if any.
+fn core_enum(file: &syn::File, name: &str) -> (Vec<String>, Option<String>) {
+    let found = file.items.iter().find_map(|item| match item {
+        syn::Item::Enum(e) if e.ident == name => Some(e),
+        _ => None,
+    });
+    let e = found.unwrap_or_else(|| panic!("no enum {name}"));
+    let variants = e.variants.iter().map(|v| v.ident.to_string()).collect();
+    let default = e
+        .variants
+        .iter()
+        .find(|v| v.attrs.iter().any(|a| a.path().is_ident("default")))
+        .map(|v| v.ident.to_string());
+    (variants, default)
+}
+
+/// The fields of `Default::default()` of struct `name` that are paths `Enum::Variant`.
+fn default_variants(file: &syn::File, name: &str) -> HashMap<String, String> {
+    let mut out = HashMap::new();
+    for item in &file.items {
+        let syn::Item::Impl(i) = item else { continue };
+        let is_default = i
+            .trait_
+            .as_ref()
+            .is_some_and(|(_, p, _)| p.is_ident("Default"));
+        if !is_default || last_ident(&i.self_ty) != name {
+            continue;
+        }
+        for impl_item in &i.items {
+            let syn::ImplItem::Fn(f) = impl_item else {
+                continue;
+            };
+            let Some(syn::Stmt::Expr(syn::Expr::Struct(s), _)) = f.block.stmts.last() else {
+                continue;
+            };
+            for field in &s.fields {
+                let (syn::Member::Named(member), syn::Expr::Path(p)) = (&field.member, &field.expr)
+                else {
+                    continue;
+                };
+                if p.path.segments.len() == 2 {
+                    out.insert(member.to_string(), p.path.segments[1].ident.to_string());
+                }
+            }
+        }
+    }
+    out
+}
+
+/// `QuasiInterpolation` → `QUASI_INTERPOLATION`.
+fn upper_snake(name: &str) -> String {
+    let mut out = String::new();
+    for (i, c) in name.chars().enumerate() {
+        if c.is_uppercase() && i > 0 {
+            out.push('_');
+        }
+        out.push(c.to_ascii_uppercase());
+    }
+    out
+}
+
+/// The names cbindgen gives the crate's constants (`[export.rename]` of `cbindgen.toml`).
+fn renames(root: &Path) -> Vec<(String, String)> {
+    let text = std::fs::read_to_string(root.join("cbindgen.toml")).unwrap();
+    let section = text.split("[export.rename]").nth(1).unwrap_or("");
+    section
+        .lines()
+        .take_while(|l| !l.starts_with('['))
+        .filter_map(|l| l.split_once('='))
+        .map(|(a, b)| {
+            (
+                a.trim().trim_matches('"').to_string(),
+                b.trim().trim_matches('"').to_string(),
+            )
+        })
+        .collect()
+}
+
+/// A doc line as C reads it: rustdoc links become their text, renamed constants their C names.
+fn plain(line: &str, renames: &[(String, String)]) -> String {
+    let mut out = String::new();
+    let mut rest = line;
+    while let Some(start) = rest.find("[`") {
+        let Some(end) = rest[start..].find("`]").map(|e| start + e) else {
+            break;
+        };
+        out.push_str(&rest[..start]);
+        out.push_str(&rest[start + 1..end + 1]);
+        rest = &rest[end + 2..];
+        if rest.starts_with('(') {
+            rest = &rest[rest.find(')').map_or(0, |e| e + 1)..];
+        }
+    }
+    out.push_str(rest);
+    for (rust, c) in renames {
+        out = out.replace(&format!("`{rust}`"), &format!("`{c}`"));
+    }
+    out
+}
+
+/// The paragraphs of `lines` (separated by empty lines) filled again to 92 characters, the
+/// width of a field's doc comment within 100 columns: a link made plain changes the length of
+/// its line.
+fn reflow(lines: &[String]) -> Vec<String> {
+    let text = lines.join("\n");
+    let paragraphs: Vec<Vec<String>> = text
+        .split("\n\n")
+        .map(|p| wrap(&p.split_whitespace().collect::<Vec<_>>().join(" ")))
+        .collect();
+    paragraphs.join(&String::new())
+}
+
+/// `text` in lines of at most 92 characters (a field's doc comment within 100 columns).
+fn wrap(text: &str) -> Vec<String> {
+    let mut lines = vec![String::new()];
+    for word in text.split(' ') {
+        let line = lines.last_mut().unwrap();
+        if !line.is_empty() && line.chars().count() + 1 + word.chars().count() > 92 {
+            lines.push(word.to_string());
+        } else {
+            if !line.is_empty() {
+                line.push(' ');
+            }
+            line.push_str(word);
+        }
+    }
+    lines
+}
+
+fn doc_comment(out: &mut String, lines: &[String]) {
+    for line in lines {
+        match line.is_empty() {
+            true => out.push_str("///\n"),
+            false => writeln!(out, "/// {line}").unwrap(),
+        }
+    }
+}
+
+/// How one core field is held in C: its type and the two conversions (`o` is the core struct,
+/// `self` the C one), and what its C doc adds.
+struct Conversion {
+    c_type: String,
+    to_c: String,
+    to_core: String,
+    doc_tail: Option<String>,
+}
+
+fn conversion(g: &Generator, mirror: &Mirror, field: &Field) -> Conversion {
+    let f = &field.name;
+    let plain = |c_type: &str, to_c: String, to_core: String| Conversion {
+        c_type: c_type.into(),
+        to_c,
+        to_core,
+        doc_tail: None,
+    };
+    let overridden = TYPE_OVERRIDES
+        .iter()
+        .find(|(s, n, _)| *s == mirror.c_name && n == f)
+        .map(|(_, _, t)| *t);
+    match field.ty.as_str() {
+        "f64" | "u32" => plain(&field.ty, format!("o.{f}"), format!("self.{f}")),
+        "u8" => plain(
+            "u32",
+            format!("u32::from(o.{f})"),
+            format!("u8::try_from(self.{f}).unwrap_or(u8::MAX)"),
+        ),
+        "usize" if U32_COUNTS.contains(&f.as_str()) => plain(
+            "u32",
+            format!("u32::try_from(o.{f}).unwrap_or(u32::MAX)"),
+            format!("self.{f} as usize"),
+        ),
+        "usize" => plain("usize", format!("o.{f}"), format!("self.{f}")),
+        "bool" => {
+            let ty = overridden.unwrap_or("c_int");
+            plain(ty, format!("{ty}::from(o.{f})"), format!("self.{f} != 0"))
+        }
+        ty => {
+            if let Some(e) = ENUMS.iter().find(|e| e.core == ty) {
+                let default = g.enum_default(mirror, e, f);
+                return Conversion {
+                    c_type: e.c_type.into(),
+                    to_c: format!("c_{}(o.{f})", e.from_c),
+                    to_core: format!("{}(self.{f})?", e.from_c),
+                    doc_tail: Some(g.values_sentence(e, default.as_deref())),
+                };
+            }
+            if let Some(m) = MIRRORS.iter().find(|m| m.core == ty) {
+                return plain(
+                    m.c_name,
+                    format!("{}::from(&o.{f})", m.c_name),
+                    format!("self.{f}.to_core()?"),
+                );
+            }
+            panic!(
+                "{}.{f}: no C form of type `{ty}` (see the rules of tests/c_structs.rs)",
+                mirror.core
+            )
+        }
+    }
+}
+
+/// What the generator has read: the parsed sources and cbindgen's renames.
+struct Generator {
+    files: HashMap<&'static str, syn::File>,
+    renames: Vec<(String, String)>,
+}
+
+impl Generator {
+    fn read(root: &Path) -> Generator {
+        let sources = MIRRORS
+            .iter()
+            .map(|m| m.source)
+            .chain(ENUMS.iter().map(|e| e.source));
+        Generator {
+            files: sources.map(|s| (s, parse(root, s))).collect(),
+            renames: renames(root),
+        }
+    }
+
+    fn constant(&self, e: &CEnum, variant: &str) -> String {
+        let name = e
+            .renames
+            .iter()
+            .find(|(v, _)| *v == variant)
+            .map_or_else(|| upper_snake(variant), |(_, c)| c.to_string());
+        format!("{}{name}", e.prefix)
+    }
+
+    /// The default of enum field `field` of a mirror's core: that of the core's `Default`, else
+    /// the enum's `#[default]` variant.
+    fn enum_default(&self, mirror: &Mirror, e: &CEnum, field: &str) -> Option<String> {
+        let file = &self.files[mirror.source];
+        default_variants(file, mirror.core)
+            .remove(field)
+            .or_else(|| core_enum(&self.files[e.source], e.core).1)
+    }
+
+    /// "One of `A` (default), `B` or `C`."
+    fn values_sentence(&self, e: &CEnum, default: Option<&str>) -> String {
+        let (variants, _) = core_enum(&self.files[e.source], e.core);
+        let names: Vec<String> = variants
+            .iter()
+            .map(|v| {
+                let mark = if Some(v.as_str()) == default {
+                    " (default)"
+                } else {
+                    ""
+                };
+                format!("`{}`{mark}", self.constant(e, v))
+            })
+            .collect();
+        match names.split_last() {
+            Some((last, [only])) => format!("Either {only} or {last}."),
+            Some((last, first)) => format!("One of {} or {last}.", first.join(", ")),
+            None => panic!("enum {} has no variant", e.core),
+        }
+    }
+
+    fn mirror(&self, out: &mut String, m: &Mirror) {
+        let fields = core_struct(&self.files[m.source], m.core);
+        let conversions: Vec<Conversion> = fields.iter().map(|f| conversion(self, m, f)).collect();
+        doc_comment(out, &m.doc.lines().map(String::from).collect::<Vec<_>>());
+        writeln!(
+            out,
+            "#[repr(C)]\n#[derive(Clone, Copy, Debug)]\npub struct {} {{",
+            m.c_name
+        )
+        .unwrap();
+        for (f, c) in fields.iter().zip(&conversions) {
+            let mut text: Vec<String> = f.doc.iter().map(|l| plain(l, &self.renames)).collect();
+            text.extend(c.doc_tail.clone());
+            doc_comment(out, &reflow(&text));
+            writeln!(out, "pub {}: {},", f.name, c.c_type).unwrap();
+        }
+        for f in m.c_only {
+            doc_comment(out, &f.doc.lines().map(String::from).collect::<Vec<_>>());
+            writeln!(out, "pub {}: {},", f.name, f.ty).unwrap();
+        }
+        out.push_str("}\n\n");
+        writeln!(
+            out,
+            "impl From<&{0}> for {1} {{\nfn from(o: &{0}) -> Self {{\n{1} {{",
+            m.core_path, m.c_name
+        )
+        .unwrap();
+        for (f, c) in fields.iter().zip(&conversions) {
+            writeln!(out, "{}: {},", f.name, c.to_c).unwrap();
+        }
+        for f in m.c_only {
+            writeln!(out, "{}: {},", f.name, f.init).unwrap();
+        }
+        out.push_str("}\n}\n}\n\n");
+        writeln!(out, "impl {} {{", m.c_name).unwrap();
+        out.push_str("/// The core options of these C options: a conversion (an enum's value is checked; the\n/// core's `validate` checks the others).\n");
+        writeln!(
+            out,
+            "pub(crate) fn to_core(self) -> Result<{0}> {{\nOk({0} {{",
+            m.core_path
+        )
+        .unwrap();
+        for (f, c) in fields.iter().zip(&conversions) {
+            writeln!(out, "{}: {},", f.name, c.to_core).unwrap();
+        }
+        out.push_str("})\n}\n}\n\n");
+    }
+
+    fn conversions(&self, out: &mut String, e: &CEnum) {
+        let (variants, _) = core_enum(&self.files[e.source], e.core);
+        let constants: Vec<String> = variants.iter().map(|v| self.constant(e, v)).collect();
+        writeln!(out, "/// The `{}*` value of `value`.", e.prefix).unwrap();
+        writeln!(
+            out,
+            "pub(crate) fn c_{}(value: {}) -> {} {{\nmatch value {{",
+            e.from_c, e.core_path, e.c_type
+        )
+        .unwrap();
+        for (v, c) in variants.iter().zip(&constants) {
+            writeln!(out, "{}::{v} => {c},", e.core_path).unwrap();
+        }
+        out.push_str("}\n}\n\n");
+        if e.existing {
+            return;
+        }
+        let allowed: Vec<String> = constants
+            .iter()
+            .map(|c| format!("(\"{c}\", {c})"))
+            .collect();
+        writeln!(
+            out,
+            "/// The {} of C value `code`; an error names the values allowed.",
+            e.what
+        )
+        .unwrap();
+        writeln!(
+            out,
+            "pub(crate) fn {}(code: {}) -> Result<{}> {{\nmatch code {{",
+            e.from_c, e.c_type, e.core_path
+        )
+        .unwrap();
+        for (v, c) in variants.iter().zip(&constants) {
+            writeln!(out, "{c} => Ok({}::{v}),", e.core_path).unwrap();
+        }
+        writeln!(
+            out,
+            "_ => Err(not_one_of(\"{}\", code, &[{}])),",
+            e.what,
+            allowed.join(", ")
+        )
+        .unwrap();
+        out.push_str("}\n}\n\n");
+    }
+
+    fn generate(&self) -> String {
+        let mut out = HEADER.to_string();
+        out.push('\n');
+        for m in MIRRORS {
+            self.mirror(&mut out, m);
+        }
+        for e in ENUMS {
+            self.conversions(&mut out, e);
+        }
+        rustfmt(&out)
+    }
+}
+
+fn rustfmt(source: &str) -> String {
+    let mut child = Command::new("rustfmt")
+        .args(["--edition", "2021", "--emit", "stdout"])
+        .stdin(Stdio::piped())
+        .stdout(Stdio::piped())
+        .spawn()
+        .expect("cannot run rustfmt");
+    child
+        .stdin
+        .take()
+        .unwrap()
+        .write_all(source.as_bytes())
+        .unwrap();
+    let output = child.wait_with_output().unwrap();
+    assert!(
+        output.status.success(),
+        "rustfmt failed on the generated source:\n{source}"
+    );
+    String::from_utf8(output.stdout).unwrap()
+}
+
+/// The lines of `old` and `new` that differ, for the message of a stale file.
+pub fn diff(old: &str, new: &str) -> String {
+    let (old, new): (Vec<&str>, Vec<&str>) = (old.lines().collect(), new.lines().collect());
+    let start = old.iter().zip(&new).take_while(|(a, b)| a == b).count();
+    let common_end = old[start..]
+        .iter()
+        .rev()
+        .zip(new[start..].iter().rev())
+        .take_while(|(a, b)| a == b)
+        .count();
+    let mut out = format!("@@ line {} @@\n", start + 1);
+    for line in &old[start..old.len() - common_end] {
+        writeln!(out, "-{line}").unwrap();
+    }
+    for line in &new[start..new.len() - common_end] {
+        writeln!(out, "+{line}").unwrap();
+    }
+    out
+}
+
+/// The source of `src/capi/options_gen.rs` generated from the core sources under `root`.
+pub fn generate(root: &Path) -> String {
+    Generator::read(root).generate()
+}
+
+/// The path of the generated file under `root`.
+pub fn target(root: &Path) -> std::path::PathBuf {
+    root.join("src/capi/options_gen.rs")
+}
