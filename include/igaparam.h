@@ -332,12 +332,13 @@ typedef struct {
    */
   double boundary_error;
   /**
-   * Largest distance of a boundary vertex from its point on the boundary, in the coordinates
-   * of `boundary_offset` (at most the option; 0 when no seam relief was needed).
+   * Largest distance of a boundary vertex from its point on the boundary, in coordinates that
+   * map the bounding box onto the unit box (at most the option `boundary_offset`; 0 when no seam
+   * relief was needed).
    */
   double boundary_offset;
   /**
-   * Invalid cells (det J <= 0 somewhere) after the transfinite (Coons) placement.
+   * Invalid cells (`det J ≤ 0` somewhere) after the transfinite (Coons) placement.
    */
   size_t invalid_after_placement;
   /**
@@ -345,7 +346,7 @@ typedef struct {
    */
   size_t invalid_cells;
   /**
-   * Smallest cell quality.
+   * Smallest cell quality (1/mean distortion against the parametric cell).
    */
   double min_quality;
   /**
@@ -353,24 +354,26 @@ typedef struct {
    */
   double mean_quality;
   /**
-   * Optimization sweeps performed.
+   * Optimization sweeps (with those of the fallback growth from the bounding box and of the
+   * repair).
    */
   uint32_t sweeps;
   /**
-   * 1 if the optimization stopped because it spent `max_total_sweeps` (the T-mesh is the
-   * state the sweeps reached: less optimized, possibly with invalid cells), else 0.
+   * Whether the optimization stopped because it spent `max_total_sweeps` (1 in C, else 0): the
+   * T-mesh is the state the sweeps reached, less optimized (and possibly with more invalid
+   * cells) than a larger budget would give.
    */
   int sweep_budget_exhausted;
   /**
-   * Newton iterations of the polish (`stationarity_tolerance > 0`; 0 when it is off or a
-   * cell stays invalid).
+   * Newton iterations of the polish (`stationarity_tolerance > 0`; 0 when it is off or a cell
+   * stays invalid).
    */
   uint32_t newton_iterations;
   /**
    * Scaled max-norm of the global objective's gradient after the polish: at most
-   * `stationarity_tolerance` when it converged (the state `igaparam_spline_tangent` and
-   * `igaparam_spline_adjoint` differentiate), infinite when a cell stays invalid, 0 when the
-   * polish is off.
+   * `stationarity_tolerance` when it converged (the state the sensitivities of a fitted spline,
+   * `igaparam_spline_tangent` and `igaparam_spline_adjoint`, differentiate), infinite when a
+   * cell stays invalid, 0 when the polish is off.
    */
   double gradient_norm;
   /**
@@ -499,28 +502,30 @@ typedef struct {
  */
 typedef struct {
   /**
-   * The T-mesh as `igaparam_domain_build` reports it: `invalid_after_placement` counts the
-   * cells the harmonic placement (old positions plus the harmonic extension of the boundary
-   * motion) left invalid, `boundary_error` is measured in the new boundary's own bounding
-   * box (as a build would), `sweeps` and `seconds` are those of the update.
+   * The T-mesh as a build reports it (`igaparam_domain_build`, `Domain::build` in Rust):
+   * `invalid_after_placement` counts the cells the harmonic placement (old positions plus the
+   * harmonic extension of the boundary motion) left invalid, `boundary_error` is measured in the
+   * new boundary's own bounding box (as a build would), `sweeps` and `seconds` are those of the
+   * update.
    */
   igaparam_domain_report domain;
   /**
-   * 1 when the tree still meets the build's tolerance (no boundary cell below the build's
-   * `max_level` has an error above it: a build's adaptation would refine none), else 0.
+   * Whether the tree still meets the build's tolerance (1 in C, else 0): no boundary cell below
+   * the build's `max_level` has an error above it (a build's adaptation would refine none).
    */
   int32_t tolerance_met;
   /**
-   * Boundary cells below the build's `max_level` whose error exceeds its tolerance.
+   * Boundary cells below the build's `max_level` whose error exceeds its tolerance (after the
+   * refinement when the option `refine` is set).
    */
   size_t cells_over_tolerance;
   /**
-   * Cells added by refinement (0 unless `refine` was set).
+   * Cells added by refinement (0 unless the option `refine` is set).
    */
   size_t refined_cells;
   /**
-   * Largest move of a boundary vertex, in coordinates that map the build's bounding box onto
-   * the unit box.
+   * Largest move of a boundary vertex, in coordinates that map the build's bounding box onto the
+   * unit box.
    */
   double boundary_motion;
   /**
@@ -706,7 +711,7 @@ typedef struct {
    */
   size_t free_nodes;
   /**
-   * Cells with det J <= 0 at a Gauss–Lobatto point when the call started.
+   * Cells with `det J ≤ 0` at a Gauss–Lobatto point when the call started.
    */
   size_t invalid_before;
   /**
@@ -718,7 +723,7 @@ typedef struct {
    */
   size_t invalid_after;
   /**
-   * Smallest cell quality at the end.
+   * Smallest cell quality at the end (against the target; 0 for an invalid cell).
    */
   double min_quality;
   /**
@@ -735,14 +740,15 @@ typedef struct {
    */
   uint32_t steps;
   /**
-   * 1 when the sweeps met their stopping rule (valid mesh, small moves) and, when asked for,
-   * the Newton stage its `stationarity_tolerance`; else 0.
+   * Whether the sweeps met their stopping rule (valid mesh, small moves) and, when asked for,
+   * the Newton stage its `stationarity_tolerance` (1 in C, else 0).
    */
   int converged;
   /**
-   * Scaled max-norm of the gradient of F at the end: over the free coordinates,
-   * |dF/dx| times the node's local cell size divided by its number of cells (the gradient of
-   * the node's own objective times its size; dimensionless). Infinite for an invalid mesh.
+   * Scaled max-norm of the gradient of the global objective F at the end: over the free
+   * coordinates, |∂F/∂x| times the node's local cell size divided by its number of cells (the
+   * gradient of the node's own objective times its size; dimensionless). Infinite for an invalid
+   * mesh.
    */
   double gradient_norm;
   /**
@@ -1021,8 +1027,8 @@ typedef struct {
  */
 typedef struct {
   /**
-   * Certified lower bound of the mean ratio `q_S = d·det(J)^(2/d)/‖J‖²` over the whole map
-   * (0 when `det J_S > 0` is not proven somewhere).
+   * Certified lower bound of the mean ratio `q_S = d·det(J)^(2/d)/‖J‖²` over the whole map (0
+   * when `det J_S > 0` is not proven somewhere).
    */
   double lower_bound;
   /**

@@ -1,55 +1,13 @@
-//! Building a domain: `igaparam_domain_build`, its default options (the struct is generated from
-//! the core's in `options_gen.rs`) and its report.
-
-use std::ffi::c_int;
+//! Building a domain: `igaparam_domain_build` and its default options (the options and report
+//! structs are generated from the core's in `options_gen.rs` and `reports_gen.rs`).
 
 use super::domain::{held, igaparam_domain, DomainData};
 use super::ffi::{options_or, run, write_optional};
 use super::igaparam_status;
 use super::options_gen::igaparam_domain_options;
 use super::progress::optimization_progress;
-use crate::domain::{DomainReport, PlanarDomain, PlanarOptions, SolidDomain, SolidOptions};
-
-/// What `igaparam_domain_build` did. Quality is the inverse mean distortion of a cell against its
-/// parametric (square) cell: 1 is a square, 0 an inverted cell.
-#[repr(C)]
-#[derive(Clone, Copy, Debug, Default)]
-pub struct igaparam_domain_report {
-    /// Cells of the T-mesh.
-    pub cells: usize,
-    /// Vertices of the T-mesh, hanging ones included.
-    pub vertices: usize,
-    /// Deepest level of a cell.
-    pub max_level: u32,
-    /// Largest boundary error, relative as `tolerance`.
-    pub boundary_error: f64,
-    /// Largest distance of a boundary vertex from its point on the boundary, in the coordinates
-    /// of `boundary_offset` (at most the option; 0 when no seam relief was needed).
-    pub boundary_offset: f64,
-    /// Invalid cells (det J <= 0 somewhere) after the transfinite (Coons) placement.
-    pub invalid_after_placement: usize,
-    /// Invalid cells after the optimization; 0 for a usable parameterization.
-    pub invalid_cells: usize,
-    /// Smallest cell quality.
-    pub min_quality: f64,
-    /// Mean cell quality.
-    pub mean_quality: f64,
-    /// Optimization sweeps performed.
-    pub sweeps: u32,
-    /// 1 if the optimization stopped because it spent `max_total_sweeps` (the T-mesh is the
-    /// state the sweeps reached: less optimized, possibly with invalid cells), else 0.
-    pub sweep_budget_exhausted: c_int,
-    /// Newton iterations of the polish (`stationarity_tolerance > 0`; 0 when it is off or a
-    /// cell stays invalid).
-    pub newton_iterations: u32,
-    /// Scaled max-norm of the global objective's gradient after the polish: at most
-    /// `stationarity_tolerance` when it converged (the state `igaparam_spline_tangent` and
-    /// `igaparam_spline_adjoint` differentiate), infinite when a cell stays invalid, 0 when the
-    /// polish is off.
-    pub gradient_norm: f64,
-    /// Wall-clock seconds of the call.
-    pub seconds: f64,
-}
+use super::reports_gen::igaparam_domain_report;
+use crate::domain::{PlanarDomain, PlanarOptions, SolidDomain, SolidOptions};
 
 /// The default options of a planar domain (tolerance 1e-5).
 #[no_mangle]
@@ -63,26 +21,6 @@ pub extern "C" fn igaparam_domain_options_default() -> igaparam_domain_options {
 #[no_mangle]
 pub extern "C" fn igaparam_domain_options_default_solid() -> igaparam_domain_options {
     igaparam_domain_options::from(&SolidOptions::solid())
-}
-
-/// The C form of a build report.
-pub(super) fn c_report(r: &DomainReport) -> igaparam_domain_report {
-    igaparam_domain_report {
-        cells: r.cells,
-        vertices: r.vertices,
-        max_level: r.max_level as u32,
-        boundary_error: r.boundary_error,
-        boundary_offset: r.boundary_offset,
-        invalid_after_placement: r.invalid_after_placement,
-        invalid_cells: r.invalid_cells,
-        min_quality: r.min_quality,
-        mean_quality: r.mean_quality,
-        sweeps: r.sweeps,
-        sweep_budget_exhausted: c_int::from(r.sweep_budget_exhausted),
-        newton_iterations: r.newton_iterations,
-        gradient_norm: r.gradient_norm,
-        seconds: r.seconds,
-    }
 }
 
 /// Adapts a T-mesh to the boundary (refining boundary cells until `options.tolerance` or
@@ -123,7 +61,7 @@ pub extern "C" fn igaparam_domain_build(
                 r
             }
         };
-        write_optional(report, c_report(&r));
+        write_optional(report, igaparam_domain_report::from(&r));
         Ok(())
     })
 }

@@ -1,12 +1,11 @@
 //! Moving the boundary of a built domain: `igaparam_domain_set_boundary_*` replace the boundary
 //! (by one of the same kind and orientation, from the same inputs as the constructors) and
-//! `igaparam_domain_update` moves the T-mesh onto it, keeping its tree (its options struct is
-//! generated from the core's in `options_gen.rs`).
+//! `igaparam_domain_update` moves the T-mesh onto it, keeping its tree (its options and report
+//! structs are generated from the core's in `options_gen.rs` and `reports_gen.rs`).
 
 use std::ffi::c_char;
 
 use super::domain::{held, igaparam_domain, Built, DomainData};
-use super::domain_build::{c_report, igaparam_domain_report};
 use super::domain_input::{
     curves_boundary, igaparam_curve, igaparam_surface, planar_file_boundary, polylines_boundary,
     solid_file_boundary, surfaces_boundary, triangulations_boundary,
@@ -15,32 +14,10 @@ use super::ffi::{c_path, options_or, run, write_optional, Failure};
 use super::igaparam_status;
 use super::options_gen::igaparam_domain_update_options;
 use super::progress::optimization_progress;
+use super::reports_gen::igaparam_domain_update_report;
 use crate::boundary::{BoundaryLoop2, SolidBoundary};
-use crate::domain::{UpdateOptions, UpdateReport};
+use crate::domain::UpdateOptions;
 use crate::error::Error;
-
-/// What `igaparam_domain_update` did.
-#[repr(C)]
-#[derive(Clone, Copy, Debug, Default)]
-pub struct igaparam_domain_update_report {
-    /// The T-mesh as `igaparam_domain_build` reports it: `invalid_after_placement` counts the
-    /// cells the harmonic placement (old positions plus the harmonic extension of the boundary
-    /// motion) left invalid, `boundary_error` is measured in the new boundary's own bounding
-    /// box (as a build would), `sweeps` and `seconds` are those of the update.
-    pub domain: igaparam_domain_report,
-    /// 1 when the tree still meets the build's tolerance (no boundary cell below the build's
-    /// `max_level` has an error above it: a build's adaptation would refine none), else 0.
-    pub tolerance_met: i32,
-    /// Boundary cells below the build's `max_level` whose error exceeds its tolerance.
-    pub cells_over_tolerance: usize,
-    /// Cells added by refinement (0 unless `refine` was set).
-    pub refined_cells: usize,
-    /// Largest move of a boundary vertex, in coordinates that map the build's bounding box onto
-    /// the unit box.
-    pub boundary_motion: f64,
-    /// Steps the motion was applied in (a motion of more than about four cell sizes is split).
-    pub steps: u32,
-}
 
 /// The default update options.
 #[no_mangle]
@@ -222,18 +199,6 @@ pub extern "C" fn igaparam_domain_set_boundary_from_file_scaled(
     )
 }
 
-/// The C form of an update report.
-fn c_update_report(r: &UpdateReport) -> igaparam_domain_update_report {
-    igaparam_domain_update_report {
-        domain: c_report(&r.domain),
-        tolerance_met: r.tolerance_met as i32,
-        cells_over_tolerance: r.cells_over_tolerance,
-        refined_cells: r.refined_cells,
-        boundary_motion: r.boundary_motion,
-        steps: r.steps,
-    }
-}
-
 /// Moves the built T-mesh onto the domain's current boundary (the one given by the last
 /// `igaparam_domain_set_boundary_*`), keeping its tree: every boundary vertex goes to the point
 /// of its parameters on the new boundary (keeping the offset the seam relief gave it, if any),
@@ -269,7 +234,7 @@ pub extern "C" fn igaparam_domain_update(
             Built::Solid((boundary, built)) => built.update(boundary.clone(), &opts, &mut progress),
         }
         .map_err(|e| watch.explain(e))?;
-        write_optional(report, c_update_report(&r));
+        write_optional(report, igaparam_domain_update_report::from(&r));
         Ok(())
     })
 }

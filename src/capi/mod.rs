@@ -30,6 +30,7 @@ mod options_gen;
 mod partition;
 mod progress;
 mod relocate;
+mod reports_gen;
 mod spline;
 
 pub use domain::*;
@@ -46,6 +47,7 @@ pub use options_gen::*;
 pub use partition::*;
 pub use progress::*;
 pub use relocate::*;
+pub use reports_gen::*;
 pub use spline::*;
 
 /// Major version of the library this header belongs to.

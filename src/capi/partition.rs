@@ -13,9 +13,8 @@ use super::ffi::{
 use super::handle::{acquire, handle_type, into_raw, release, Guarded};
 use super::mesh::cell_type;
 use super::options_gen::igaparam_relocate_options;
-use super::relocate::{
-    igaparam_relocate_options_default, igaparam_relocate_report, relocation_progress, report_of,
-};
+use super::relocate::{igaparam_relocate_options_default, relocation_progress};
+use super::reports_gen::igaparam_relocate_report;
 use super::{igaparam_cell_type, igaparam_status};
 use crate::error::{Error, Result};
 use crate::partition::{Exchange, PartInput, Partition, Ranks};
@@ -309,7 +308,7 @@ pub extern "C" fn igaparam_partition_relocate(
         write_optional(
             report,
             igaparam_partition_report {
-                relocation: report_of(&r.relocation),
+                relocation: igaparam_relocate_report::from(&r.relocation),
                 exchange_seconds: r.exchange_seconds,
                 exchanges: r.exchanges,
             },

@@ -1,54 +1,14 @@
-//! Relocation of a mesh's nodes: `igaparam_mesh_relocate`, its default options (the struct is
-//! generated from the core's in `options_gen.rs`) and report, and the sensitivities of the result
-//! (`igaparam_mesh_adjoint`, `igaparam_mesh_tangent`).
-
-use std::ffi::c_int;
+//! Relocation of a mesh's nodes: `igaparam_mesh_relocate` and its default options (the options
+//! and report structs are generated from the core's in `options_gen.rs` and `reports_gen.rs`),
+//! and the sensitivities of the result (`igaparam_mesh_adjoint`, `igaparam_mesh_tangent`).
 
 use super::ffi::{options_or, run, slice, slice_mut, write_optional};
 use super::mesh::{igaparam_mesh, with_mesh};
 use super::options_gen::igaparam_relocate_options;
 use super::progress::call_progress;
+use super::reports_gen::igaparam_relocate_report;
 use super::{igaparam_stage, igaparam_status};
 use crate::fe_mesh::{RelocateOptions, Stage};
-
-/// What `igaparam_mesh_relocate` did. Quality is the inverse mean distortion of a cell against its
-/// target over its Gauss–Lobatto points: 1 is the target shape, 0 an inverted cell.
-#[repr(C)]
-#[derive(Clone, Copy, Debug, Default)]
-pub struct igaparam_relocate_report {
-    /// Number of cells.
-    pub cells: usize,
-    /// Number of nodes.
-    pub nodes: usize,
-    /// Nodes with at least one free coordinate.
-    pub free_nodes: usize,
-    /// Cells with det J <= 0 at a Gauss–Lobatto point when the call started.
-    pub invalid_before: usize,
-    /// Invalid cells after the first placement.
-    pub invalid_after_placement: usize,
-    /// Invalid cells at the end.
-    pub invalid_after: usize,
-    /// Smallest cell quality at the end.
-    pub min_quality: f64,
-    /// Mean cell quality at the end.
-    pub mean_quality: f64,
-    /// Optimization sweeps performed (over all steps).
-    pub sweeps: u32,
-    /// Steps the prescribed motion was applied in (large motions are split so that no prescribed
-    /// node moves more than about one cell size per step).
-    pub steps: u32,
-    /// 1 when the sweeps met their stopping rule (valid mesh, small moves) and, when asked for,
-    /// the Newton stage its `stationarity_tolerance`; else 0.
-    pub converged: c_int,
-    /// Scaled max-norm of the gradient of F at the end: over the free coordinates,
-    /// |dF/dx| times the node's local cell size divided by its number of cells (the gradient of
-    /// the node's own objective times its size; dimensionless). Infinite for an invalid mesh.
-    pub gradient_norm: f64,
-    /// Newton iterations of the stationarity stage.
-    pub newton_iterations: u32,
-    /// Wall-clock seconds of the call.
-    pub seconds: f64,
-}
 
 /// The default relocation options.
 #[no_mangle]
@@ -86,7 +46,7 @@ pub extern "C" fn igaparam_mesh_relocate(
         let r = handle
             .relocate(&opts, &mut progress)
             .map_err(|e| watch.explain(e))?;
-        write_optional(report, report_of(&r));
+        write_optional(report, igaparam_relocate_report::from(&r));
         Ok(())
     })
 }
@@ -102,26 +62,6 @@ pub(super) fn relocation_progress(
             Stage::Stationarity => igaparam_stage::IGAPARAM_STAGE_STATIONARITY,
         };
         call_progress(raw.progress, raw.progress_user, stage, done, total)
-    }
-}
-
-/// The C form of a relocation's report.
-pub(super) fn report_of(r: &crate::fe_mesh::RelocateReport) -> igaparam_relocate_report {
-    igaparam_relocate_report {
-        cells: r.cells,
-        nodes: r.nodes,
-        free_nodes: r.free_nodes,
-        invalid_before: r.invalid_before,
-        invalid_after_placement: r.invalid_after_placement,
-        invalid_after: r.invalid_after,
-        min_quality: r.min_quality,
-        mean_quality: r.mean_quality,
-        sweeps: r.sweeps,
-        steps: r.steps,
-        converged: r.converged as c_int,
-        gradient_norm: r.gradient_norm,
-        newton_iterations: r.newton_iterations,
-        seconds: r.seconds,
     }
 }
 

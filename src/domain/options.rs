@@ -158,16 +158,17 @@ pub struct DomainReport {
     pub cells: usize,
     /// Vertices of the T-mesh, hanging ones included.
     pub vertices: usize,
-    /// Deepest level.
+    /// Deepest level of a cell.
     pub max_level: u8,
-    /// Largest boundary error, relative (see [`DomainOptions::tolerance`]).
+    /// Largest boundary error, relative as [`tolerance`](DomainOptions::tolerance).
     pub boundary_error: f64,
     /// Largest distance of a boundary vertex from its point on the boundary, in coordinates
-    /// that map the bounding box onto a unit box (at most [`DomainOptions::boundary_offset`]).
+    /// that map the bounding box onto the unit box (at most the option
+    /// [`boundary_offset`](DomainOptions::boundary_offset); 0 when no seam relief was needed).
     pub boundary_offset: f64,
-    /// Invalid cells after the transfinite placement.
+    /// Invalid cells (`det J ≤ 0` somewhere) after the transfinite (Coons) placement.
     pub invalid_after_placement: usize,
-    /// Invalid cells after the optimization.
+    /// Invalid cells after the optimization; 0 for a usable parameterization.
     pub invalid_cells: usize,
     /// Smallest cell quality (1/mean distortion against the parametric cell).
     pub min_quality: f64,
@@ -177,18 +178,22 @@ pub struct DomainReport {
     /// repair).
     pub sweeps: u32,
     /// Whether the optimization stopped because it spent
-    /// [`DomainOptions::max_total_sweeps`]: the T-mesh is the state the sweeps reached, less
-    /// optimized (and possibly with more invalid cells) than a larger budget would give.
+    /// [`max_total_sweeps`](DomainOptions::max_total_sweeps) (1 in C, else 0): the T-mesh is the
+    /// state the sweeps reached, less optimized (and possibly with more invalid cells) than a
+    /// larger budget would give.
     pub sweep_budget_exhausted: bool,
     /// Repair rounds that refined invalid cells.
     pub repair_rounds: u32,
-    /// Newton iterations of the polish (0 when it is off or a cell stays invalid).
+    /// Newton iterations of the polish (`stationarity_tolerance > 0`; 0 when it is off or a
+    /// cell stays invalid).
     pub newton_iterations: u32,
-    /// Scaled max-norm of the global objective's gradient after the polish (at most
-    /// [`DomainOptions::stationarity_tolerance`] when it converged; `+∞` when a cell stays
-    /// invalid; 0 when the polish is off).
+    /// Scaled max-norm of the global objective's gradient after the polish: at most
+    /// [`stationarity_tolerance`](DomainOptions::stationarity_tolerance) when it converged (the
+    /// state the sensitivities of a fitted spline, `igaparam_spline_tangent` and
+    /// `igaparam_spline_adjoint`, differentiate), infinite when a cell stays invalid, 0 when the
+    /// polish is off.
     pub gradient_norm: f64,
-    /// Wall-clock seconds.
+    /// Wall-clock seconds of the call.
     pub seconds: f64,
     /// Wall-clock seconds of each stage.
     pub stages: StageSeconds,

@@ -165,7 +165,7 @@ pub struct RelocateReport {
     pub cells: usize,
     /// Number of nodes.
     pub nodes: usize,
-    /// Nodes with at least one free component.
+    /// Nodes with at least one free coordinate.
     pub free_nodes: usize,
     /// Cells with `det J ≤ 0` at a Gauss–Lobatto point when the call started.
     pub invalid_before: usize,
@@ -179,18 +179,20 @@ pub struct RelocateReport {
     pub mean_quality: f64,
     /// Optimization sweeps performed (over all steps).
     pub sweeps: u32,
-    /// Steps the prescribed motion was applied in.
+    /// Steps the prescribed motion was applied in (large motions are split so that no prescribed
+    /// node moves more than about one cell size per step).
     pub steps: u32,
     /// Whether the sweeps met their stopping rule (valid mesh, small moves) and, when asked for,
-    /// the Newton stage its tolerance.
+    /// the Newton stage its `stationarity_tolerance` (1 in C, else 0).
     pub converged: bool,
-    /// Scaled max-norm of the global objective's gradient at the end: per free coordinate,
-    /// `|∂F/∂x| · L / W` (L the node's local length, W the number of its cells), the gradient
-    /// of the node's own objective times its length; `+∞` for an invalid mesh.
+    /// Scaled max-norm of the gradient of the global objective F at the end: over the free
+    /// coordinates, |∂F/∂x| times the node's local cell size divided by its number of cells
+    /// (the gradient of the node's own objective times its size; dimensionless). Infinite for
+    /// an invalid mesh.
     pub gradient_norm: f64,
     /// Newton iterations of the stationarity stage.
     pub newton_iterations: u32,
-    /// Wall-clock seconds.
+    /// Wall-clock seconds of the call.
     pub seconds: f64,
 }
 

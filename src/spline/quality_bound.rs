@@ -75,12 +75,12 @@ impl QualityBoundOptions {
 /// What [`SplineMap::quality_bound`] found.
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct QualityBound {
-    /// Certified lower bound of the mean ratio over the whole map (0 where `det J > 0` is not
-    /// proven).
+    /// Certified lower bound of the mean ratio `q_S = d·det(J)^(2/d)/‖J‖²` over the whole map
+    /// (0 when `det J_S > 0` is not proven somewhere).
     pub lower_bound: f64,
-    /// Smallest mean ratio at the samples: an upper bound of the true minimum.
+    /// Smallest mean ratio at the samples (an upper bound of the true minimum).
     pub sampled_min: f64,
-    /// The element of the smallest bound.
+    /// The element of the smallest bound (index into the map's elements).
     pub element: usize,
     /// Lower bound per element.
     pub elements: Vec<f64>,

@@ -1,8 +1,9 @@
-//! The generator of `src/capi/options_gen.rs`, the C mirrors of the core option structs: their
-//! fields (names, types, order), their doc comments and the conversions both ways, read from the
-//! core structs' sources with `syn`. It depends on `syn` only, not on the crate, so that it runs
-//! when a changed core struct has made the checked-in mirrors fail to compile
-//! (`tools/c_structs/main.rs`); `tests/c_structs.rs` checks the checked-in file with it.
+//! The generator of `src/capi/options_gen.rs` and `src/capi/reports_gen.rs`, the C mirrors of
+//! the core option and report structs: their fields (names, types, order), their doc comments
+//! and the conversions, read from the core structs' sources with `syn`. It depends on `syn`
+//! only, not on the crate, so that it runs when a changed core struct has made the checked-in
+//! mirrors fail to compile (`tools/c_structs/main.rs`); `tests/c_structs.rs` checks the
+//! checked-in files with it.
 //!
 //! The rules, so that the C layout of the existing structs is what it was:
 //! - `f64` and `u32` stay; `u8` (a level) becomes `uint32_t`, saturating to 255 on the way in
@@ -15,7 +16,8 @@
 //! - anything else fails here, naming the field.
 //!
 //! The C-only fields (the progress callback and its user pointer) are appended from
-//! [`Mirror::c_only`]. Rustdoc links of the core docs become plain names, the names cbindgen
+//! [`Mirror::c_only`]; a report leaves out the core fields of [`Mirror::skip`] and is only
+//! converted from the core. Rustdoc links of the core docs become plain names, the names cbindgen
 //! renames (`cbindgen.toml`, `[export.rename]`) take their C names, and each paragraph is
 //! filled again to the width of the file (so write the core docs as prose paragraphs). Plain
 //! `//` comments of the core fields stay in the core.
@@ -38,6 +40,9 @@ struct Mirror {
     doc: &'static str,
     /// Fields of the C struct only, appended after the core's.
     c_only: &'static [CField],
+    /// A report: converted from the core only, and without the core fields in `skip`.
+    report: bool,
+    skip: &'static [&'static str],
 }
 
 /// A field of a C struct that the core struct does not have.
@@ -70,8 +75,10 @@ struct CEnum {
 const U32_COUNTS: &[&str] = &["threads", "samples"];
 
 /// C types other than the rule's: (C struct, field, type).
-const TYPE_OVERRIDES: &[(&str, &str, &str)] =
-    &[("igaparam_domain_update_options", "refine", "i32")];
+const TYPE_OVERRIDES: &[(&str, &str, &str)] = &[
+    ("igaparam_domain_update_options", "refine", "i32"),
+    ("igaparam_domain_update_report", "tolerance_met", "i32"),
+];
 
 /// The progress callback's user pointer, the last field of the options with a callback.
 const PROGRESS_USER: CField = CField {
@@ -102,6 +109,8 @@ const MIRRORS: &[Mirror] = &[
             progress("Progress callback, or NULL (default). Called with `IGAPARAM_STAGE_OPTIMIZATION`, `done`\nsweeps so far and `total` 0, also between the rounds of the adaptation of the tree (with\n`done` 0); returning non-zero cancels the build."),
             PROGRESS_USER,
         ],
+        report: false,
+        skip: &[],
     },
     Mirror {
         c_name: "igaparam_domain_update_options",
@@ -113,6 +122,8 @@ const MIRRORS: &[Mirror] = &[
             progress("Progress callback, or NULL (default). Called with `IGAPARAM_STAGE_OPTIMIZATION`, `done`\nsweeps so far and `total` 0; returning non-zero cancels the update."),
             PROGRESS_USER,
         ],
+        report: false,
+        skip: &[],
     },
     Mirror {
         c_name: "igaparam_relocate_options",
@@ -121,6 +132,8 @@ const MIRRORS: &[Mirror] = &[
         source: "src/fe_mesh/relocate.rs",
         doc: "Options of `igaparam_mesh_relocate`; get the defaults from `igaparam_relocate_options_default`.",
         c_only: &[progress("Progress callback, or NULL (default)."), PROGRESS_USER],
+        report: false,
+        skip: &[],
     },
     Mirror {
         c_name: "igaparam_validity_options",
@@ -129,6 +142,8 @@ const MIRRORS: &[Mirror] = &[
         source: "src/spline/validity.rs",
         doc: "Options of `igaparam_spline_check_validity`; get the defaults from\n`igaparam_validity_options_default`.",
         c_only: &[],
+        report: false,
+        skip: &[],
     },
     Mirror {
         c_name: "igaparam_quality_bound_options",
@@ -137,6 +152,48 @@ const MIRRORS: &[Mirror] = &[
         source: "src/spline/quality_bound.rs",
         doc: "Options of `igaparam_spline_quality_bound`; get the defaults from\n`igaparam_quality_bound_options_default`.",
         c_only: &[],
+        report: false,
+        skip: &[],
+    },
+    Mirror {
+        c_name: "igaparam_domain_report",
+        core: "DomainReport",
+        core_path: "crate::domain::DomainReport",
+        source: "src/domain/options.rs",
+        doc: "What `igaparam_domain_build` did. Quality is the inverse mean distortion of a cell against its\nparametric (square) cell: 1 is a square, 0 an inverted cell.",
+        c_only: &[],
+        report: true,
+        skip: &["repair_rounds", "stages", "swapped"],
+    },
+    Mirror {
+        c_name: "igaparam_domain_update_report",
+        core: "UpdateReport",
+        core_path: "crate::domain::UpdateReport",
+        source: "src/domain/update.rs",
+        doc: "What `igaparam_domain_update` did.",
+        c_only: &[],
+        report: true,
+        skip: &[],
+    },
+    Mirror {
+        c_name: "igaparam_relocate_report",
+        core: "RelocateReport",
+        core_path: "crate::fe_mesh::RelocateReport",
+        source: "src/fe_mesh/relocate.rs",
+        doc: "What `igaparam_mesh_relocate` did. Quality is the inverse mean distortion of a cell against its\ntarget over its Gauss–Lobatto points: 1 is the target shape, 0 an inverted cell.",
+        c_only: &[],
+        report: true,
+        skip: &[],
+    },
+    Mirror {
+        c_name: "igaparam_quality_bound_report",
+        core: "QualityBound",
+        core_path: "crate::spline::QualityBound",
+        source: "src/spline/quality_bound.rs",
+        doc: "What `igaparam_spline_quality_bound` found: the true smallest mean ratio of the map lies in\n`[lower_bound, sampled_min]`.",
+        c_only: &[],
+        report: true,
+        skip: &["elements"],
     },
 ];
 
@@ -188,14 +245,18 @@ const ENUMS: &[CEnum] = &[
     },
 ];
 
-const HEADER: &str =
-    "//! GENERATED by `tools/c_structs/generate.rs` from the core option structs: do not edit.
-//! Change the core struct (its fields and their doc comments) and run
+/// What both generated files say first.
+const GENERATED: &str =
+    "//! GENERATED by `tools/c_structs/generate.rs` from the core structs: do not edit. Change
+//! the core struct (its fields and their doc comments) and run
 //! `IGAPARAM_BLESS=1 cargo test --release --test c_structs` (or, when this file no longer
 //! compiles, `cargo run --release --manifest-path tools/c_structs/Cargo.toml`), then bless the
 //! header (`IGAPARAM_BLESS=1 cargo test --release --test header`).
 //!
-//! The C mirrors of the core options: `#[repr(C)]` structs whose field docs are the core's, the
+";
+
+/// The rest of the head of `options_gen.rs`.
+const OPTIONS_HEAD: &str = "//! The C mirrors of the core options: `#[repr(C)]` structs whose field docs are the core's, the
 //! mirror of core options (`From`), the core options of a mirror (`to_core`, a conversion only:
 //! the core's `validate` checks the values) and the conversions of the enums they hold.
 // The docs are the header's comments, plain text: an interval such as `[1, 2)` is no link.
@@ -207,6 +268,15 @@ use super::mesh::{igaparam_target, target, IGAPARAM_TARGET_INITIAL, IGAPARAM_TAR
 use super::option_enums::*;
 use super::progress::igaparam_progress_fn;
 use crate::error::Result;
+";
+
+/// The rest of the head of `reports_gen.rs`.
+const REPORTS_HEAD: &str = "//! The C mirrors of the core reports: `#[repr(C)]` structs whose field docs are the core's, and
+//! the mirror of a core report (`From`).
+// The docs are the header's comments, plain text: an interval such as `[1, 2)` is no link.
+#![allow(rustdoc::broken_intra_doc_links)]
+
+use std::ffi::c_int;
 ";
 
 /// A field of a core struct.
@@ -530,12 +600,21 @@ impl Generator {
     }
 
     fn mirror(&self, out: &mut String, m: &Mirror) {
-        let fields = core_struct(&self.files[m.source], m.core);
+        let mut fields = core_struct(&self.files[m.source], m.core);
+        for name in m.skip {
+            assert!(
+                fields.iter().any(|f| f.name == *name),
+                "{}.{name}: no such field to skip",
+                m.core
+            );
+        }
+        fields.retain(|f| !m.skip.contains(&f.name.as_str()));
         let conversions: Vec<Conversion> = fields.iter().map(|f| conversion(self, m, f)).collect();
         doc_comment(out, &m.doc.lines().map(String::from).collect::<Vec<_>>());
         writeln!(
             out,
-            "#[repr(C)]\n#[derive(Clone, Copy, Debug)]\npub struct {} {{",
+            "#[repr(C)]\n#[derive(Clone, Copy, Debug{})]\npub struct {} {{",
+            if m.report { ", Default" } else { "" },
             m.c_name
         )
         .unwrap();
@@ -563,6 +642,9 @@ impl Generator {
             writeln!(out, "{}: {},", f.name, f.init).unwrap();
         }
         out.push_str("}\n}\n}\n\n");
+        if m.report {
+            return;
+        }
         writeln!(out, "impl {} {{", m.c_name).unwrap();
         out.push_str("/// The core options of these C options: a conversion (an enum's value is checked; the\n/// core's `validate` checks the others).\n");
         writeln!(
@@ -623,16 +705,20 @@ impl Generator {
         out.push_str("}\n}\n\n");
     }
 
-    fn generate(&self) -> String {
-        let mut out = HEADER.to_string();
-        out.push('\n');
+    /// The generated files: the options with the enums' conversions, and the reports.
+    fn generate(&self) -> [(&'static str, String); 2] {
+        let mut options = format!("{GENERATED}{OPTIONS_HEAD}\n");
+        let mut reports = format!("{GENERATED}{REPORTS_HEAD}\n");
         for m in MIRRORS {
-            self.mirror(&mut out, m);
+            self.mirror(if m.report { &mut reports } else { &mut options }, m);
         }
         for e in ENUMS {
-            self.conversions(&mut out, e);
+            self.conversions(&mut options, e);
         }
-        rustfmt(&out)
+        [
+            (OPTIONS_FILE, rustfmt(&options)),
+            (REPORTS_FILE, rustfmt(&reports)),
+        ]
     }
 }
 
@@ -677,12 +763,11 @@ pub fn diff(old: &str, new: &str) -> String {
     out
 }
 
-/// The source of `src/capi/options_gen.rs` generated from the core sources under `root`.
-pub fn generate(root: &Path) -> String {
-    Generator::read(root).generate()
-}
+/// The generated C options (and enum conversions) and C reports, under the crate's root.
+pub const OPTIONS_FILE: &str = "src/capi/options_gen.rs";
+pub const REPORTS_FILE: &str = "src/capi/reports_gen.rs";
 
-/// The path of the generated file under `root`.
-pub fn target(root: &Path) -> std::path::PathBuf {
-    root.join("src/capi/options_gen.rs")
+/// The generated files (path under `root`, source) from the core sources under `root`.
+pub fn generate(root: &Path) -> [(&'static str, String); 2] {
+    Generator::read(root).generate()
 }

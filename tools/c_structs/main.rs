@@ -1,6 +1,7 @@
-//! Writes `src/capi/options_gen.rs`, the C mirrors of the core option structs, from the core
-//! structs (see `generate.rs`); `--check` only compares and exits with status 1 when the file is
-//! stale. Run from anywhere: `cargo run --release --manifest-path tools/c_structs/Cargo.toml`.
+//! Writes `src/capi/options_gen.rs` and `src/capi/reports_gen.rs`, the C mirrors of the core
+//! option and report structs, from the core structs (see `generate.rs`); `--check` only compares
+//! and exits with status 1 when a file is stale. Run from anywhere:
+//! `cargo run --release --manifest-path tools/c_structs/Cargo.toml`.
 
 use std::path::Path;
 
@@ -8,20 +9,23 @@ mod generate;
 
 fn main() {
     let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("../..");
-    let generated = generate::generate(&root);
-    let path = generate::target(&root);
-    if std::env::args().any(|a| a == "--check") {
+    let check = std::env::args().any(|a| a == "--check");
+    let mut stale = false;
+    for (file, generated) in generate::generate(&root) {
+        let path = root.join(file);
         let current = std::fs::read_to_string(&path).unwrap_or_default();
-        if current != generated {
-            eprintln!(
-                "{} is stale:\n{}",
-                path.display(),
-                generate::diff(&current, &generated)
-            );
-            std::process::exit(1);
+        if current == generated {
+            continue;
         }
-        return;
+        if check {
+            eprintln!("{file} is stale:\n{}", generate::diff(&current, &generated));
+            stale = true;
+        } else {
+            std::fs::write(&path, generated).unwrap_or_else(|e| panic!("{file}: {e}"));
+            println!("wrote {file}");
+        }
     }
-    std::fs::write(&path, generated).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
-    println!("wrote {}", path.display());
+    if stale {
+        std::process::exit(1);
+    }
 }

@@ -252,29 +252,32 @@ class DomainReport(ctypes.Structure):
     boundary_error:
         Largest boundary error, relative as `tolerance`.
     boundary_offset:
-        Largest distance of a boundary vertex from its point on the boundary, in the coordinates
-        of `boundary_offset` (at most the option; 0 when no seam relief was needed).
+        Largest distance of a boundary vertex from its point on the boundary, in coordinates that
+        map the bounding box onto the unit box (at most the option `boundary_offset`; 0 when no seam
+        relief was needed).
     invalid_after_placement:
-        Invalid cells (det J <= 0 somewhere) after the transfinite (Coons) placement.
+        Invalid cells (`det J ≤ 0` somewhere) after the transfinite (Coons) placement.
     invalid_cells:
         Invalid cells after the optimization; 0 for a usable parameterization.
     min_quality:
-        Smallest cell quality.
+        Smallest cell quality (1/mean distortion against the parametric cell).
     mean_quality:
         Mean cell quality.
     sweeps:
-        Optimization sweeps performed.
+        Optimization sweeps (with those of the fallback growth from the bounding box and of the
+        repair).
     sweep_budget_exhausted:
-        1 if the optimization stopped because it spent `max_total_sweeps` (the T-mesh is the
-        state the sweeps reached: less optimized, possibly with invalid cells), else 0.
+        Whether the optimization stopped because it spent `max_total_sweeps` (1 in C, else 0): the
+        T-mesh is the state the sweeps reached, less optimized (and possibly with more invalid
+        cells) than a larger budget would give.
     newton_iterations:
-        Newton iterations of the polish (`stationarity_tolerance > 0`; 0 when it is off or a
-        cell stays invalid).
+        Newton iterations of the polish (`stationarity_tolerance > 0`; 0 when it is off or a cell
+        stays invalid).
     gradient_norm:
         Scaled max-norm of the global objective's gradient after the polish: at most
-        `stationarity_tolerance` when it converged (the state `igaparam_spline_tangent` and
-        `igaparam_spline_adjoint` differentiate), infinite when a cell stays invalid, 0 when the
-        polish is off.
+        `stationarity_tolerance` when it converged (the state the sensitivities of a fitted spline,
+        `igaparam_spline_tangent` and `igaparam_spline_adjoint`, differentiate), infinite when a
+        cell stays invalid, 0 when the polish is off.
     seconds:
         Wall-clock seconds of the call.
     """
@@ -420,20 +423,22 @@ class DomainUpdateReport(ctypes.Structure):
     Fields:
 
     domain:
-        The T-mesh as `igaparam_domain_build` reports it: `invalid_after_placement` counts the
-        cells the harmonic placement (old positions plus the harmonic extension of the boundary
-        motion) left invalid, `boundary_error` is measured in the new boundary's own bounding
-        box (as a build would), `sweeps` and `seconds` are those of the update.
+        The T-mesh as a build reports it (`igaparam_domain_build`, `Domain::build` in Rust):
+        `invalid_after_placement` counts the cells the harmonic placement (old positions plus the
+        harmonic extension of the boundary motion) left invalid, `boundary_error` is measured in the
+        new boundary's own bounding box (as a build would), `sweeps` and `seconds` are those of the
+        update.
     tolerance_met:
-        1 when the tree still meets the build's tolerance (no boundary cell below the build's
-        `max_level` has an error above it: a build's adaptation would refine none), else 0.
+        Whether the tree still meets the build's tolerance (1 in C, else 0): no boundary cell below
+        the build's `max_level` has an error above it (a build's adaptation would refine none).
     cells_over_tolerance:
-        Boundary cells below the build's `max_level` whose error exceeds its tolerance.
+        Boundary cells below the build's `max_level` whose error exceeds its tolerance (after the
+        refinement when the option `refine` is set).
     refined_cells:
-        Cells added by refinement (0 unless `refine` was set).
+        Cells added by refinement (0 unless the option `refine` is set).
     boundary_motion:
-        Largest move of a boundary vertex, in coordinates that map the build's bounding box onto
-        the unit box.
+        Largest move of a boundary vertex, in coordinates that map the build's bounding box onto the
+        unit box.
     steps:
         Steps the motion was applied in (a motion of more than about four cell sizes is split).
     """
@@ -604,13 +609,13 @@ class RelocateReport(ctypes.Structure):
     free_nodes:
         Nodes with at least one free coordinate.
     invalid_before:
-        Cells with det J <= 0 at a Gauss–Lobatto point when the call started.
+        Cells with `det J ≤ 0` at a Gauss–Lobatto point when the call started.
     invalid_after_placement:
         Invalid cells after the first placement.
     invalid_after:
         Invalid cells at the end.
     min_quality:
-        Smallest cell quality at the end.
+        Smallest cell quality at the end (against the target; 0 for an invalid cell).
     mean_quality:
         Mean cell quality at the end.
     sweeps:
@@ -619,12 +624,13 @@ class RelocateReport(ctypes.Structure):
         Steps the prescribed motion was applied in (large motions are split so that no prescribed
         node moves more than about one cell size per step).
     converged:
-        1 when the sweeps met their stopping rule (valid mesh, small moves) and, when asked for,
-        the Newton stage its `stationarity_tolerance`; else 0.
+        Whether the sweeps met their stopping rule (valid mesh, small moves) and, when asked for,
+        the Newton stage its `stationarity_tolerance` (1 in C, else 0).
     gradient_norm:
-        Scaled max-norm of the gradient of F at the end: over the free coordinates,
-        |dF/dx| times the node's local cell size divided by its number of cells (the gradient of
-        the node's own objective times its size; dimensionless). Infinite for an invalid mesh.
+        Scaled max-norm of the gradient of the global objective F at the end: over the free
+        coordinates, |∂F/∂x| times the node's local cell size divided by its number of cells (the
+        gradient of the node's own objective times its size; dimensionless). Infinite for an invalid
+        mesh.
     newton_iterations:
         Newton iterations of the stationarity stage.
     seconds:
@@ -922,8 +928,8 @@ class QualityBoundReport(ctypes.Structure):
     Fields:
 
     lower_bound:
-        Certified lower bound of the mean ratio `q_S = d·det(J)^(2/d)/‖J‖²` over the whole map
-        (0 when `det J_S > 0` is not proven somewhere).
+        Certified lower bound of the mean ratio `q_S = d·det(J)^(2/d)/‖J‖²` over the whole map (0
+        when `det J_S > 0` is not proven somewhere).
     sampled_min:
         Smallest mean ratio at the samples (an upper bound of the true minimum).
     element:

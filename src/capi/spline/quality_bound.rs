@@ -1,25 +1,11 @@
 //! The certified lower bound of a spline map's mean ratio from C:
-//! `igaparam_spline_quality_bound`, its default options (the struct is generated from the core's
-//! in `options_gen.rs`) and its report.
+//! `igaparam_spline_quality_bound` and its default options (the options and report structs are
+//! generated from the core's in `options_gen.rs` and `reports_gen.rs`).
 
 use super::{held, igaparam_spline};
 use crate::capi::ffi::{non_null_mut, options_or, run};
-use crate::capi::{igaparam_quality_bound_options, igaparam_status};
+use crate::capi::{igaparam_quality_bound_options, igaparam_quality_bound_report, igaparam_status};
 use crate::spline::QualityBoundOptions;
-
-/// What `igaparam_spline_quality_bound` found: the true smallest mean ratio of the map lies in
-/// `[lower_bound, sampled_min]`.
-#[repr(C)]
-#[derive(Clone, Copy, Debug, Default)]
-pub struct igaparam_quality_bound_report {
-    /// Certified lower bound of the mean ratio `q_S = d·det(J)^(2/d)/‖J‖²` over the whole map
-    /// (0 when `det J_S > 0` is not proven somewhere).
-    pub lower_bound: f64,
-    /// Smallest mean ratio at the samples (an upper bound of the true minimum).
-    pub sampled_min: f64,
-    /// The element of the smallest bound (index into the map's elements).
-    pub element: usize,
-}
 
 /// The default options of `igaparam_spline_quality_bound`.
 #[no_mangle]
@@ -46,11 +32,7 @@ pub extern "C" fn igaparam_spline_quality_bound(
         let opts = raw.to_core()?;
         let out = non_null_mut(report, "report")?;
         let b = with_map!(&s.map, m => m.quality_bound(&opts))?;
-        *out = igaparam_quality_bound_report {
-            lower_bound: b.lower_bound,
-            sampled_min: b.sampled_min,
-            element: b.element,
-        };
+        *out = igaparam_quality_bound_report::from(&b);
         Ok(())
     })
 }
