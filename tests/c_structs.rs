@@ -32,3 +32,40 @@ fn c_structs_are_current() {
         );
     }
 }
+
+/// A field added to a core struct reaches its C struct with its doc and both conversions, so the
+/// generated file differs from the checked-in one: `c_structs_are_current` (and, once that is
+/// blessed, the header test) fails until it is blessed. Run on a copy of the generator's inputs.
+#[test]
+fn a_new_core_field_reaches_the_c_struct() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let copy = std::env::temp_dir().join(format!("igaparam-c-structs-{}", std::process::id()));
+    for file in generate::inputs() {
+        let to = copy.join(file);
+        std::fs::create_dir_all(to.parent().unwrap()).unwrap();
+        std::fs::copy(root.join(file), &to).unwrap();
+    }
+    let source = copy.join("src/spline/quality_bound.rs");
+    let text = std::fs::read_to_string(&source).unwrap();
+    let field = "    /// A new option (default 7).\n    pub extra: u32,\n}";
+    let changed = text.replacen(
+        "    pub gap: f64,\n}",
+        &format!("    pub gap: f64,\n{field}"),
+        1,
+    );
+    assert_ne!(
+        text, changed,
+        "QualityBoundOptions no longer ends with `gap`"
+    );
+    std::fs::write(&source, changed).unwrap();
+    let generated = generate::generate(&copy);
+    std::fs::remove_dir_all(&copy).unwrap();
+    let (file, options) = &generated[0];
+    assert_eq!(*file, generate::OPTIONS_FILE);
+    assert!(
+        options.contains(field),
+        "the field and its doc are not in the C struct"
+    );
+    assert!(options.contains("extra: o.extra,") && options.contains("extra: self.extra,"));
+    assert_ne!(options, &std::fs::read_to_string(root.join(file)).unwrap());
+}

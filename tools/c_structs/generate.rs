@@ -767,6 +767,18 @@ pub fn diff(old: &str, new: &str) -> String {
 pub const OPTIONS_FILE: &str = "src/capi/options_gen.rs";
 pub const REPORTS_FILE: &str = "src/capi/reports_gen.rs";
 
+/// The files the generator reads, under the crate's root.
+// Used by tests/c_structs.rs, not by main.rs.
+#[allow(dead_code)]
+pub fn inputs() -> Vec<&'static str> {
+    let mut files: Vec<&str> = MIRRORS.iter().map(|m| m.source).collect();
+    files.extend(ENUMS.iter().map(|e| e.source));
+    files.push("cbindgen.toml");
+    files.sort_unstable();
+    files.dedup();
+    files
+}
+
 /// The generated files (path under `root`, source) from the core sources under `root`.
 pub fn generate(root: &Path) -> [(&'static str, String); 2] {
     Generator::read(root).generate()
