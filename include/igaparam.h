@@ -248,18 +248,18 @@ typedef struct {
    */
   uint32_t max_level;
   /**
-   * Largest number of optimization sweeps of one stage (default 200): the first
-   * optimization, each step of the growth from the bounding box, each round of the seam
-   * relief and of the repair.
+   * Largest number of optimization sweeps of one stage (default 200): the first optimization,
+   * each step of the growth from the bounding box, each round of the seam relief and of the
+   * repair.
    */
   uint32_t max_sweeps;
   /**
    * Largest number of sweeps of all stages together, at least 1 (default 5,000,
-   * `IGAPARAM_DEFAULT_MAX_TOTAL_SWEEPS`): once spent, the running stage stops after its
-   * sweep and no later stage starts; the build succeeds with the T-mesh the sweeps reached,
-   * and the report's `sweep_budget_exhausted` is 1 (check `invalid_cells`). The bundled
-   * domains need at most about 4,100; inputs that fold at every level stop here after
-   * seconds instead of running for minutes.
+   * `IGAPARAM_DEFAULT_MAX_TOTAL_SWEEPS`): once spent, the running stage stops after its sweep
+   * and no later stage starts; the build succeeds with the T-mesh the sweeps reached, and the
+   * report's `sweep_budget_exhausted` is set (check `invalid_cells`). The bundled domains need
+   * at most about 4,100; inputs that fold at every level stop here after seconds instead of
+   * running for minutes.
    */
   uint32_t max_total_sweeps;
   /**
@@ -272,26 +272,30 @@ typedef struct {
    */
   uint32_t repair_rounds;
   /**
-   * Seam relief cap, finite and at least 0: the largest distance, in coordinates that map
-   * the bounding box onto the unit box, by which a boundary vertex may leave the boundary to
-   * open a cell that stays folded with every boundary vertex on it (default 1e-2); 0 keeps
-   * every boundary vertex on the boundary.
+   * Seam relief cap, finite and at least 0: the largest distance, in coordinates that map the
+   * bounding box onto the unit box, by which a boundary vertex may leave the boundary to open a
+   * cell that stays folded with every boundary vertex on it (default 1e-2: the jagged terrain
+   * edge of the Jacksboro block needs offsets near it, the jittered duck faces 1e-3 with a few
+   * more levels of refinement); 0 keeps every boundary vertex on the boundary.
    */
   double boundary_offset;
   /**
-   * Largest number of cells of the T-mesh (default 1,000,000): a build whose uniform
-   * refinement to `min_level` alone exceeds it (4^min_level cells for a planar domain,
-   * 8^min_level for a solid) is refused before any work, one whose adaptation or repair
-   * exceeds it stops there; both with `IGAPARAM_STATUS_LIMIT_EXCEEDED`. Raise it for finer
-   * T-meshes (time and memory grow with the cells: minutes and about a gigabyte at the
-   * default in 2D, more for a solid).
+   * Largest number of cells of the T-mesh (default 1,000,000, `IGAPARAM_DEFAULT_MAX_CELLS`): a
+   * build whose uniform refinement to `min_level` alone exceeds it (4^min_level cells for a
+   * planar domain, 8^min_level for a solid) is refused before any work, one whose adaptation or
+   * repair exceeds it stops there; both fail with `IGAPARAM_STATUS_LIMIT_EXCEEDED`
+   * (`ErrorKind::LimitExceeded`). Raise it for finer T-meshes (time and memory grow with the
+   * cells: minutes and about a gigabyte at the default in 2D, more for a solid).
    */
   size_t max_cells;
   /**
-   * The Newton polish after the sweeps, finite and at least 0 (default 0: off): when
-   * positive and every cell is valid, the inner vertices go to a stationary point of the
-   * global objective (the sum of the cells' mean distortions) to this scaled max-norm of its
-   * gradient (1e-8 is typical). It raises the mean cell quality and may lower the smallest.
+   * The Newton polish after the sweeps, finite and at least 0 (default 0: off): when positive
+   * and every cell is valid, the inner vertices go to a stationary point of the global objective
+   * (the sum of the cells' mean distortions, `F = Σ_cells η̄*_c` with δ = 0) to this scaled
+   * max-norm of its gradient (1e-8 is typical: a few to a few tens of Newton iterations). The
+   * stationary point depends on the basin the sweeps end in, not on their round-off within it;
+   * it raises the mean cell quality and may lower the smallest (the bundled planar domains: mean
+   * +3–11%, min −6% to −51%), so it is off by default.
    */
   double stationarity_tolerance;
   /**
@@ -328,12 +332,13 @@ typedef struct {
    */
   double boundary_error;
   /**
-   * Largest distance of a boundary vertex from its point on the boundary, in the coordinates
-   * of `boundary_offset` (at most the option; 0 when no seam relief was needed).
+   * Largest distance of a boundary vertex from its point on the boundary, in coordinates that
+   * map the bounding box onto the unit box (at most the option `boundary_offset`; 0 when no seam
+   * relief was needed).
    */
   double boundary_offset;
   /**
-   * Invalid cells (det J <= 0 somewhere) after the transfinite (Coons) placement.
+   * Invalid cells (`det J ≤ 0` somewhere) after the transfinite (Coons) placement.
    */
   size_t invalid_after_placement;
   /**
@@ -341,7 +346,7 @@ typedef struct {
    */
   size_t invalid_cells;
   /**
-   * Smallest cell quality.
+   * Smallest cell quality (1/mean distortion against the parametric cell).
    */
   double min_quality;
   /**
@@ -349,24 +354,26 @@ typedef struct {
    */
   double mean_quality;
   /**
-   * Optimization sweeps performed.
+   * Optimization sweeps (with those of the fallback growth from the bounding box and of the
+   * repair).
    */
   uint32_t sweeps;
   /**
-   * 1 if the optimization stopped because it spent `max_total_sweeps` (the T-mesh is the
-   * state the sweeps reached: less optimized, possibly with invalid cells), else 0.
+   * Whether the optimization stopped because it spent `max_total_sweeps` (1 in C, else 0): the
+   * T-mesh is the state the sweeps reached, less optimized (and possibly with more invalid
+   * cells) than a larger budget would give.
    */
   int sweep_budget_exhausted;
   /**
-   * Newton iterations of the polish (`stationarity_tolerance > 0`; 0 when it is off or a
-   * cell stays invalid).
+   * Newton iterations of the polish (`stationarity_tolerance > 0`; 0 when it is off or a cell
+   * stays invalid).
    */
   uint32_t newton_iterations;
   /**
    * Scaled max-norm of the global objective's gradient after the polish: at most
-   * `stationarity_tolerance` when it converged (the state `igaparam_spline_tangent` and
-   * `igaparam_spline_adjoint` differentiate), infinite when a cell stays invalid, 0 when the
-   * polish is off.
+   * `stationarity_tolerance` when it converged (the state the sensitivities of a fitted spline,
+   * `igaparam_spline_tangent` and `igaparam_spline_adjoint`, differentiate), infinite when a
+   * cell stays invalid, 0 when the polish is off.
    */
   double gradient_norm;
   /**
@@ -471,11 +478,12 @@ typedef struct {
    */
   uint32_t threads;
   /**
-   * 0 (default): keep the tree, and only report whether its tolerance still holds. 1: refine
-   * the boundary cells whose error exceeds the build's tolerance (below its `max_level`)
-   * until none does, and repair cells left folded as the build does; the T-mesh, and with
-   * it the spline space of a fit, then changes (a spline fitted before can no longer be
-   * refitted to it).
+   * Whether to refine where the boundary moved out of tolerance. Off (false, 0 in C; the
+   * default): keep the tree, and only report whether its tolerance still holds. On (true, 1):
+   * refine the boundary cells whose error exceeds the build's tolerance (below its `max_level`)
+   * until none does, and repair cells left folded as the build does; the T-mesh, and with it the
+   * spline space of a fit, then changes (a spline fitted before can no longer be refitted to
+   * it).
    */
   int32_t refine;
   /**
@@ -494,28 +502,30 @@ typedef struct {
  */
 typedef struct {
   /**
-   * The T-mesh as `igaparam_domain_build` reports it: `invalid_after_placement` counts the
-   * cells the harmonic placement (old positions plus the harmonic extension of the boundary
-   * motion) left invalid, `boundary_error` is measured in the new boundary's own bounding
-   * box (as a build would), `sweeps` and `seconds` are those of the update.
+   * The T-mesh as a build reports it (`igaparam_domain_build`, `Domain::build` in Rust):
+   * `invalid_after_placement` counts the cells the harmonic placement (old positions plus the
+   * harmonic extension of the boundary motion) left invalid, `boundary_error` is measured in the
+   * new boundary's own bounding box (as a build would), `sweeps` and `seconds` are those of the
+   * update.
    */
   igaparam_domain_report domain;
   /**
-   * 1 when the tree still meets the build's tolerance (no boundary cell below the build's
-   * `max_level` has an error above it: a build's adaptation would refine none), else 0.
+   * Whether the tree still meets the build's tolerance (1 in C, else 0): no boundary cell below
+   * the build's `max_level` has an error above it (a build's adaptation would refine none).
    */
   int32_t tolerance_met;
   /**
-   * Boundary cells below the build's `max_level` whose error exceeds its tolerance.
+   * Boundary cells below the build's `max_level` whose error exceeds its tolerance (after the
+   * refinement when the option `refine` is set).
    */
   size_t cells_over_tolerance;
   /**
-   * Cells added by refinement (0 unless `refine` was set).
+   * Cells added by refinement (0 unless the option `refine` is set).
    */
   size_t refined_cells;
   /**
-   * Largest move of a boundary vertex, in coordinates that map the build's bounding box onto
-   * the unit box.
+   * Largest move of a boundary vertex, in coordinates that map the build's bounding box onto the
+   * unit box.
    */
   double boundary_motion;
   /**
@@ -613,16 +623,18 @@ typedef int igaparam_method;
  */
 typedef struct {
   /**
-   * `IGAPARAM_TARGET_INITIAL` (default) or `IGAPARAM_TARGET_MASTER`.
+   * The ideal shape of each cell. Either `IGAPARAM_TARGET_INITIAL` (default) or
+   * `IGAPARAM_TARGET_MASTER`.
    */
   igaparam_target target;
   /**
-   * `IGAPARAM_PLACEMENT_LAPLACIAN` (default), `IGAPARAM_PLACEMENT_CURRENT` or
-   * `IGAPARAM_PLACEMENT_INCREMENTAL`.
+   * The first placement of the free nodes. One of `IGAPARAM_PLACEMENT_LAPLACIAN` (default),
+   * `IGAPARAM_PLACEMENT_CURRENT` or `IGAPARAM_PLACEMENT_INCREMENTAL`.
    */
   igaparam_placement placement;
   /**
-   * Non-zero (default) runs the optimizer after the placement; 0 stops after the placement.
+   * Whether the optimizer runs after the placement (default: true, non-zero in C); false (0)
+   * stops after the placement.
    */
   int optimize;
   /**
@@ -630,14 +642,15 @@ typedef struct {
    */
   uint32_t max_sweeps;
   /**
-   * Stop when the mesh is valid and no node moved more than this fraction of its local cell
-   * size in a sweep (default 1e-3).
+   * Stop when the mesh is valid and no node moved more than this fraction of its local cell size
+   * in a sweep (default 1e-3).
    */
   double move_tolerance;
   /**
-   * A node's Newton iteration stops when the gradient of its objective times its local cell
-   * size is below this (default 1e-3: nodes are revisited by the following sweeps, so an
-   * inexact solve per sweep suffices).
+   * A node's Newton iteration stops when the gradient of its objective times its local cell size
+   * is below this (default 1e-3: nodes are revisited by the following sweeps, so an inexact
+   * solve per sweep suffices, and reaches the same meshes in less time than the tight 6·10⁻⁶ of
+   * a one-pass optimizer).
    */
   double gradient_tolerance;
   /**
@@ -645,26 +658,29 @@ typedef struct {
    */
   uint32_t max_newton_iterations;
   /**
-   * Over-relaxation of each node's move, in [1, 2) (default 1.8; 1 disables it). A relaxed
-   * move is kept only if it lowers the node's objective and inverts nothing.
+   * Over-relaxation of each node's move, in [1, 2) (default 1.8; 1 disables it): speeds up
+   * smoothing. A relaxed move is kept only if it lowers the node's objective and inverts
+   * nothing.
    */
   double relaxation;
   /**
-   * Worker threads, at most 4096, capped to the machine's cores; 0 (default) uses one per
-   * core. The result does not depend on it.
+   * Worker threads, at most 4096, capped to the machine's cores; 0 (default) uses one per core.
+   * The result does not depend on it.
    */
   uint32_t threads;
   /**
-   * When positive, the result is a stationary point of the one global objective
-   * F = sum over cells of their mean distortion (regularisation 0, so F is infinite at a
-   * fold): the report's `gradient_norm` is at most this (e.g. 1e-10), reached by Newton's
-   * method with the sparse Hessian on a valid mesh; `igaparam_mesh_adjoint` and
-   * `igaparam_mesh_tangent` then differentiate the result. 0 (default): no such guarantee
-   * (the sweeps stop on their own rule, the Newton method at 1e-8).
+   * When positive, the result is a stationary point of the one global objective F, the sum over
+   * cells of their mean distortion η̄*_c (regularisation δ = 0, so F is infinite at a fold): the
+   * report's `gradient_norm` is at most this (e.g. 1e-10), reached by Newton's method with the
+   * sparse Hessian on a valid mesh; the sensitivities (`igaparam_mesh_adjoint` and
+   * `igaparam_mesh_tangent`, `Mesh::adjoint` and `Mesh::tangent` in Rust) then differentiate the
+   * result. 0 (default): no such guarantee (the sweeps stop on their own rule, the Newton method
+   * at 1e-8, `IGAPARAM_DEFAULT_NEWTON_TOLERANCE`).
    */
   double stationarity_tolerance;
   /**
-   * `IGAPARAM_METHOD_AUTO` (default), `IGAPARAM_METHOD_SWEEPS` or `IGAPARAM_METHOD_NEWTON`.
+   * How the optimum is reached. One of `IGAPARAM_METHOD_AUTO` (default),
+   * `IGAPARAM_METHOD_SWEEPS` or `IGAPARAM_METHOD_NEWTON`.
    */
   igaparam_method method;
   /**
@@ -695,7 +711,7 @@ typedef struct {
    */
   size_t free_nodes;
   /**
-   * Cells with det J <= 0 at a Gauss–Lobatto point when the call started.
+   * Cells with `det J ≤ 0` at a Gauss–Lobatto point when the call started.
    */
   size_t invalid_before;
   /**
@@ -707,7 +723,7 @@ typedef struct {
    */
   size_t invalid_after;
   /**
-   * Smallest cell quality at the end.
+   * Smallest cell quality at the end (against the target; 0 for an invalid cell).
    */
   double min_quality;
   /**
@@ -724,14 +740,15 @@ typedef struct {
    */
   uint32_t steps;
   /**
-   * 1 when the sweeps met their stopping rule (valid mesh, small moves) and, when asked for,
-   * the Newton stage its `stationarity_tolerance`; else 0.
+   * Whether the sweeps met their stopping rule (valid mesh, small moves) and, when asked for,
+   * the Newton stage its `stationarity_tolerance` (1 in C, else 0).
    */
   int converged;
   /**
-   * Scaled max-norm of the gradient of F at the end: over the free coordinates,
-   * |dF/dx| times the node's local cell size divided by its number of cells (the gradient of
-   * the node's own objective times its size; dimensionless). Infinite for an invalid mesh.
+   * Scaled max-norm of the gradient of the global objective F at the end: over the free
+   * coordinates, |∂F/∂x| times the node's local cell size divided by its number of cells (the
+   * gradient of the node's own objective times its size; dimensionless). Infinite for an invalid
+   * mesh.
    */
   double gradient_norm;
   /**
@@ -916,11 +933,13 @@ typedef int igaparam_fit_choice;
 typedef struct {
   /**
    * Largest number of subdivisions of an element's Jacobian determinant polynomial when its
-   * Bernstein coefficients are inconclusive (default 5, at most 12).
+   * Bernstein coefficients are inconclusive (each halves every direction; default 5, at most
+   * 12).
    */
   uint32_t max_depth;
   /**
-   * Sample points per direction and element for the mean ratio (default 5, from 2 to 64).
+   * Sample points per direction and element for the mean ratio and the sampled determinant
+   * (default 5, from 2 to 64).
    */
   uint32_t samples;
 } igaparam_validity_options;
@@ -985,18 +1004,19 @@ typedef struct {
  */
 typedef struct {
   /**
-   * Largest number of subdivisions of an element where the bound is loose (each halves
-   * every direction; default 5, at most 6; solids use at most 3, 8^3 pieces per element).
+   * Largest number of subdivisions of an element where the bound is loose (each halves every
+   * direction; default 5, at most 6: 4^6 pieces of an element in 2D); solids use at most
+   * `IGAPARAM_QUALITY_BOUND_MAX_SOLID_DEPTH` (3: 8^3 pieces per element), which bounds the work
+   * on any map.
    */
   uint32_t max_depth;
   /**
-   * Sample points per direction and element for the sampled minimum (default 5, from 2
-   * to 64).
+   * Sample points per direction and element for the sampled minimum (default 5, from 2 to 64).
    */
   uint32_t samples;
   /**
-   * Relative gap in [0, 1) (default 0.05): a piece is not subdivided once its bound is
-   * within this fraction of the map's sampled minimum.
+   * Relative gap in [0, 1) (default 0.05): a piece is not subdivided once its bound is within
+   * this fraction of the map's sampled minimum.
    */
   double gap;
 } igaparam_quality_bound_options;
@@ -1007,8 +1027,8 @@ typedef struct {
  */
 typedef struct {
   /**
-   * Certified lower bound of the mean ratio `q_S = d·det(J)^(2/d)/‖J‖²` over the whole map
-   * (0 when `det J_S > 0` is not proven somewhere).
+   * Certified lower bound of the mean ratio `q_S = d·det(J)^(2/d)/‖J‖²` over the whole map (0
+   * when `det J_S > 0` is not proven somewhere).
    */
   double lower_bound;
   /**

@@ -1,79 +1,28 @@
 //! Moving the boundary of a built domain: `igaparam_domain_set_boundary_*` replace the boundary
 //! (by one of the same kind and orientation, from the same inputs as the constructors) and
-//! `igaparam_domain_update` moves the T-mesh onto it, keeping its tree.
+//! `igaparam_domain_update` moves the T-mesh onto it, keeping its tree (its options and report
+//! structs are generated from the core's in `options_gen.rs` and `reports_gen.rs`).
 
-use std::ffi::{c_char, c_void};
+use std::ffi::c_char;
 
 use super::domain::{held, igaparam_domain, Built, DomainData};
-use super::domain_build::{c_report, igaparam_domain_report};
 use super::domain_input::{
     curves_boundary, igaparam_curve, igaparam_surface, planar_file_boundary, polylines_boundary,
     solid_file_boundary, surfaces_boundary, triangulations_boundary,
 };
 use super::ffi::{c_path, options_or, run, write_optional, Failure};
+use super::igaparam_status;
+use super::options_gen::igaparam_domain_update_options;
 use super::progress::optimization_progress;
-use super::{igaparam_progress_fn, igaparam_status};
+use super::reports_gen::igaparam_domain_update_report;
 use crate::boundary::{BoundaryLoop2, SolidBoundary};
-use crate::domain::{UpdateOptions, UpdateReport};
+use crate::domain::UpdateOptions;
 use crate::error::Error;
-
-/// Options of `igaparam_domain_update`; get the defaults from
-/// `igaparam_domain_update_options_default`. The boundary tolerance, levels, repair rounds and
-/// boundary offset are those the domain was built with.
-#[repr(C)]
-#[derive(Clone, Copy, Debug)]
-pub struct igaparam_domain_update_options {
-    /// Largest number of optimization sweeps per step of the motion (default 200).
-    pub max_sweeps: u32,
-    /// Worker threads, at most 4096, capped to the machine's cores; 0 (default) uses one per core.
-    pub threads: u32,
-    /// 0 (default): keep the tree, and only report whether its tolerance still holds. 1: refine
-    /// the boundary cells whose error exceeds the build's tolerance (below its `max_level`)
-    /// until none does, and repair cells left folded as the build does; the T-mesh, and with
-    /// it the spline space of a fit, then changes (a spline fitted before can no longer be
-    /// refitted to it).
-    pub refine: i32,
-    /// Progress callback, or NULL (default). Called with `IGAPARAM_STAGE_OPTIMIZATION`, `done`
-    /// sweeps so far and `total` 0; returning non-zero cancels the update.
-    pub progress: igaparam_progress_fn,
-    /// Passed to `progress` as its first argument.
-    pub progress_user: *mut c_void,
-}
-
-/// What `igaparam_domain_update` did.
-#[repr(C)]
-#[derive(Clone, Copy, Debug, Default)]
-pub struct igaparam_domain_update_report {
-    /// The T-mesh as `igaparam_domain_build` reports it: `invalid_after_placement` counts the
-    /// cells the harmonic placement (old positions plus the harmonic extension of the boundary
-    /// motion) left invalid, `boundary_error` is measured in the new boundary's own bounding
-    /// box (as a build would), `sweeps` and `seconds` are those of the update.
-    pub domain: igaparam_domain_report,
-    /// 1 when the tree still meets the build's tolerance (no boundary cell below the build's
-    /// `max_level` has an error above it: a build's adaptation would refine none), else 0.
-    pub tolerance_met: i32,
-    /// Boundary cells below the build's `max_level` whose error exceeds its tolerance.
-    pub cells_over_tolerance: usize,
-    /// Cells added by refinement (0 unless `refine` was set).
-    pub refined_cells: usize,
-    /// Largest move of a boundary vertex, in coordinates that map the build's bounding box onto
-    /// the unit box.
-    pub boundary_motion: f64,
-    /// Steps the motion was applied in (a motion of more than about four cell sizes is split).
-    pub steps: u32,
-}
 
 /// The default update options.
 #[no_mangle]
 pub extern "C" fn igaparam_domain_update_options_default() -> igaparam_domain_update_options {
-    let d = UpdateOptions::default();
-    igaparam_domain_update_options {
-        max_sweeps: d.max_sweeps,
-        threads: d.threads as u32,
-        refine: d.refine as i32,
-        progress: None,
-        progress_user: std::ptr::null_mut(),
-    }
+    igaparam_domain_update_options::from(&UpdateOptions::default())
 }
 
 /// A new boundary of either kind.
@@ -250,18 +199,6 @@ pub extern "C" fn igaparam_domain_set_boundary_from_file_scaled(
     )
 }
 
-/// The C form of an update report.
-fn c_update_report(r: &UpdateReport) -> igaparam_domain_update_report {
-    igaparam_domain_update_report {
-        domain: c_report(&r.domain),
-        tolerance_met: r.tolerance_met as i32,
-        cells_over_tolerance: r.cells_over_tolerance,
-        refined_cells: r.refined_cells,
-        boundary_motion: r.boundary_motion,
-        steps: r.steps,
-    }
-}
-
 /// Moves the built T-mesh onto the domain's current boundary (the one given by the last
 /// `igaparam_domain_set_boundary_*`), keeping its tree: every boundary vertex goes to the point
 /// of its parameters on the new boundary (keeping the offset the seam relief gave it, if any),
@@ -288,11 +225,7 @@ pub extern "C" fn igaparam_domain_update(
         let mut held = held(domain)?;
         let (d, watch) = held.split();
         let raw = options_or(options, igaparam_domain_update_options_default());
-        let opts = UpdateOptions {
-            max_sweeps: raw.max_sweeps,
-            threads: raw.threads as usize,
-            refine: raw.refine != 0,
-        };
+        let opts = raw.to_core()?;
         let mut progress = optimization_progress(raw.progress, raw.progress_user, watch);
         let r = match d.built_mut()? {
             Built::Planar((boundary, built)) => {
@@ -301,7 +234,7 @@ pub extern "C" fn igaparam_domain_update(
             Built::Solid((boundary, built)) => built.update(boundary.clone(), &opts, &mut progress),
         }
         .map_err(|e| watch.explain(e))?;
-        write_optional(report, c_update_report(&r));
+        write_optional(report, igaparam_domain_update_report::from(&r));
         Ok(())
     })
 }

@@ -25,9 +25,12 @@ mod handle;
 mod mesh;
 mod mesh_io;
 mod node_order;
+mod option_enums;
+mod options_gen;
 mod partition;
 mod progress;
 mod relocate;
+mod reports_gen;
 mod spline;
 
 pub use domain::*;
@@ -39,9 +42,12 @@ pub use ffi::{igaparam_last_error_message, igaparam_status, igaparam_version};
 pub use mesh::*;
 pub use mesh_io::*;
 pub use node_order::*;
+pub use option_enums::*;
+pub use options_gen::*;
 pub use partition::*;
 pub use progress::*;
 pub use relocate::*;
+pub use reports_gen::*;
 pub use spline::*;
 
 /// Major version of the library this header belongs to.

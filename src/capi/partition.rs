@@ -12,10 +12,9 @@ use super::ffi::{
 };
 use super::handle::{acquire, handle_type, into_raw, release, Guarded};
 use super::mesh::cell_type;
-use super::relocate::{igaparam_relocate_options, igaparam_relocate_report};
-use super::relocate::{
-    igaparam_relocate_options_default, relocate_options, relocation_progress, report_of,
-};
+use super::options_gen::igaparam_relocate_options;
+use super::relocate::{igaparam_relocate_options_default, relocation_progress};
+use super::reports_gen::igaparam_relocate_report;
 use super::{igaparam_cell_type, igaparam_status};
 use crate::error::{Error, Result};
 use crate::partition::{Exchange, PartInput, Partition, Ranks};
@@ -290,7 +289,7 @@ pub extern "C" fn igaparam_partition_relocate(
         let mut host = host_exchange(exchange)?;
         let mut ranks = Ranks::new(&mut host);
         let raw = options_or(options, igaparam_relocate_options_default());
-        let opts = relocate_options(&raw);
+        let opts = raw.to_core();
         let mut held = match acquire(part, "part") {
             Ok(held) => held,
             Err(f) => {
@@ -309,7 +308,7 @@ pub extern "C" fn igaparam_partition_relocate(
         write_optional(
             report,
             igaparam_partition_report {
-                relocation: report_of(&r.relocation),
+                relocation: igaparam_relocate_report::from(&r.relocation),
                 exchange_seconds: r.exchange_seconds,
                 exchanges: r.exchanges,
             },

@@ -1,178 +1,19 @@
-//! Relocation of a mesh's nodes: `igaparam_mesh_relocate`, its options and report, and the
-//! sensitivities of the result (`igaparam_mesh_adjoint`, `igaparam_mesh_tangent`).
-
-use std::ffi::{c_int, c_void};
+//! Relocation of a mesh's nodes: `igaparam_mesh_relocate` and its default options (the options
+//! and report structs are generated from the core's in `options_gen.rs` and `reports_gen.rs`),
+//! and the sensitivities of the result (`igaparam_mesh_adjoint`, `igaparam_mesh_tangent`).
 
 use super::ffi::{options_or, run, slice, slice_mut, write_optional};
-use super::mesh::{igaparam_mesh, target, with_mesh, IGAPARAM_TARGET_INITIAL};
+use super::mesh::{igaparam_mesh, with_mesh};
+use super::options_gen::igaparam_relocate_options;
 use super::progress::call_progress;
-use super::{igaparam_progress_fn, igaparam_stage, igaparam_status, igaparam_target};
-use crate::error::{Error, Result};
-use crate::fe_mesh::{Method, Placement, RelocateOptions, Stage};
-
-/// Where free nodes start: one of the `IGAPARAM_PLACEMENT_*` values.
-pub type igaparam_placement = c_int;
-/// Harmonic extension of the prescribed displacements (a discrete Laplace equation): every free
-/// coordinate starts from its reference position plus that extension, whatever position
-/// `igaparam_mesh_move_nodes` gave it.
-pub const IGAPARAM_PLACEMENT_LAPLACIAN: igaparam_placement = 0;
-/// The current positions, as they are.
-pub const IGAPARAM_PLACEMENT_CURRENT: igaparam_placement = 1;
-/// Warm start for loops: the positions of the last successful relocation plus the harmonic
-/// extension of the prescribed motion since then (the first relocation of a mesh starts as
-/// `IGAPARAM_PLACEMENT_LAPLACIAN`); the targets stay the reference shapes. Use it when the
-/// boundary moves a little at every call, as in a shape-optimization loop.
-pub const IGAPARAM_PLACEMENT_INCREMENTAL: igaparam_placement = 2;
-
-/// How the free nodes are carried to the optimum: one of the `IGAPARAM_METHOD_*` values.
-pub type igaparam_method = c_int;
-/// `IGAPARAM_METHOD_NEWTON` where the Hessian's Cholesky factor is small (2D meshes, 3D meshes
-/// up to about 20,000 nodes), else `IGAPARAM_METHOD_SWEEPS` (default).
-pub const IGAPARAM_METHOD_AUTO: igaparam_method = 0;
-/// The per-node optimizer's coloured Gauss–Seidel sweeps, large motions in steps placed
-/// harmonically; with `stationarity_tolerance > 0`, followed by the Newton stage.
-pub const IGAPARAM_METHOD_SWEEPS: igaparam_method = 1;
-/// Path following of the optimum of the global objective: each step predicted by the tangent of
-/// the optimum (the linearised response of the mesh to the motion) and corrected by Newton's
-/// method; the sweeps are the fallback where a step cannot be made (e.g. a tangled start).
-pub const IGAPARAM_METHOD_NEWTON: igaparam_method = 2;
-
-/// Options of `igaparam_mesh_relocate`; get the defaults from `igaparam_relocate_options_default`.
-#[repr(C)]
-#[derive(Clone, Copy, Debug)]
-pub struct igaparam_relocate_options {
-    /// `IGAPARAM_TARGET_INITIAL` (default) or `IGAPARAM_TARGET_MASTER`.
-    pub target: igaparam_target,
-    /// `IGAPARAM_PLACEMENT_LAPLACIAN` (default), `IGAPARAM_PLACEMENT_CURRENT` or
-    /// `IGAPARAM_PLACEMENT_INCREMENTAL`.
-    pub placement: igaparam_placement,
-    /// Non-zero (default) runs the optimizer after the placement; 0 stops after the placement.
-    pub optimize: c_int,
-    /// Largest number of Gauss–Seidel sweeps (default 100 per step).
-    pub max_sweeps: u32,
-    /// Stop when the mesh is valid and no node moved more than this fraction of its local cell
-    /// size in a sweep (default 1e-3).
-    pub move_tolerance: f64,
-    /// A node's Newton iteration stops when the gradient of its objective times its local cell
-    /// size is below this (default 1e-3: nodes are revisited by the following sweeps, so an
-    /// inexact solve per sweep suffices).
-    pub gradient_tolerance: f64,
-    /// Largest number of Newton iterations per node and sweep (default 150).
-    pub max_newton_iterations: u32,
-    /// Over-relaxation of each node's move, in [1, 2) (default 1.8; 1 disables it). A relaxed
-    /// move is kept only if it lowers the node's objective and inverts nothing.
-    pub relaxation: f64,
-    /// Worker threads, at most 4096, capped to the machine's cores; 0 (default) uses one per
-    /// core. The result does not depend on it.
-    pub threads: u32,
-    /// When positive, the result is a stationary point of the one global objective
-    /// F = sum over cells of their mean distortion (regularisation 0, so F is infinite at a
-    /// fold): the report's `gradient_norm` is at most this (e.g. 1e-10), reached by Newton's
-    /// method with the sparse Hessian on a valid mesh; `igaparam_mesh_adjoint` and
-    /// `igaparam_mesh_tangent` then differentiate the result. 0 (default): no such guarantee
-    /// (the sweeps stop on their own rule, the Newton method at 1e-8).
-    pub stationarity_tolerance: f64,
-    /// `IGAPARAM_METHOD_AUTO` (default), `IGAPARAM_METHOD_SWEEPS` or `IGAPARAM_METHOD_NEWTON`.
-    pub method: igaparam_method,
-    /// Progress callback, or NULL (default).
-    pub progress: igaparam_progress_fn,
-    /// Passed to `progress` as its first argument.
-    pub progress_user: *mut c_void,
-}
-
-/// What `igaparam_mesh_relocate` did. Quality is the inverse mean distortion of a cell against its
-/// target over its Gauss–Lobatto points: 1 is the target shape, 0 an inverted cell.
-#[repr(C)]
-#[derive(Clone, Copy, Debug, Default)]
-pub struct igaparam_relocate_report {
-    /// Number of cells.
-    pub cells: usize,
-    /// Number of nodes.
-    pub nodes: usize,
-    /// Nodes with at least one free coordinate.
-    pub free_nodes: usize,
-    /// Cells with det J <= 0 at a Gauss–Lobatto point when the call started.
-    pub invalid_before: usize,
-    /// Invalid cells after the first placement.
-    pub invalid_after_placement: usize,
-    /// Invalid cells at the end.
-    pub invalid_after: usize,
-    /// Smallest cell quality at the end.
-    pub min_quality: f64,
-    /// Mean cell quality at the end.
-    pub mean_quality: f64,
-    /// Optimization sweeps performed (over all steps).
-    pub sweeps: u32,
-    /// Steps the prescribed motion was applied in (large motions are split so that no prescribed
-    /// node moves more than about one cell size per step).
-    pub steps: u32,
-    /// 1 when the sweeps met their stopping rule (valid mesh, small moves) and, when asked for,
-    /// the Newton stage its `stationarity_tolerance`; else 0.
-    pub converged: c_int,
-    /// Scaled max-norm of the gradient of F at the end: over the free coordinates,
-    /// |dF/dx| times the node's local cell size divided by its number of cells (the gradient of
-    /// the node's own objective times its size; dimensionless). Infinite for an invalid mesh.
-    pub gradient_norm: f64,
-    /// Newton iterations of the stationarity stage.
-    pub newton_iterations: u32,
-    /// Wall-clock seconds of the call.
-    pub seconds: f64,
-}
+use super::reports_gen::igaparam_relocate_report;
+use super::{igaparam_stage, igaparam_status};
+use crate::fe_mesh::{RelocateOptions, Stage};
 
 /// The default relocation options.
 #[no_mangle]
 pub extern "C" fn igaparam_relocate_options_default() -> igaparam_relocate_options {
-    let d = RelocateOptions::default();
-    igaparam_relocate_options {
-        target: IGAPARAM_TARGET_INITIAL,
-        placement: IGAPARAM_PLACEMENT_LAPLACIAN,
-        optimize: 1,
-        max_sweeps: d.max_sweeps,
-        move_tolerance: d.move_tolerance,
-        gradient_tolerance: d.gradient_tolerance,
-        max_newton_iterations: d.max_newton_iterations,
-        relaxation: d.relaxation,
-        threads: d.threads as u32,
-        stationarity_tolerance: d.stationarity_tolerance,
-        method: IGAPARAM_METHOD_AUTO,
-        progress: None,
-        progress_user: std::ptr::null_mut(),
-    }
-}
-
-pub(super) fn relocate_options(o: &igaparam_relocate_options) -> Result<RelocateOptions> {
-    let placement = match o.placement {
-        IGAPARAM_PLACEMENT_LAPLACIAN => Placement::Laplacian,
-        IGAPARAM_PLACEMENT_CURRENT => Placement::Current,
-        IGAPARAM_PLACEMENT_INCREMENTAL => Placement::Incremental,
-        p => {
-            return Err(Error::invalid(format!(
-                "placement {p} is not IGAPARAM_PLACEMENT_LAPLACIAN (0), IGAPARAM_PLACEMENT_CURRENT (1) or IGAPARAM_PLACEMENT_INCREMENTAL (2)"
-            )))
-        }
-    };
-    Ok(RelocateOptions {
-        target: target(o.target)?,
-        placement,
-        optimize: o.optimize != 0,
-        max_sweeps: o.max_sweeps,
-        move_tolerance: o.move_tolerance,
-        gradient_tolerance: o.gradient_tolerance,
-        max_newton_iterations: o.max_newton_iterations,
-        relaxation: o.relaxation,
-        threads: o.threads as usize,
-        stationarity_tolerance: o.stationarity_tolerance,
-        method: match o.method {
-            IGAPARAM_METHOD_AUTO => Method::Auto,
-            IGAPARAM_METHOD_SWEEPS => Method::Sweeps,
-            IGAPARAM_METHOD_NEWTON => Method::Newton,
-            m => {
-                return Err(Error::invalid(format!(
-                    "method {m} is not IGAPARAM_METHOD_AUTO (0), IGAPARAM_METHOD_SWEEPS (1) or IGAPARAM_METHOD_NEWTON (2)"
-                )))
-            }
-        },
-    })
+    igaparam_relocate_options::from(&RelocateOptions::default())
 }
 
 /// Relocates the free coordinates of the nodes so that every cell is valid and close to its
@@ -195,7 +36,7 @@ pub extern "C" fn igaparam_mesh_relocate(
     run("igaparam_mesh_relocate", || {
         let mut handle = with_mesh(mesh)?;
         let raw = options_or(options, igaparam_relocate_options_default());
-        let opts = relocate_options(&raw)?;
+        let opts = raw.to_core()?;
         let (handle, watch) = handle.split();
         let mut relocation = relocation_progress(&raw);
         let mut progress = |stage: Stage, done: usize, total: usize| {
@@ -205,7 +46,7 @@ pub extern "C" fn igaparam_mesh_relocate(
         let r = handle
             .relocate(&opts, &mut progress)
             .map_err(|e| watch.explain(e))?;
-        write_optional(report, report_of(&r));
+        write_optional(report, igaparam_relocate_report::from(&r));
         Ok(())
     })
 }
@@ -221,26 +62,6 @@ pub(super) fn relocation_progress(
             Stage::Stationarity => igaparam_stage::IGAPARAM_STAGE_STATIONARITY,
         };
         call_progress(raw.progress, raw.progress_user, stage, done, total)
-    }
-}
-
-/// The C form of a relocation's report.
-pub(super) fn report_of(r: &crate::fe_mesh::RelocateReport) -> igaparam_relocate_report {
-    igaparam_relocate_report {
-        cells: r.cells,
-        nodes: r.nodes,
-        free_nodes: r.free_nodes,
-        invalid_before: r.invalid_before,
-        invalid_after_placement: r.invalid_after_placement,
-        invalid_after: r.invalid_after,
-        min_quality: r.min_quality,
-        mean_quality: r.mean_quality,
-        sweeps: r.sweeps,
-        steps: r.steps,
-        converged: r.converged as c_int,
-        gradient_norm: r.gradient_norm,
-        newton_iterations: r.newton_iterations,
-        seconds: r.seconds,
     }
 }
 

@@ -7,47 +7,55 @@ use crate::optimize::{NodeSolverOptions, SweepOptions};
 /// Options of [`Domain::build`](super::Domain::build).
 #[derive(Clone, Copy, Debug)]
 pub struct DomainOptions {
-    /// Boundary tolerance, relative to the bounding box: a boundary facet of a cell is refined
-    /// while the triangle (2D: its end images and the image of its midpoint) or the four
-    /// tetrahedra (3D: consecutive corner images and the image of the face centre), measured in
-    /// coordinates that map the bounding box onto a unit box (see [`Frame`](super::Frame)), exceed
-    /// `tolerance × √d^d` (for a square or cube box: `tolerance × diagonal^d`).
+    // The coordinates of the tolerances and of `boundary_offset` are those of the `Frame`.
+    /// Boundary tolerance, positive: a boundary cell edge (planar domain) is refined while the
+    /// triangle formed by its end images and the image of its parametric midpoint, or a boundary
+    /// cell face (solid) while the four tetrahedra of consecutive corner images and the image of
+    /// its centre, measured in coordinates that map the bounding box onto the unit box, exceed
+    /// `tolerance × √d^d` (for a square or cube box: `tolerance × diagonal^d`; default 1e-5 for a
+    /// planar domain, 1e-3 for a solid).
     pub tolerance: f64,
-    /// Level of the initial uniform refinement.
+    /// Level of the initial uniform refinement (default 2).
     pub min_level: u8,
-    /// Deepest level of the adaptation.
+    /// Deepest level of the adaptation, at least `min_level` and at most 16 (default 9).
     pub max_level: u8,
-    /// Largest number of optimization sweeps of one stage (the first optimization, each step of
-    /// the growth from the bounding box, each round of the seam relief and of the repair).
+    /// Largest number of optimization sweeps of one stage (default 200): the first
+    /// optimization, each step of the growth from the bounding box, each round of the seam
+    /// relief and of the repair.
     pub max_sweeps: u32,
-    /// Largest number of sweeps of all stages together, at least 1 (default
+    /// Largest number of sweeps of all stages together, at least 1 (default 5,000,
     /// [`DEFAULT_MAX_TOTAL_SWEEPS`]): once spent, the running stage stops after its sweep and no
-    /// later stage starts; the T-mesh is what the sweeps so far made of it, and the report says
-    /// so ([`DomainReport::sweep_budget_exhausted`]).
+    /// later stage starts; the build succeeds with the T-mesh the sweeps reached, and the
+    /// report's [`sweep_budget_exhausted`](DomainReport::sweep_budget_exhausted) is set (check
+    /// `invalid_cells`). The bundled domains need at most about 4,100; inputs that fold at every
+    /// level stop here after seconds instead of running for minutes.
     pub max_total_sweeps: u32,
-    /// Worker threads; 0 uses one per core.
+    /// Worker threads, at most 4096, capped to the machine's cores; 0 (default) uses one per core.
     pub threads: usize,
-    /// Rounds of repair after the optimization: while cells stay invalid, they are refined (as
-    /// by [`Domain::refine_cells`](super::Domain::refine_cells), past `max_level` up to level 16) and the mesh re-optimized.
+    /// Rounds of repair after the optimization (default 6): while cells stay invalid, they are
+    /// refined (past `max_level`, up to level 16) and the mesh optimized again; 0 disables it.
     pub repair_rounds: u32,
-    /// Largest distance, in coordinates that map the bounding box onto a unit box (see
-    /// [`Frame`](super::Frame)), by which a boundary vertex may leave the boundary to open a cell that stays
-    /// folded with every boundary vertex on the boundary (the seam relief, `MARGIN` in
-    /// `domain/relief.rs`); 0 keeps every boundary vertex on the boundary. Default 1e-2: the
-    /// jagged terrain edge of the Jacksboro block needs offsets near it, the jittered duck faces
-    /// 1e-3 with a few more levels of refinement.
+    // The seam relief: `MARGIN` in `domain/relief.rs`.
+    /// Seam relief cap, finite and at least 0: the largest distance, in coordinates that map
+    /// the bounding box onto the unit box, by which a boundary vertex may leave the boundary to
+    /// open a cell that stays folded with every boundary vertex on it (default 1e-2: the jagged
+    /// terrain edge of the Jacksboro block needs offsets near it, the jittered duck faces 1e-3
+    /// with a few more levels of refinement); 0 keeps every boundary vertex on the boundary.
     pub boundary_offset: f64,
-    /// Largest number of cells of the T-mesh (default [`DEFAULT_MAX_CELLS`]): a build whose
-    /// uniform refinement to `min_level` would exceed it is refused before any work, and one
-    /// whose adaptation or repair exceeds it stops there, with [`ErrorKind::LimitExceeded`].
+    /// Largest number of cells of the T-mesh (default 1,000,000, [`DEFAULT_MAX_CELLS`]): a build
+    /// whose uniform refinement to `min_level` alone exceeds it (4^min_level cells for a planar
+    /// domain, 8^min_level for a solid) is refused before any work, one whose adaptation or
+    /// repair exceeds it stops there; both fail with `IGAPARAM_STATUS_LIMIT_EXCEEDED`
+    /// ([`ErrorKind::LimitExceeded`]). Raise it for finer T-meshes (time and memory grow with
+    /// the cells: minutes and about a gigabyte at the default in 2D, more for a solid).
     pub max_cells: usize,
-    /// The Newton polish after the sweeps: when positive and every cell is valid, the inner
-    /// vertices go to a stationary point of the global objective `F = Σ_cells η̄*_c` (δ = 0), to
-    /// this scaled max-norm of its gradient (1e-8 is typical: a few to a few tens of Newton
-    /// iterations); 0 (the default) keeps the sweeps' result. The stationary point depends on
-    /// the basin the sweeps end in, not on their round-off within it; it raises the mean cell
-    /// quality and may lower the smallest (the bundled planar domains: mean +3–11%, min −6% to
-    /// −51%), so it is off by default.
+    /// The Newton polish after the sweeps, finite and at least 0 (default 0: off): when
+    /// positive and every cell is valid, the inner vertices go to a stationary point of the
+    /// global objective (the sum of the cells' mean distortions, `F = Σ_cells η̄*_c` with
+    /// δ = 0) to this scaled max-norm of its gradient (1e-8 is typical: a few to a few tens of
+    /// Newton iterations). The stationary point depends on the basin the sweeps end in, not on
+    /// their round-off within it; it raises the mean cell quality and may lower the smallest
+    /// (the bundled planar domains: mean +3–11%, min −6% to −51%), so it is off by default.
     pub stationarity_tolerance: f64,
 }
 
@@ -150,16 +158,17 @@ pub struct DomainReport {
     pub cells: usize,
     /// Vertices of the T-mesh, hanging ones included.
     pub vertices: usize,
-    /// Deepest level.
+    /// Deepest level of a cell.
     pub max_level: u8,
-    /// Largest boundary error, relative (see [`DomainOptions::tolerance`]).
+    /// Largest boundary error, relative as [`tolerance`](DomainOptions::tolerance).
     pub boundary_error: f64,
     /// Largest distance of a boundary vertex from its point on the boundary, in coordinates
-    /// that map the bounding box onto a unit box (at most [`DomainOptions::boundary_offset`]).
+    /// that map the bounding box onto the unit box (at most the option
+    /// [`boundary_offset`](DomainOptions::boundary_offset); 0 when no seam relief was needed).
     pub boundary_offset: f64,
-    /// Invalid cells after the transfinite placement.
+    /// Invalid cells (`det J ≤ 0` somewhere) after the transfinite (Coons) placement.
     pub invalid_after_placement: usize,
-    /// Invalid cells after the optimization.
+    /// Invalid cells after the optimization; 0 for a usable parameterization.
     pub invalid_cells: usize,
     /// Smallest cell quality (1/mean distortion against the parametric cell).
     pub min_quality: f64,
@@ -169,18 +178,22 @@ pub struct DomainReport {
     /// repair).
     pub sweeps: u32,
     /// Whether the optimization stopped because it spent
-    /// [`DomainOptions::max_total_sweeps`]: the T-mesh is the state the sweeps reached, less
-    /// optimized (and possibly with more invalid cells) than a larger budget would give.
+    /// [`max_total_sweeps`](DomainOptions::max_total_sweeps) (1 in C, else 0): the T-mesh is the
+    /// state the sweeps reached, less optimized (and possibly with more invalid cells) than a
+    /// larger budget would give.
     pub sweep_budget_exhausted: bool,
     /// Repair rounds that refined invalid cells.
     pub repair_rounds: u32,
-    /// Newton iterations of the polish (0 when it is off or a cell stays invalid).
+    /// Newton iterations of the polish (`stationarity_tolerance > 0`; 0 when it is off or a
+    /// cell stays invalid).
     pub newton_iterations: u32,
-    /// Scaled max-norm of the global objective's gradient after the polish (at most
-    /// [`DomainOptions::stationarity_tolerance`] when it converged; `+∞` when a cell stays
-    /// invalid; 0 when the polish is off).
+    /// Scaled max-norm of the global objective's gradient after the polish: at most
+    /// [`stationarity_tolerance`](DomainOptions::stationarity_tolerance) when it converged (the
+    /// state the sensitivities of a fitted spline, `igaparam_spline_tangent` and
+    /// `igaparam_spline_adjoint`, differentiate), infinite when a cell stays invalid, 0 when the
+    /// polish is off.
     pub gradient_norm: f64,
-    /// Wall-clock seconds.
+    /// Wall-clock seconds of the call.
     pub seconds: f64,
     /// Wall-clock seconds of each stage.
     pub stages: StageSeconds,

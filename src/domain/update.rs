@@ -30,15 +30,16 @@ use crate::optimize::QualitySummary;
 /// boundary offset are those the domain was built with ([`Domain::options`]).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct UpdateOptions {
-    /// Largest number of optimization sweeps per step of the motion.
+    /// Largest number of optimization sweeps per step of the motion (default 200).
     pub max_sweeps: u32,
-    /// Worker threads; 0 uses one per core.
+    /// Worker threads, at most 4096, capped to the machine's cores; 0 (default) uses one per core.
     pub threads: usize,
-    /// Whether to refine where the boundary moved out of tolerance (boundary cells below the
-    /// build's `max_level` whose error exceeds the build's tolerance, until none does) and to
-    /// repair cells left folded as the build does. The tree, and with it the spline space of
-    /// the domain, then changes. Off by default: the tree is kept and the report only says
-    /// whether its tolerance still holds.
+    /// Whether to refine where the boundary moved out of tolerance. Off (false, 0 in C; the
+    /// default): keep the tree, and only report whether its tolerance still holds. On (true,
+    /// 1): refine the boundary cells whose error exceeds the build's tolerance (below its
+    /// `max_level`) until none does, and repair cells left folded as the build does; the
+    /// T-mesh, and with it the spline space of a fit, then changes (a spline fitted before can
+    /// no longer be refitted to it).
     pub refine: bool,
 }
 
@@ -55,23 +56,25 @@ impl Default for UpdateOptions {
 /// What [`Domain::update`] did.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct UpdateReport {
-    /// The T-mesh as [`Domain::build`] reports it: `invalid_after_placement` counts the cells
-    /// the harmonic placement (old positions plus the harmonic extension of the boundary
-    /// motion) leaves invalid, `boundary_error` is measured in the new boundary's own frame,
-    /// `sweeps`, `repair_rounds` and `seconds` are those of the update.
+    /// The T-mesh as a build reports it (`igaparam_domain_build`, [`Domain::build`] in Rust):
+    /// `invalid_after_placement` counts
+    /// the cells the harmonic placement (old positions plus the harmonic extension of the
+    /// boundary motion) left invalid, `boundary_error` is measured in the new boundary's own
+    /// bounding box (as a build would), `sweeps` and `seconds` are those of the update.
     pub domain: DomainReport,
-    /// Whether the tree still meets the build's tolerance: no boundary cell below the build's
-    /// `max_level` has a boundary error above it (the adaptation of a build would refine none).
+    /// Whether the tree still meets the build's tolerance (1 in C, else 0): no boundary cell
+    /// below the build's `max_level` has an error above it (a build's adaptation would refine
+    /// none).
     pub tolerance_met: bool,
-    /// Boundary cells below the build's `max_level` whose error exceeds the tolerance (after
-    /// the refinement when [`UpdateOptions::refine`] is set).
+    /// Boundary cells below the build's `max_level` whose error exceeds its tolerance (after
+    /// the refinement when the option [`refine`](UpdateOptions::refine) is set).
     pub cells_over_tolerance: usize,
-    /// Cells refined (0 unless [`UpdateOptions::refine`] is set).
+    /// Cells added by refinement (0 unless the option [`refine`](UpdateOptions::refine) is set).
     pub refined_cells: usize,
-    /// Largest move of a boundary vertex, in the coordinates of the build's frame (its bounding
-    /// box mapped onto a unit box).
+    /// Largest move of a boundary vertex, in coordinates that map the build's bounding box onto
+    /// the unit box.
     pub boundary_motion: f64,
-    /// Steps the motion was applied in.
+    /// Steps the motion was applied in (a motion of more than about four cell sizes is split).
     pub steps: u32,
 }
 

@@ -60,29 +60,37 @@ pub struct RelocateOptions {
     pub target: TargetKind,
     /// The first placement of the free nodes.
     pub placement: Placement,
-    /// Run the optimizer after the placement (false: placement only).
+    /// Whether the optimizer runs after the placement (default: true, non-zero in C); false
+    /// (0) stops after the placement.
     pub optimize: bool,
-    /// Largest number of Gauss–Seidel sweeps.
+    /// Largest number of Gauss–Seidel sweeps (default 100 per step).
     pub max_sweeps: u32,
-    /// Stop when the mesh is valid and no node moved more than this fraction of its local size.
+    /// Stop when the mesh is valid and no node moved more than this fraction of its local cell
+    /// size in a sweep (default 1e-3).
     pub move_tolerance: f64,
-    /// Per-node Newton stops when the gradient times the local size is below this. Every node
-    /// is revisited by the following sweeps, so an inexact solve (10⁻³, the default) reaches the
-    /// same meshes in less time than the tight 6·10⁻⁶ of a one-pass optimizer.
+    /// A node's Newton iteration stops when the gradient of its objective times its local cell
+    /// size is below this (default 1e-3: nodes are revisited by the following sweeps, so an
+    /// inexact solve per sweep suffices, and reaches the same meshes in less time than the tight
+    /// 6·10⁻⁶ of a one-pass optimizer).
     pub gradient_tolerance: f64,
-    /// Largest number of Newton iterations per node and sweep.
+    /// Largest number of Newton iterations per node and sweep (default 150).
     pub max_newton_iterations: u32,
-    /// Over-relaxation of each node's move, in [1, 2): speeds up smoothing; a relaxed move is
-    /// kept only if it lowers the node's objective and inverts nothing.
+    /// Over-relaxation of each node's move, in [1, 2) (default 1.8; 1 disables it): speeds up
+    /// smoothing. A relaxed move is kept only if it lowers the node's objective and inverts
+    /// nothing.
     pub relaxation: f64,
-    /// Worker threads; 0 uses one per core. The result does not depend on it.
+    /// Worker threads, at most 4096, capped to the machine's cores; 0 (default) uses one per
+    /// core. The result does not depend on it.
     pub threads: usize,
-    /// When positive, the result is a stationary point of the global objective
-    /// `F = Σ_cells η̄*_c` (δ = 0): the scaled max-norm of its gradient
-    /// (`RelocateReport::gradient_norm`) is at most this, reached by Newton's method on a valid
-    /// mesh, and the sensitivities ([`Mesh::adjoint`], [`Mesh::tangent`]) exist. 0 (the
-    /// default): no such guarantee; `Sweeps` stop on their own rule, `Newton` at
-    /// [`DEFAULT_NEWTON_TOLERANCE`].
+    /// When positive, the result is a stationary point of the one global objective F, the sum
+    /// over cells of their mean distortion η̄*_c (regularisation δ = 0, so F is infinite at a
+    /// fold): the report's
+    /// [`gradient_norm`](RelocateReport::gradient_norm) is at most this (e.g. 1e-10), reached by
+    /// Newton's method with the sparse Hessian on a valid mesh; the sensitivities
+    /// (`igaparam_mesh_adjoint` and `igaparam_mesh_tangent`, [`Mesh::adjoint`] and
+    /// [`Mesh::tangent`] in Rust) then differentiate the result. 0 (default): no such guarantee
+    /// (the sweeps stop on their own rule, the Newton method at 1e-8,
+    /// [`DEFAULT_NEWTON_TOLERANCE`]).
     pub stationarity_tolerance: f64,
     /// How the optimum is reached.
     pub method: Method,
@@ -159,7 +167,7 @@ pub struct RelocateReport {
     pub cells: usize,
     /// Number of nodes.
     pub nodes: usize,
-    /// Nodes with at least one free component.
+    /// Nodes with at least one free coordinate.
     pub free_nodes: usize,
     /// Cells with `det J ≤ 0` at a Gauss–Lobatto point when the call started.
     pub invalid_before: usize,
@@ -173,18 +181,20 @@ pub struct RelocateReport {
     pub mean_quality: f64,
     /// Optimization sweeps performed (over all steps).
     pub sweeps: u32,
-    /// Steps the prescribed motion was applied in.
+    /// Steps the prescribed motion was applied in (large motions are split so that no prescribed
+    /// node moves more than about one cell size per step).
     pub steps: u32,
     /// Whether the sweeps met their stopping rule (valid mesh, small moves) and, when asked for,
-    /// the Newton stage its tolerance.
+    /// the Newton stage its `stationarity_tolerance` (1 in C, else 0).
     pub converged: bool,
-    /// Scaled max-norm of the global objective's gradient at the end: per free coordinate,
-    /// `|∂F/∂x| · L / W` (L the node's local length, W the number of its cells), the gradient
-    /// of the node's own objective times its length; `+∞` for an invalid mesh.
+    /// Scaled max-norm of the gradient of the global objective F at the end: over the free
+    /// coordinates, |∂F/∂x| times the node's local cell size divided by its number of cells
+    /// (the gradient of the node's own objective times its size; dimensionless). Infinite for
+    /// an invalid mesh.
     pub gradient_norm: f64,
     /// Newton iterations of the stationarity stage.
     pub newton_iterations: u32,
-    /// Wall-clock seconds.
+    /// Wall-clock seconds of the call.
     pub seconds: f64,
 }
 

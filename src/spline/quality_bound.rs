@@ -22,14 +22,15 @@ use crate::error::{Error, Result};
 /// Options of [`SplineMap::quality_bound`].
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct QualityBoundOptions {
-    /// Largest number of subdivisions of an element (each halves every direction), at most 6
-    /// (4^6 pieces of an element in 2D where the bound stays loose); solids use at most
-    /// [`MAX_SOLID_DEPTH`] (8^3 pieces), which bounds the work on any map.
+    /// Largest number of subdivisions of an element where the bound is loose (each halves
+    /// every direction; default 5, at most 6: 4^6 pieces of an element in 2D); solids use at
+    /// most [`MAX_SOLID_DEPTH`] (3: 8^3 pieces per element), which bounds the work on any map.
     pub max_depth: u32,
-    /// Sample points per direction and element (at least 2) for the sampled minimum.
+    /// Sample points per direction and element for the sampled minimum (default 5, from 2
+    /// to 64).
     pub samples: usize,
-    /// Relative gap in [0, 1): a piece is not subdivided once its bound is within this fraction
-    /// of the map's sampled minimum.
+    /// Relative gap in [0, 1) (default 0.05): a piece is not subdivided once its bound is
+    /// within this fraction of the map's sampled minimum.
     pub gap: f64,
 }
 
@@ -74,12 +75,12 @@ impl QualityBoundOptions {
 /// What [`SplineMap::quality_bound`] found.
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct QualityBound {
-    /// Certified lower bound of the mean ratio over the whole map (0 where `det J > 0` is not
-    /// proven).
+    /// Certified lower bound of the mean ratio `q_S = d·det(J)^(2/d)/‖J‖²` over the whole map
+    /// (0 when `det J_S > 0` is not proven somewhere).
     pub lower_bound: f64,
-    /// Smallest mean ratio at the samples: an upper bound of the true minimum.
+    /// Smallest mean ratio at the samples (an upper bound of the true minimum).
     pub sampled_min: f64,
-    /// The element of the smallest bound.
+    /// The element of the smallest bound (index into the map's elements).
     pub element: usize,
     /// Lower bound per element.
     pub elements: Vec<f64>,

@@ -22,10 +22,12 @@ pub(crate) const HISTOGRAM_BINS: usize = 10;
 /// Options of [`SplineMap::validity`].
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct ValidityOptions {
-    /// Largest number of subdivisions of an element's determinant (each halves every
-    /// direction).
+    /// Largest number of subdivisions of an element's Jacobian determinant polynomial when its
+    /// Bernstein coefficients are inconclusive (each halves every direction; default 5, at
+    /// most 12).
     pub max_depth: u32,
-    /// Sample points per direction and element for the quality (and the sampled determinant).
+    /// Sample points per direction and element for the mean ratio and the sampled determinant
+    /// (default 5, from 2 to 64).
     pub samples: usize,
 }
 

@@ -175,38 +175,42 @@ class DomainOptions(ctypes.Structure):
     max_level:
         Deepest level of the adaptation, at least `min_level` and at most 16 (default 9).
     max_sweeps:
-        Largest number of optimization sweeps of one stage (default 200): the first
-        optimization, each step of the growth from the bounding box, each round of the seam
-        relief and of the repair.
+        Largest number of optimization sweeps of one stage (default 200): the first optimization,
+        each step of the growth from the bounding box, each round of the seam relief and of the
+        repair.
     max_total_sweeps:
         Largest number of sweeps of all stages together, at least 1 (default 5,000,
-        `IGAPARAM_DEFAULT_MAX_TOTAL_SWEEPS`): once spent, the running stage stops after its
-        sweep and no later stage starts; the build succeeds with the T-mesh the sweeps reached,
-        and the report's `sweep_budget_exhausted` is 1 (check `invalid_cells`). The bundled
-        domains need at most about 4,100; inputs that fold at every level stop here after
-        seconds instead of running for minutes.
+        `IGAPARAM_DEFAULT_MAX_TOTAL_SWEEPS`): once spent, the running stage stops after its sweep
+        and no later stage starts; the build succeeds with the T-mesh the sweeps reached, and the
+        report's `sweep_budget_exhausted` is set (check `invalid_cells`). The bundled domains need
+        at most about 4,100; inputs that fold at every level stop here after seconds instead of
+        running for minutes.
     threads:
         Worker threads, at most 4096, capped to the machine's cores; 0 (default) uses one per core.
     repair_rounds:
         Rounds of repair after the optimization (default 6): while cells stay invalid, they are
         refined (past `max_level`, up to level 16) and the mesh optimized again; 0 disables it.
     boundary_offset:
-        Seam relief cap, finite and at least 0: the largest distance, in coordinates that map
-        the bounding box onto the unit box, by which a boundary vertex may leave the boundary to
-        open a cell that stays folded with every boundary vertex on it (default 1e-2); 0 keeps
-        every boundary vertex on the boundary.
+        Seam relief cap, finite and at least 0: the largest distance, in coordinates that map the
+        bounding box onto the unit box, by which a boundary vertex may leave the boundary to open a
+        cell that stays folded with every boundary vertex on it (default 1e-2: the jagged terrain
+        edge of the Jacksboro block needs offsets near it, the jittered duck faces 1e-3 with a few
+        more levels of refinement); 0 keeps every boundary vertex on the boundary.
     max_cells:
-        Largest number of cells of the T-mesh (default 1,000,000): a build whose uniform
-        refinement to `min_level` alone exceeds it (4^min_level cells for a planar domain,
-        8^min_level for a solid) is refused before any work, one whose adaptation or repair
-        exceeds it stops there; both with `IGAPARAM_STATUS_LIMIT_EXCEEDED`. Raise it for finer
-        T-meshes (time and memory grow with the cells: minutes and about a gigabyte at the
-        default in 2D, more for a solid).
+        Largest number of cells of the T-mesh (default 1,000,000, `IGAPARAM_DEFAULT_MAX_CELLS`): a
+        build whose uniform refinement to `min_level` alone exceeds it (4^min_level cells for a
+        planar domain, 8^min_level for a solid) is refused before any work, one whose adaptation or
+        repair exceeds it stops there; both fail with `IGAPARAM_STATUS_LIMIT_EXCEEDED`
+        (`ErrorKind::LimitExceeded`). Raise it for finer T-meshes (time and memory grow with the
+        cells: minutes and about a gigabyte at the default in 2D, more for a solid).
     stationarity_tolerance:
-        The Newton polish after the sweeps, finite and at least 0 (default 0: off): when
-        positive and every cell is valid, the inner vertices go to a stationary point of the
-        global objective (the sum of the cells' mean distortions) to this scaled max-norm of its
-        gradient (1e-8 is typical). It raises the mean cell quality and may lower the smallest.
+        The Newton polish after the sweeps, finite and at least 0 (default 0: off): when positive
+        and every cell is valid, the inner vertices go to a stationary point of the global objective
+        (the sum of the cells' mean distortions, `F = Σ_cells η̄*_c` with δ = 0) to this scaled
+        max-norm of its gradient (1e-8 is typical: a few to a few tens of Newton iterations). The
+        stationary point depends on the basin the sweeps end in, not on their round-off within it;
+        it raises the mean cell quality and may lower the smallest (the bundled planar domains: mean
+        +3–11%, min −6% to −51%), so it is off by default.
     progress:
         Progress callback, or NULL (default). Called with `IGAPARAM_STAGE_OPTIMIZATION`, `done`
         sweeps so far and `total` 0, also between the rounds of the adaptation of the tree (with
@@ -248,29 +252,32 @@ class DomainReport(ctypes.Structure):
     boundary_error:
         Largest boundary error, relative as `tolerance`.
     boundary_offset:
-        Largest distance of a boundary vertex from its point on the boundary, in the coordinates
-        of `boundary_offset` (at most the option; 0 when no seam relief was needed).
+        Largest distance of a boundary vertex from its point on the boundary, in coordinates that
+        map the bounding box onto the unit box (at most the option `boundary_offset`; 0 when no seam
+        relief was needed).
     invalid_after_placement:
-        Invalid cells (det J <= 0 somewhere) after the transfinite (Coons) placement.
+        Invalid cells (`det J ≤ 0` somewhere) after the transfinite (Coons) placement.
     invalid_cells:
         Invalid cells after the optimization; 0 for a usable parameterization.
     min_quality:
-        Smallest cell quality.
+        Smallest cell quality (1/mean distortion against the parametric cell).
     mean_quality:
         Mean cell quality.
     sweeps:
-        Optimization sweeps performed.
+        Optimization sweeps (with those of the fallback growth from the bounding box and of the
+        repair).
     sweep_budget_exhausted:
-        1 if the optimization stopped because it spent `max_total_sweeps` (the T-mesh is the
-        state the sweeps reached: less optimized, possibly with invalid cells), else 0.
+        Whether the optimization stopped because it spent `max_total_sweeps` (1 in C, else 0): the
+        T-mesh is the state the sweeps reached, less optimized (and possibly with more invalid
+        cells) than a larger budget would give.
     newton_iterations:
-        Newton iterations of the polish (`stationarity_tolerance > 0`; 0 when it is off or a
-        cell stays invalid).
+        Newton iterations of the polish (`stationarity_tolerance > 0`; 0 when it is off or a cell
+        stays invalid).
     gradient_norm:
         Scaled max-norm of the global objective's gradient after the polish: at most
-        `stationarity_tolerance` when it converged (the state `igaparam_spline_tangent` and
-        `igaparam_spline_adjoint` differentiate), infinite when a cell stays invalid, 0 when the
-        polish is off.
+        `stationarity_tolerance` when it converged (the state the sensitivities of a fitted spline,
+        `igaparam_spline_tangent` and `igaparam_spline_adjoint`, differentiate), infinite when a
+        cell stays invalid, 0 when the polish is off.
     seconds:
         Wall-clock seconds of the call.
     """
@@ -386,11 +393,12 @@ class DomainUpdateOptions(ctypes.Structure):
     threads:
         Worker threads, at most 4096, capped to the machine's cores; 0 (default) uses one per core.
     refine:
-        0 (default): keep the tree, and only report whether its tolerance still holds. 1: refine
-        the boundary cells whose error exceeds the build's tolerance (below its `max_level`)
-        until none does, and repair cells left folded as the build does; the T-mesh, and with
-        it the spline space of a fit, then changes (a spline fitted before can no longer be
-        refitted to it).
+        Whether to refine where the boundary moved out of tolerance. Off (false, 0 in C; the
+        default): keep the tree, and only report whether its tolerance still holds. On (true, 1):
+        refine the boundary cells whose error exceeds the build's tolerance (below its `max_level`)
+        until none does, and repair cells left folded as the build does; the T-mesh, and with it the
+        spline space of a fit, then changes (a spline fitted before can no longer be refitted to
+        it).
     progress:
         Progress callback, or NULL (default). Called with `IGAPARAM_STAGE_OPTIMIZATION`, `done`
         sweeps so far and `total` 0; returning non-zero cancels the update.
@@ -415,20 +423,22 @@ class DomainUpdateReport(ctypes.Structure):
     Fields:
 
     domain:
-        The T-mesh as `igaparam_domain_build` reports it: `invalid_after_placement` counts the
-        cells the harmonic placement (old positions plus the harmonic extension of the boundary
-        motion) left invalid, `boundary_error` is measured in the new boundary's own bounding
-        box (as a build would), `sweeps` and `seconds` are those of the update.
+        The T-mesh as a build reports it (`igaparam_domain_build`, `Domain::build` in Rust):
+        `invalid_after_placement` counts the cells the harmonic placement (old positions plus the
+        harmonic extension of the boundary motion) left invalid, `boundary_error` is measured in the
+        new boundary's own bounding box (as a build would), `sweeps` and `seconds` are those of the
+        update.
     tolerance_met:
-        1 when the tree still meets the build's tolerance (no boundary cell below the build's
-        `max_level` has an error above it: a build's adaptation would refine none), else 0.
+        Whether the tree still meets the build's tolerance (1 in C, else 0): no boundary cell below
+        the build's `max_level` has an error above it (a build's adaptation would refine none).
     cells_over_tolerance:
-        Boundary cells below the build's `max_level` whose error exceeds its tolerance.
+        Boundary cells below the build's `max_level` whose error exceeds its tolerance (after the
+        refinement when the option `refine` is set).
     refined_cells:
-        Cells added by refinement (0 unless `refine` was set).
+        Cells added by refinement (0 unless the option `refine` is set).
     boundary_motion:
-        Largest move of a boundary vertex, in coordinates that map the build's bounding box onto
-        the unit box.
+        Largest move of a boundary vertex, in coordinates that map the build's bounding box onto the
+        unit box.
     steps:
         Steps the motion was applied in (a motion of more than about four cell sizes is split).
     """
@@ -523,38 +533,44 @@ class RelocateOptions(ctypes.Structure):
     Fields:
 
     target:
-        `IGAPARAM_TARGET_INITIAL` (default) or `IGAPARAM_TARGET_MASTER`.
+        The ideal shape of each cell. Either `IGAPARAM_TARGET_INITIAL` (default) or
+        `IGAPARAM_TARGET_MASTER`.
     placement:
-        `IGAPARAM_PLACEMENT_LAPLACIAN` (default), `IGAPARAM_PLACEMENT_CURRENT` or
-        `IGAPARAM_PLACEMENT_INCREMENTAL`.
+        The first placement of the free nodes. One of `IGAPARAM_PLACEMENT_LAPLACIAN` (default),
+        `IGAPARAM_PLACEMENT_CURRENT` or `IGAPARAM_PLACEMENT_INCREMENTAL`.
     optimize:
-        Non-zero (default) runs the optimizer after the placement; 0 stops after the placement.
+        Whether the optimizer runs after the placement (default: true, non-zero in C); false (0)
+        stops after the placement.
     max_sweeps:
         Largest number of Gauss–Seidel sweeps (default 100 per step).
     move_tolerance:
-        Stop when the mesh is valid and no node moved more than this fraction of its local cell
-        size in a sweep (default 1e-3).
+        Stop when the mesh is valid and no node moved more than this fraction of its local cell size
+        in a sweep (default 1e-3).
     gradient_tolerance:
-        A node's Newton iteration stops when the gradient of its objective times its local cell
-        size is below this (default 1e-3: nodes are revisited by the following sweeps, so an
-        inexact solve per sweep suffices).
+        A node's Newton iteration stops when the gradient of its objective times its local cell size
+        is below this (default 1e-3: nodes are revisited by the following sweeps, so an inexact
+        solve per sweep suffices, and reaches the same meshes in less time than the tight 6·10⁻⁶ of
+        a one-pass optimizer).
     max_newton_iterations:
         Largest number of Newton iterations per node and sweep (default 150).
     relaxation:
-        Over-relaxation of each node's move, in [1, 2) (default 1.8; 1 disables it). A relaxed
-        move is kept only if it lowers the node's objective and inverts nothing.
+        Over-relaxation of each node's move, in [1, 2) (default 1.8; 1 disables it): speeds up
+        smoothing. A relaxed move is kept only if it lowers the node's objective and inverts
+        nothing.
     threads:
-        Worker threads, at most 4096, capped to the machine's cores; 0 (default) uses one per
-        core. The result does not depend on it.
+        Worker threads, at most 4096, capped to the machine's cores; 0 (default) uses one per core.
+        The result does not depend on it.
     stationarity_tolerance:
-        When positive, the result is a stationary point of the one global objective
-        F = sum over cells of their mean distortion (regularisation 0, so F is infinite at a
-        fold): the report's `gradient_norm` is at most this (e.g. 1e-10), reached by Newton's
-        method with the sparse Hessian on a valid mesh; `igaparam_mesh_adjoint` and
-        `igaparam_mesh_tangent` then differentiate the result. 0 (default): no such guarantee
-        (the sweeps stop on their own rule, the Newton method at 1e-8).
+        When positive, the result is a stationary point of the one global objective F, the sum over
+        cells of their mean distortion η̄*_c (regularisation δ = 0, so F is infinite at a fold): the
+        report's `gradient_norm` is at most this (e.g. 1e-10), reached by Newton's method with the
+        sparse Hessian on a valid mesh; the sensitivities (`igaparam_mesh_adjoint` and
+        `igaparam_mesh_tangent`, `Mesh::adjoint` and `Mesh::tangent` in Rust) then differentiate the
+        result. 0 (default): no such guarantee (the sweeps stop on their own rule, the Newton method
+        at 1e-8, `IGAPARAM_DEFAULT_NEWTON_TOLERANCE`).
     method:
-        `IGAPARAM_METHOD_AUTO` (default), `IGAPARAM_METHOD_SWEEPS` or `IGAPARAM_METHOD_NEWTON`.
+        How the optimum is reached. One of `IGAPARAM_METHOD_AUTO` (default),
+        `IGAPARAM_METHOD_SWEEPS` or `IGAPARAM_METHOD_NEWTON`.
     progress:
         Progress callback, or NULL (default).
     progress_user:
@@ -593,13 +609,13 @@ class RelocateReport(ctypes.Structure):
     free_nodes:
         Nodes with at least one free coordinate.
     invalid_before:
-        Cells with det J <= 0 at a Gauss–Lobatto point when the call started.
+        Cells with `det J ≤ 0` at a Gauss–Lobatto point when the call started.
     invalid_after_placement:
         Invalid cells after the first placement.
     invalid_after:
         Invalid cells at the end.
     min_quality:
-        Smallest cell quality at the end.
+        Smallest cell quality at the end (against the target; 0 for an invalid cell).
     mean_quality:
         Mean cell quality at the end.
     sweeps:
@@ -608,12 +624,13 @@ class RelocateReport(ctypes.Structure):
         Steps the prescribed motion was applied in (large motions are split so that no prescribed
         node moves more than about one cell size per step).
     converged:
-        1 when the sweeps met their stopping rule (valid mesh, small moves) and, when asked for,
-        the Newton stage its `stationarity_tolerance`; else 0.
+        Whether the sweeps met their stopping rule (valid mesh, small moves) and, when asked for,
+        the Newton stage its `stationarity_tolerance` (1 in C, else 0).
     gradient_norm:
-        Scaled max-norm of the gradient of F at the end: over the free coordinates,
-        |dF/dx| times the node's local cell size divided by its number of cells (the gradient of
-        the node's own objective times its size; dimensionless). Infinite for an invalid mesh.
+        Scaled max-norm of the gradient of the global objective F at the end: over the free
+        coordinates, |∂F/∂x| times the node's local cell size divided by its number of cells (the
+        gradient of the node's own objective times its size; dimensionless). Infinite for an invalid
+        mesh.
     newton_iterations:
         Newton iterations of the stationarity stage.
     seconds:
@@ -810,9 +827,11 @@ class ValidityOptions(ctypes.Structure):
 
     max_depth:
         Largest number of subdivisions of an element's Jacobian determinant polynomial when its
-        Bernstein coefficients are inconclusive (default 5, at most 12).
+        Bernstein coefficients are inconclusive (each halves every direction; default 5, at most
+        12).
     samples:
-        Sample points per direction and element for the mean ratio (default 5, from 2 to 64).
+        Sample points per direction and element for the mean ratio and the sampled determinant
+        (default 5, from 2 to 64).
     """
 
     _fields_ = [
@@ -882,14 +901,15 @@ class QualityBoundOptions(ctypes.Structure):
     Fields:
 
     max_depth:
-        Largest number of subdivisions of an element where the bound is loose (each halves
-        every direction; default 5, at most 6; solids use at most 3, 8^3 pieces per element).
+        Largest number of subdivisions of an element where the bound is loose (each halves every
+        direction; default 5, at most 6: 4^6 pieces of an element in 2D); solids use at most
+        `IGAPARAM_QUALITY_BOUND_MAX_SOLID_DEPTH` (3: 8^3 pieces per element), which bounds the work
+        on any map.
     samples:
-        Sample points per direction and element for the sampled minimum (default 5, from 2
-        to 64).
+        Sample points per direction and element for the sampled minimum (default 5, from 2 to 64).
     gap:
-        Relative gap in [0, 1) (default 0.05): a piece is not subdivided once its bound is
-        within this fraction of the map's sampled minimum.
+        Relative gap in [0, 1) (default 0.05): a piece is not subdivided once its bound is within
+        this fraction of the map's sampled minimum.
     """
 
     _fields_ = [
@@ -908,8 +928,8 @@ class QualityBoundReport(ctypes.Structure):
     Fields:
 
     lower_bound:
-        Certified lower bound of the mean ratio `q_S = d·det(J)^(2/d)/‖J‖²` over the whole map
-        (0 when `det J_S > 0` is not proven somewhere).
+        Certified lower bound of the mean ratio `q_S = d·det(J)^(2/d)/‖J‖²` over the whole map (0
+        when `det J_S > 0` is not proven somewhere).
     sampled_min:
         Smallest mean ratio at the samples (an upper bound of the true minimum).
     element:

@@ -1,32 +1,24 @@
 //! The fit with options: `igaparam_spline_fit_domain_with` (rule, certification, untangling,
 //! smoothing, threads, progress and cancellation).
 
-use std::ffi::{c_int, c_void};
+use std::ffi::c_void;
 
-use super::{fit_report, igaparam_fit_report, igaparam_spline, igaparam_validity_options};
-use super::{new_recorded_handle, validity_options, AnyMap};
+use super::{fit_report, igaparam_fit_report, igaparam_spline};
+use super::{new_recorded_handle, AnyMap};
 use crate::capi::domain::{current, igaparam_domain, Built};
 use crate::capi::ffi::{non_null_mut, options_or, run, write_optional, Failure};
+use crate::capi::options_gen::{c_fit_choice, fit_choice};
 use crate::capi::progress::call_progress;
-use crate::capi::{igaparam_progress_fn, igaparam_stage, igaparam_status};
+use crate::capi::{
+    igaparam_fit_choice, igaparam_progress_fn, igaparam_stage, igaparam_status,
+    igaparam_validity_options,
+};
 use crate::domain::{CubeMap, Domain};
-use crate::error::{Error, Result};
+use crate::error::Result;
 use crate::spline::{
     FitChoice, FitOptions, FitProgress, FitRecord, FitReport, FitStage, SplineMap, UntangleOptions,
     ValidityReport,
 };
-
-/// Which fit rule `igaparam_spline_fit_domain_with` uses: one of the `IGAPARAM_FIT_CHOICE_*`
-/// values.
-pub type igaparam_fit_choice = c_int;
-/// Interpolation at the Greville points (least squares when that system is singular or badly
-/// conditioned) and, unless that map is certified valid, the local quasi-interpolant too; the
-/// better of the two is kept (what `igaparam_spline_fit_domain` does).
-pub const IGAPARAM_FIT_CHOICE_BEST: igaparam_fit_choice = 0;
-/// Interpolation at the Greville points only (least squares when singular).
-pub const IGAPARAM_FIT_CHOICE_INTERPOLATION: igaparam_fit_choice = 1;
-/// The local quasi-interpolant only.
-pub const IGAPARAM_FIT_CHOICE_QUASI_INTERPOLATION: igaparam_fit_choice = 2;
 
 /// Options of `igaparam_spline_fit_domain_with`; get the defaults (those of
 /// `igaparam_spline_fit_domain`) from `igaparam_fit_options_default`.
@@ -69,7 +61,7 @@ pub struct igaparam_fit_options {
 pub extern "C" fn igaparam_fit_options_default() -> igaparam_fit_options {
     let u = UntangleOptions::default();
     igaparam_fit_options {
-        choice: IGAPARAM_FIT_CHOICE_BEST,
+        choice: c_fit_choice(FitChoice::default()),
         validity: super::igaparam_validity_options_default(),
         untangle_rounds: u.rounds,
         untangle_sweeps: u.sweeps,
@@ -84,17 +76,8 @@ pub extern "C" fn igaparam_fit_options_default() -> igaparam_fit_options {
 /// The core options of `raw` for a domain built with `boundary_offset`.
 fn fit_options(raw: &igaparam_fit_options, boundary_offset: f64) -> Result<FitOptions> {
     let options = FitOptions {
-        choice: match raw.choice {
-            IGAPARAM_FIT_CHOICE_BEST => FitChoice::Best,
-            IGAPARAM_FIT_CHOICE_INTERPOLATION => FitChoice::Interpolation,
-            IGAPARAM_FIT_CHOICE_QUASI_INTERPOLATION => FitChoice::QuasiInterpolation,
-            other => {
-                return Err(Error::invalid(format!(
-                    "choice = {other} is not a fit choice"
-                )))
-            }
-        },
-        validity: validity_options(&raw.validity),
+        choice: fit_choice(raw.choice)?,
+        validity: raw.validity.to_core()?,
         untangle: UntangleOptions {
             rounds: raw.untangle_rounds,
             sweeps: raw.untangle_sweeps,

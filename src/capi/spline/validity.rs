@@ -1,22 +1,10 @@
-//! Certified validity of a spline map from C: `igaparam_spline_check_validity`, its options and
-//! its report.
+//! Certified validity of a spline map from C: `igaparam_spline_check_validity`, its default
+//! options (the struct is generated from the core's in `options_gen.rs`) and its report.
 
 use super::{held, igaparam_spline};
 use crate::capi::ffi::{check_capacity, non_null_mut, options_or, run, slice_mut};
-use crate::capi::igaparam_status;
+use crate::capi::{igaparam_status, igaparam_validity_options};
 use crate::spline::{ValidityOptions, HISTOGRAM_BINS};
-
-/// Options of `igaparam_spline_check_validity`; get the defaults from
-/// `igaparam_validity_options_default`.
-#[repr(C)]
-#[derive(Clone, Copy, Debug)]
-pub struct igaparam_validity_options {
-    /// Largest number of subdivisions of an element's Jacobian determinant polynomial when its
-    /// Bernstein coefficients are inconclusive (default 5, at most 12).
-    pub max_depth: u32,
-    /// Sample points per direction and element for the mean ratio (default 5, from 2 to 64).
-    pub samples: u32,
-}
 
 /// Number of bins of the quality histogram of `igaparam_validity_report`.
 pub const IGAPARAM_HISTOGRAM_BINS: usize = 10;
@@ -45,20 +33,7 @@ pub struct igaparam_validity_report {
 /// The default validity options.
 #[no_mangle]
 pub extern "C" fn igaparam_validity_options_default() -> igaparam_validity_options {
-    let d = ValidityOptions::default();
-    igaparam_validity_options {
-        max_depth: d.max_depth,
-        samples: d.samples as u32,
-    }
-}
-
-/// The core's options of C options `raw` (a conversion; [`ValidityOptions::validate`] checks the
-/// ranges).
-pub(super) fn validity_options(raw: &igaparam_validity_options) -> ValidityOptions {
-    ValidityOptions {
-        max_depth: raw.max_depth,
-        samples: raw.samples as usize,
-    }
+    igaparam_validity_options::from(&ValidityOptions::default())
 }
 
 /// Certifies the sign of the Jacobian determinant on every element (lower bounds from the
@@ -82,7 +57,7 @@ pub extern "C" fn igaparam_spline_check_validity(
 ) -> igaparam_status {
     run("igaparam_spline_check_validity", || {
         let s = held(spline)?;
-        let opts = validity_options(&options_or(options, igaparam_validity_options_default()));
+        let opts = options_or(options, igaparam_validity_options_default()).to_core()?;
         opts.validate()?;
         let out = non_null_mut(report, "report")?;
         // The validity the fit computed, when it used the same options; else compute it.

@@ -1,0 +1,538 @@
+//! The generator of `src/capi/options_gen.rs` and `src/capi/reports_gen.rs`, the C mirrors of
+//! the core option and report structs: their fields (names, types, order), their doc comments
+//! and the conversions, read from the core structs' sources with `syn`. It depends on `syn`
+//! only, not on the crate, so that it runs when a changed core struct has made the checked-in
+//! mirrors fail to compile (`tools/c_structs/main.rs`); `tests/c_structs.rs` checks the
+//! checked-in files with it.
+//!
+//! The rules, so that the C layout of the existing structs is what it was:
+//! - `f64` and `u32` stay; `u8` (a level) becomes `uint32_t`, saturating to 255 on the way in
+//!   (the core's range check then refuses it);
+//! - `usize` stays `size_t`, except the counts named in [`U32_COUNTS`], which are `uint32_t`;
+//! - `bool` becomes `int` (non-zero is true), or the type [`TYPE_OVERRIDES`] names;
+//! - an enum of [`ENUMS`] becomes its C integer type, checked on the way in (an error names the
+//!   `IGAPARAM_*` values allowed), and its field's C doc ends with the values and the default;
+//! - a struct that has a mirror itself becomes that mirror;
+//! - anything else fails here, naming the field.
+//!
+//! The C-only fields (the progress callback and its user pointer) are appended from
+//! [`Mirror::c_only`]; a report leaves out the core fields of [`Mirror::skip`] and is only
+//! converted from the core. Rustdoc links of the core docs become plain names, the names cbindgen
+//! renames (`cbindgen.toml`, `[export.rename]`) take their C names, and each paragraph is
+//! filled again to the width of the file (so write the core docs as prose paragraphs). Plain
+//! `//` comments of the core fields stay in the core. The tables (which structs, which enums,
+//! the type rules' exceptions) are in `spec.rs`.
+
+use std::collections::HashMap;
+use std::fmt::Write as _;
+use std::io::Write as _;
+use std::path::Path;
+use std::process::{Command, Stdio};
+
+// What is generated: the structs, their rules, the enums and the heads of the files.
+include!("spec.rs");
+
+/// A field of a core struct.
+struct Field {
+    name: String,
+    /// The last segment of its type's path.
+    ty: String,
+    doc: Vec<String>,
+}
+
+fn parse(root: &Path, source: &str) -> syn::File {
+    let text =
+        std::fs::read_to_string(root.join(source)).unwrap_or_else(|e| panic!("{source}: {e}"));
+    syn::parse_file(&text).unwrap_or_else(|e| panic!("{source}: {e}"))
+}
+
+/// The lines of the `///` comments among `attrs`, one leading space removed.
+fn doc_lines(attrs: &[syn::Attribute]) -> Vec<String> {
+    attrs
+        .iter()
+        .filter(|a| a.path().is_ident("doc"))
+        .filter_map(|a| match &a.meta {
+            syn::Meta::NameValue(syn::MetaNameValue {
+                value:
+                    syn::Expr::Lit(syn::ExprLit {
+                        lit: syn::Lit::Str(s),
+                        ..
+                    }),
+                ..
+            }) => Some(s.value()),
+            _ => None,
+        })
+        .flat_map(|s| {
+            s.lines()
+                .map(|l| l.strip_prefix(' ').unwrap_or(l).to_string())
+                .collect::<Vec<_>>()
+        })
+        .collect()
+}
+
+fn last_ident(ty: &syn::Type) -> String {
+    match ty {
+        syn::Type::Path(p) => p.path.segments.last().unwrap().ident.to_string(),
+        _ => String::new(),
+    }
+}
+
+fn core_struct(file: &syn::File, name: &str) -> Vec<Field> {
+    let found = file.items.iter().find_map(|item| match item {
+        syn::Item::Struct(s) if s.ident == name => Some(s),
+        _ => None,
+    });
+    let s = found.unwrap_or_else(|| panic!("no struct {name}"));
+    s.fields
+        .iter()
+        .filter(|f| matches!(f.vis, syn::Visibility::Public(_)))
+        .map(|f| Field {
+            name: f.ident.as_ref().unwrap().to_string(),
+            ty: last_ident(&f.ty),
+            doc: doc_lines(&f.attrs),
+        })
+        .collect()
+}
+
+/// The variants of enum `name`, and the one marked `#[default]` if any.
+fn core_enum(file: &syn::File, name: &str) -> (Vec<String>, Option<String>) {
+    let found = file.items.iter().find_map(|item| match item {
+        syn::Item::Enum(e) if e.ident == name => Some(e),
+        _ => None,
+    });
+    let e = found.unwrap_or_else(|| panic!("no enum {name}"));
+    let variants = e.variants.iter().map(|v| v.ident.to_string()).collect();
+    let default = e
+        .variants
+        .iter()
+        .find(|v| v.attrs.iter().any(|a| a.path().is_ident("default")))
+        .map(|v| v.ident.to_string());
+    (variants, default)
+}
+
+/// The fields of `Default::default()` of struct `name` that are paths `Enum::Variant`.
+fn default_variants(file: &syn::File, name: &str) -> HashMap<String, String> {
+    let mut out = HashMap::new();
+    for item in &file.items {
+        let syn::Item::Impl(i) = item else { continue };
+        let is_default = i
+            .trait_
+            .as_ref()
+            .is_some_and(|(_, p, _)| p.is_ident("Default"));
+        if !is_default || last_ident(&i.self_ty) != name {
+            continue;
+        }
+        for impl_item in &i.items {
+            let syn::ImplItem::Fn(f) = impl_item else {
+                continue;
+            };
+            let Some(syn::Stmt::Expr(syn::Expr::Struct(s), _)) = f.block.stmts.last() else {
+                continue;
+            };
+            for field in &s.fields {
+                let (syn::Member::Named(member), syn::Expr::Path(p)) = (&field.member, &field.expr)
+                else {
+                    continue;
+                };
+                if p.path.segments.len() == 2 {
+                    out.insert(member.to_string(), p.path.segments[1].ident.to_string());
+                }
+            }
+        }
+    }
+    out
+}
+
+/// `QuasiInterpolation` → `QUASI_INTERPOLATION`.
+fn upper_snake(name: &str) -> String {
+    let mut out = String::new();
+    for (i, c) in name.chars().enumerate() {
+        if c.is_uppercase() && i > 0 {
+            out.push('_');
+        }
+        out.push(c.to_ascii_uppercase());
+    }
+    out
+}
+
+/// The names cbindgen gives the crate's constants (`[export.rename]` of `cbindgen.toml`).
+fn renames(root: &Path) -> Vec<(String, String)> {
+    let text = std::fs::read_to_string(root.join("cbindgen.toml")).unwrap();
+    let section = text.split("[export.rename]").nth(1).unwrap_or("");
+    section
+        .lines()
+        .take_while(|l| !l.starts_with('['))
+        .filter_map(|l| l.split_once('='))
+        .map(|(a, b)| {
+            (
+                a.trim().trim_matches('"').to_string(),
+                b.trim().trim_matches('"').to_string(),
+            )
+        })
+        .collect()
+}
+
+/// A doc line as C reads it: rustdoc links become their text, renamed constants their C names.
+fn plain(line: &str, renames: &[(String, String)]) -> String {
+    let mut out = String::new();
+    let mut rest = line;
+    while let Some(start) = rest.find("[`") {
+        let Some(end) = rest[start..].find("`]").map(|e| start + e) else {
+            break;
+        };
+        out.push_str(&rest[..start]);
+        out.push_str(&rest[start + 1..end + 1]);
+        rest = &rest[end + 2..];
+        if rest.starts_with('(') {
+            rest = &rest[rest.find(')').map_or(0, |e| e + 1)..];
+        }
+    }
+    out.push_str(rest);
+    for (rust, c) in renames {
+        out = out.replace(&format!("`{rust}`"), &format!("`{c}`"));
+    }
+    out
+}
+
+/// The paragraphs of `lines` (separated by empty lines) filled again to 92 characters, the
+/// width of a field's doc comment within 100 columns: a link made plain changes the length of
+/// its line.
+fn reflow(lines: &[String]) -> Vec<String> {
+    let text = lines.join("\n");
+    let paragraphs: Vec<Vec<String>> = text
+        .split("\n\n")
+        .map(|p| wrap(&p.split_whitespace().collect::<Vec<_>>().join(" ")))
+        .collect();
+    paragraphs.join(&String::new())
+}
+
+/// `text` in lines of at most 92 characters (a field's doc comment within 100 columns).
+fn wrap(text: &str) -> Vec<String> {
+    let mut lines = vec![String::new()];
+    for word in text.split(' ') {
+        let line = lines.last_mut().unwrap();
+        if !line.is_empty() && line.chars().count() + 1 + word.chars().count() > 92 {
+            lines.push(word.to_string());
+        } else {
+            if !line.is_empty() {
+                line.push(' ');
+            }
+            line.push_str(word);
+        }
+    }
+    lines
+}
+
+fn doc_comment(out: &mut String, lines: &[String]) {
+    for line in lines {
+        match line.is_empty() {
+            true => out.push_str("///\n"),
+            false => writeln!(out, "/// {line}").unwrap(),
+        }
+    }
+}
+
+/// How one core field is held in C: its type and the two conversions (`o` is the core struct,
+/// `self` the C one), and what its C doc adds.
+struct Conversion {
+    c_type: String,
+    to_c: String,
+    to_core: String,
+    doc_tail: Option<String>,
+}
+
+fn conversion(g: &Generator, mirror: &Mirror, field: &Field) -> Conversion {
+    let f = &field.name;
+    let plain = |c_type: &str, to_c: String, to_core: String| Conversion {
+        c_type: c_type.into(),
+        to_c,
+        to_core,
+        doc_tail: None,
+    };
+    let overridden = TYPE_OVERRIDES
+        .iter()
+        .find(|(s, n, _)| *s == mirror.c_name && n == f)
+        .map(|(_, _, t)| *t);
+    match field.ty.as_str() {
+        "f64" | "u32" => plain(&field.ty, format!("o.{f}"), format!("self.{f}")),
+        "u8" => plain(
+            "u32",
+            format!("u32::from(o.{f})"),
+            format!("u8::try_from(self.{f}).unwrap_or(u8::MAX)"),
+        ),
+        "usize" if U32_COUNTS.contains(&f.as_str()) => plain(
+            "u32",
+            format!("u32::try_from(o.{f}).unwrap_or(u32::MAX)"),
+            format!("self.{f} as usize"),
+        ),
+        "usize" => plain("usize", format!("o.{f}"), format!("self.{f}")),
+        "bool" => {
+            let ty = overridden.unwrap_or("c_int");
+            plain(ty, format!("{ty}::from(o.{f})"), format!("self.{f} != 0"))
+        }
+        ty => {
+            if let Some(e) = ENUMS.iter().find(|e| e.core == ty) {
+                let default = g.enum_default(mirror, e, f);
+                return Conversion {
+                    c_type: e.c_type.into(),
+                    to_c: format!("c_{}(o.{f})", e.from_c),
+                    to_core: format!("{}(self.{f})?", e.from_c),
+                    doc_tail: Some(g.values_sentence(e, default.as_deref())),
+                };
+            }
+            if let Some(m) = MIRRORS.iter().find(|m| m.core == ty) {
+                return plain(
+                    m.c_name,
+                    format!("{}::from(&o.{f})", m.c_name),
+                    format!("self.{f}.to_core()?"),
+                );
+            }
+            panic!(
+                "{}.{f}: no C form of type `{ty}` (see the rules of tests/c_structs.rs)",
+                mirror.core
+            )
+        }
+    }
+}
+
+/// What the generator has read: the parsed sources and cbindgen's renames.
+struct Generator {
+    files: HashMap<&'static str, syn::File>,
+    renames: Vec<(String, String)>,
+}
+
+impl Generator {
+    fn read(root: &Path) -> Generator {
+        let sources = MIRRORS
+            .iter()
+            .map(|m| m.source)
+            .chain(ENUMS.iter().map(|e| e.source));
+        Generator {
+            files: sources.map(|s| (s, parse(root, s))).collect(),
+            renames: renames(root),
+        }
+    }
+
+    fn constant(&self, e: &CEnum, variant: &str) -> String {
+        let name = e
+            .renames
+            .iter()
+            .find(|(v, _)| *v == variant)
+            .map_or_else(|| upper_snake(variant), |(_, c)| c.to_string());
+        format!("{}{name}", e.prefix)
+    }
+
+    /// The default of enum field `field` of a mirror's core: that of the core's `Default`, else
+    /// the enum's `#[default]` variant.
+    fn enum_default(&self, mirror: &Mirror, e: &CEnum, field: &str) -> Option<String> {
+        let file = &self.files[mirror.source];
+        default_variants(file, mirror.core)
+            .remove(field)
+            .or_else(|| core_enum(&self.files[e.source], e.core).1)
+    }
+
+    /// "One of `A` (default), `B` or `C`."
+    fn values_sentence(&self, e: &CEnum, default: Option<&str>) -> String {
+        let (variants, _) = core_enum(&self.files[e.source], e.core);
+        let names: Vec<String> = variants
+            .iter()
+            .map(|v| {
+                let mark = if Some(v.as_str()) == default {
+                    " (default)"
+                } else {
+                    ""
+                };
+                format!("`{}`{mark}", self.constant(e, v))
+            })
+            .collect();
+        match names.split_last() {
+            Some((last, [only])) => format!("Either {only} or {last}."),
+            Some((last, first)) => format!("One of {} or {last}.", first.join(", ")),
+            None => panic!("enum {} has no variant", e.core),
+        }
+    }
+
+    fn mirror(&self, out: &mut String, m: &Mirror) {
+        let mut fields = core_struct(&self.files[m.source], m.core);
+        for name in m.skip {
+            assert!(
+                fields.iter().any(|f| f.name == *name),
+                "{}.{name}: no such field to skip",
+                m.core
+            );
+        }
+        fields.retain(|f| !m.skip.contains(&f.name.as_str()));
+        let conversions: Vec<Conversion> = fields.iter().map(|f| conversion(self, m, f)).collect();
+        doc_comment(out, &m.doc.lines().map(String::from).collect::<Vec<_>>());
+        writeln!(
+            out,
+            "#[repr(C)]\n#[derive(Clone, Copy, Debug{})]\npub struct {} {{",
+            if m.report { ", Default" } else { "" },
+            m.c_name
+        )
+        .unwrap();
+        for (f, c) in fields.iter().zip(&conversions) {
+            let mut text: Vec<String> = f.doc.iter().map(|l| plain(l, &self.renames)).collect();
+            text.extend(c.doc_tail.clone());
+            doc_comment(out, &reflow(&text));
+            writeln!(out, "pub {}: {},", f.name, c.c_type).unwrap();
+        }
+        for f in m.c_only {
+            doc_comment(out, &f.doc.lines().map(String::from).collect::<Vec<_>>());
+            writeln!(out, "pub {}: {},", f.name, f.ty).unwrap();
+        }
+        out.push_str("}\n\n");
+        writeln!(
+            out,
+            "impl From<&{0}> for {1} {{\nfn from(o: &{0}) -> Self {{\n{1} {{",
+            m.core_path, m.c_name
+        )
+        .unwrap();
+        for (f, c) in fields.iter().zip(&conversions) {
+            writeln!(out, "{}: {},", f.name, c.to_c).unwrap();
+        }
+        for f in m.c_only {
+            writeln!(out, "{}: {},", f.name, f.init).unwrap();
+        }
+        out.push_str("}\n}\n}\n\n");
+        if m.report {
+            return;
+        }
+        writeln!(out, "impl {} {{", m.c_name).unwrap();
+        out.push_str("/// The core options of these C options: a conversion (an enum's value is checked; the\n/// core's `validate` checks the others).\n");
+        writeln!(
+            out,
+            "pub(crate) fn to_core(self) -> Result<{0}> {{\nOk({0} {{",
+            m.core_path
+        )
+        .unwrap();
+        for (f, c) in fields.iter().zip(&conversions) {
+            writeln!(out, "{}: {},", f.name, c.to_core).unwrap();
+        }
+        out.push_str("})\n}\n}\n\n");
+    }
+
+    fn conversions(&self, out: &mut String, e: &CEnum) {
+        let (variants, _) = core_enum(&self.files[e.source], e.core);
+        let constants: Vec<String> = variants.iter().map(|v| self.constant(e, v)).collect();
+        writeln!(out, "/// The `{}*` value of `value`.", e.prefix).unwrap();
+        writeln!(
+            out,
+            "pub(crate) fn c_{}(value: {}) -> {} {{\nmatch value {{",
+            e.from_c, e.core_path, e.c_type
+        )
+        .unwrap();
+        for (v, c) in variants.iter().zip(&constants) {
+            writeln!(out, "{}::{v} => {c},", e.core_path).unwrap();
+        }
+        out.push_str("}\n}\n\n");
+        if e.existing {
+            return;
+        }
+        let allowed: Vec<String> = constants
+            .iter()
+            .map(|c| format!("(\"{c}\", {c})"))
+            .collect();
+        writeln!(
+            out,
+            "/// The {} of C value `code`; an error names the values allowed.",
+            e.what
+        )
+        .unwrap();
+        writeln!(
+            out,
+            "pub(crate) fn {}(code: {}) -> Result<{}> {{\nmatch code {{",
+            e.from_c, e.c_type, e.core_path
+        )
+        .unwrap();
+        for (v, c) in variants.iter().zip(&constants) {
+            writeln!(out, "{c} => Ok({}::{v}),", e.core_path).unwrap();
+        }
+        writeln!(
+            out,
+            "_ => Err(not_one_of(\"{}\", code, &[{}])),",
+            e.what,
+            allowed.join(", ")
+        )
+        .unwrap();
+        out.push_str("}\n}\n\n");
+    }
+
+    /// The generated files: the options with the enums' conversions, and the reports.
+    fn generate(&self) -> [(&'static str, String); 2] {
+        let mut options = format!("{GENERATED}{OPTIONS_HEAD}\n");
+        let mut reports = format!("{GENERATED}{REPORTS_HEAD}\n");
+        for m in MIRRORS {
+            self.mirror(if m.report { &mut reports } else { &mut options }, m);
+        }
+        for e in ENUMS {
+            self.conversions(&mut options, e);
+        }
+        [
+            (OPTIONS_FILE, rustfmt(&options)),
+            (REPORTS_FILE, rustfmt(&reports)),
+        ]
+    }
+}
+
+fn rustfmt(source: &str) -> String {
+    let mut child = Command::new("rustfmt")
+        .args(["--edition", "2021", "--emit", "stdout"])
+        .stdin(Stdio::piped())
+        .stdout(Stdio::piped())
+        .spawn()
+        .expect("cannot run rustfmt");
+    child
+        .stdin
+        .take()
+        .unwrap()
+        .write_all(source.as_bytes())
+        .unwrap();
+    let output = child.wait_with_output().unwrap();
+    assert!(
+        output.status.success(),
+        "rustfmt failed on the generated source:\n{source}"
+    );
+    String::from_utf8(output.stdout).unwrap()
+}
+
+/// The lines of `old` and `new` that differ, for the message of a stale file.
+pub fn diff(old: &str, new: &str) -> String {
+    let (old, new): (Vec<&str>, Vec<&str>) = (old.lines().collect(), new.lines().collect());
+    let start = old.iter().zip(&new).take_while(|(a, b)| a == b).count();
+    let common_end = old[start..]
+        .iter()
+        .rev()
+        .zip(new[start..].iter().rev())
+        .take_while(|(a, b)| a == b)
+        .count();
+    let mut out = format!("@@ line {} @@\n", start + 1);
+    for line in &old[start..old.len() - common_end] {
+        writeln!(out, "-{line}").unwrap();
+    }
+    for line in &new[start..new.len() - common_end] {
+        writeln!(out, "+{line}").unwrap();
+    }
+    out
+}
+
+/// The generated C options (and enum conversions) and C reports, under the crate's root.
+pub const OPTIONS_FILE: &str = "src/capi/options_gen.rs";
+pub const REPORTS_FILE: &str = "src/capi/reports_gen.rs";
+
+/// The files the generator reads, under the crate's root.
+// Used by tests/c_structs.rs, not by main.rs.
+#[allow(dead_code)]
+pub fn inputs() -> Vec<&'static str> {
+    let mut files: Vec<&str> = MIRRORS.iter().map(|m| m.source).collect();
+    files.extend(ENUMS.iter().map(|e| e.source));
+    files.push("cbindgen.toml");
+    files.sort_unstable();
+    files.dedup();
+    files
+}
+
+/// The generated files (path under `root`, source) from the core sources under `root`.
+pub fn generate(root: &Path) -> [(&'static str, String); 2] {
+    Generator::read(root).generate()
+}
