@@ -27,6 +27,9 @@ use crate::optimize::{CellPattern, CellSpec, Problem, TargetKind};
 /// and its clones.
 type Solver = Arc<dyn std::any::Any + Send + Sync>;
 
+/// A [`Problem`] of either dimension (`Problem<2>` or `<3>`).
+type AnyProblem = Arc<dyn std::any::Any + Send + Sync>;
+
 /// Node positions with, where known, the solver of the Hessian there (for the constraints and
 /// reference of the mesh when it was stored).
 #[derive(Clone, Debug)]
@@ -62,6 +65,9 @@ pub struct Mesh {
     layout: Option<Arc<BlockLayout>>,
     /// The Hessian solvers' setup for the current constraints, built when first needed.
     setup: Option<Arc<SolverSetup>>,
+    /// The optimizer's view of the mesh for the current constraints and reference shape, for
+    /// the target it was built with; built when first needed.
+    problem: Option<(TargetKind, AnyProblem)>,
     /// The node order the connectivity was given in (kept in VTK's order here).
     order: NodeOrder,
 }
@@ -127,6 +133,7 @@ impl Mesh {
             reference_state: None,
             layout: None,
             setup: None,
+            problem: None,
             order: NodeOrder::Vtk,
         })
     }
@@ -225,6 +232,7 @@ impl Mesh {
         if self.fixed != mask {
             self.fixed = mask.to_vec();
             self.setup = None;
+            self.problem = None;
             self.forget_solvers();
             self.invalidate_sensitivity("the constraints were changed since the last relocation");
         }
@@ -282,6 +290,7 @@ impl Mesh {
     /// shape-optimization loop).
     pub fn reset_reference(&mut self) {
         self.reference = self.positions.clone();
+        self.problem = None;
         self.forget_solvers();
         self.invalidate_sensitivity("the reference shape was reset since the last relocation");
     }
@@ -305,6 +314,18 @@ impl Mesh {
         if let Some(last) = self.last.as_mut() {
             last.solver = None;
         }
+    }
+
+    /// [`Mesh::problem`], kept on the mesh until its constraints or reference shape change (a
+    /// relocation in a loop reuses it).
+    fn kept_problem<const D: usize>(&mut self, target: TargetKind) -> Result<Arc<Problem<D>>> {
+        let kept = self.problem.as_ref().filter(|(t, _)| *t == target);
+        if let Some(problem) = kept.and_then(|(_, p)| p.clone().downcast::<Problem<D>>().ok()) {
+            return Ok(problem);
+        }
+        let problem = Arc::new(self.problem::<D>(target)?);
+        self.problem = Some((target, problem.clone() as AnyProblem));
+        Ok(problem)
     }
 
     /// The optimizer's view of the mesh in dimension `D`.

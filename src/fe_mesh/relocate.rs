@@ -211,7 +211,7 @@ impl Mesh {
         progress: &mut dyn FnMut(Stage, usize, usize) -> bool,
     ) -> Result<RelocateReport> {
         options.validate()?;
-        let pool = crate::threads::pool(options.threads)?;
+        let pool = crate::threads::shared_pool(options.threads)?;
         match self.dimension() {
             2 => self.relocate_d::<2>(&pool, options, progress),
             _ => self.relocate_d::<3>(&pool, options, progress),
@@ -225,7 +225,8 @@ impl Mesh {
         progress: &mut dyn FnMut(Stage, usize, usize) -> bool,
     ) -> Result<RelocateReport> {
         let start = Instant::now();
-        let problem = self.problem::<D>(options.target)?;
+        let kept = self.kept_problem::<D>(options.target)?;
+        let problem: &Problem<D> = &kept;
         let unit = self.unit();
         let goal = project::<D>(&self.positions, unit);
         let mut report = RelocateReport {
@@ -234,7 +235,7 @@ impl Mesh {
             free_nodes: (0..self.node_count())
                 .filter(|&v| problem.free_mask(v) != 0)
                 .count(),
-            invalid_before: invalid_cells(pool, &problem, &goal).len(),
+            invalid_before: invalid_cells(pool, problem, &goal).len(),
             gradient_norm: f64::INFINITY,
             ..Default::default()
         };
@@ -243,23 +244,23 @@ impl Mesh {
             && match options.method {
                 Method::Sweeps => false,
                 Method::Newton => true,
-                Method::Auto => self.setup_for(&problem)?.is_direct(),
+                Method::Auto => self.setup_for(problem)?.is_direct(),
             };
         let followed = match newton {
-            true => self.follow_path(pool, &problem, &goal, options, &mut report, progress)?,
+            true => self.follow_path(pool, problem, &goal, options, &mut report, progress)?,
             false => None,
         };
         let (x, solver, sensitivity) = match followed {
             Some(relocated) => relocated,
             None => {
                 let mut x =
-                    self.place_and_sweep(pool, &problem, &goal, options, &mut report, progress)?;
+                    self.place_and_sweep(pool, problem, &goal, options, &mut report, progress)?;
                 let (solver, sensitivity) =
-                    self.stationary_stage(pool, &problem, &mut x, options, &mut report, progress)?;
+                    self.stationary_stage(pool, problem, &mut x, options, &mut report, progress)?;
                 (x, solver, sensitivity)
             }
         };
-        let quality = QualitySummary::of(pool, &problem, &x);
+        let quality = QualitySummary::of(pool, problem, &x);
         report.invalid_after = quality.invalid.len();
         report.min_quality = quality.min;
         report.mean_quality = quality.mean;

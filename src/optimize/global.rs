@@ -176,7 +176,7 @@ impl<'p, const D: usize> GlobalObjective<'p, D> {
             if !hessian {
                 continue;
             }
-            for &(r, gr) in &stencil {
+            for (k, &(r, gr)) in stencil.iter().enumerate() {
                 // t[a][b][j] = Σ_i ∂²η/∂S_ai∂S_bj g_r[i]
                 let mut t = [[[0.0; D]; D]; D];
                 for (a, ta) in t.iter_mut().enumerate() {
@@ -186,13 +186,15 @@ impl<'p, const D: usize> GlobalObjective<'p, D> {
                         }
                     }
                 }
-                for &(s_node, gs) in &stencil {
-                    let block = &mut local.hessian[r * count + s_node];
-                    for a in 0..D {
-                        for b in 0..D {
-                            let v: f64 = (0..D).map(|j| t[a][b][j] * gs[j]).sum();
-                            block[a][b] += w * v;
-                        }
+                // Block (s, r) is the transpose of block (r, s): each pair once.
+                for &(s_node, gs) in &stencil[k..] {
+                    let v: Matrix<D> = std::array::from_fn(|a| {
+                        std::array::from_fn(|b| w * (0..D).map(|j| t[a][b][j] * gs[j]).sum::<f64>())
+                    });
+                    add_to(&mut local.hessian[r * count + s_node], &v);
+                    if s_node != r {
+                        let transposed = std::array::from_fn(|b| std::array::from_fn(|a| v[a][b]));
+                        add_to(&mut local.hessian[s_node * count + r], &transposed);
                     }
                 }
             }
