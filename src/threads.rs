@@ -6,13 +6,9 @@
 //! 2-core machine take minutes), and the results do not depend on the thread count, so a larger
 //! count is capped to the cores rather than refused.
 //!
-//! Starting a pool costs about 0.1 ms and its threads start cold: a call that repeats at every
-//! step of a loop (a warm relocation takes a few ms) uses [`shared_pool`], one pool per thread
-//! count kept for the process (at most one per core count, so a handful of idle threads).
-
-use std::sync::{Arc, Mutex, OnceLock};
-
-use rayon::ThreadPool;
+//! Every call starts its own pool (about 0.1 ms) rather than sharing a process-wide one: calls
+//! on different handles from different host threads then never queue behind each other, and a
+//! progress callback that waits for another thread's call cannot deadlock on a shared worker.
 
 use crate::error::{Error, Result};
 
@@ -43,25 +39,6 @@ pub fn effective_threads(threads: usize) -> usize {
     } else {
         threads.min(cores)
     }
-}
-
-/// The kept pools, by thread count.
-type Pools = Vec<(usize, Arc<ThreadPool>)>;
-
-/// The process's pool of [`effective_threads`]`(threads)` workers, started at its first use.
-pub fn shared_pool(threads: usize) -> Result<Arc<ThreadPool>> {
-    static POOLS: OnceLock<Mutex<Pools>> = OnceLock::new();
-    let n = effective_threads(threads);
-    let mut pools = POOLS
-        .get_or_init(Default::default)
-        .lock()
-        .unwrap_or_else(|poisoned| poisoned.into_inner());
-    if let Some((_, pool)) = pools.iter().find(|(count, _)| *count == n) {
-        return Ok(pool.clone());
-    }
-    let pool = Arc::new(pool(n)?);
-    pools.push((n, pool.clone()));
-    Ok(pool)
 }
 
 /// A pool of [`effective_threads`]`(threads)` workers.

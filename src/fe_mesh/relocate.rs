@@ -211,7 +211,7 @@ impl Mesh {
         progress: &mut dyn FnMut(Stage, usize, usize) -> bool,
     ) -> Result<RelocateReport> {
         options.validate()?;
-        let pool = crate::threads::shared_pool(options.threads)?;
+        let pool = crate::threads::pool(options.threads)?;
         match self.dimension() {
             2 => self.relocate_d::<2>(&pool, options, progress),
             _ => self.relocate_d::<3>(&pool, options, progress),

@@ -108,6 +108,6 @@ fn merge<const D: usize>(flat: &[f64], points: &[Vector<D>]) -> Vec<f64> {
     out
 }
 
-fn pool(threads: usize) -> Result<std::sync::Arc<ThreadPool>> {
-    crate::threads::shared_pool(threads)
+fn pool(threads: usize) -> Result<ThreadPool> {
+    crate::threads::pool(threads)
 }
