@@ -235,6 +235,68 @@ static void test_domain_reentry(void) {
   CHECKF(status == IGAPARAM_STATUS_CANCELLED, "status %d: %s", (int)status, last_message());
 }
 
+/* The same rules in the domain's other long calls: from the callback of a fit, an update or the
+   adaptive loop, a call on the domain is BUSY, and a release of the domain cancels the running
+   call (run under AddressSanitizer and valgrind: no use after free). */
+static igaparam_domain *new_built_domain(void) {
+  igaparam_domain *domain = new_domain();
+  igaparam_domain_options o = igaparam_domain_options_default();
+  o.min_level = 2;
+  o.max_level = 4;
+  igaparam_status status = igaparam_domain_build(domain, &o, NULL);
+  CHECKF(status == IGAPARAM_STATUS_OK, "build: %d %s", (int)status, last_message());
+  return domain;
+}
+
+static void test_fit_reentry(void) {
+  domain_probe probe = {new_built_domain(), 0, 0};
+  igaparam_fit_options o = igaparam_fit_options_default();
+  o.progress = domain_probe_progress;
+  o.progress_user = &probe;
+  igaparam_spline *spline = NULL;
+  igaparam_status status = igaparam_spline_fit_domain_with(probe.domain, &o, &spline, NULL);
+  CHECKF(probe.freed, "the fit's callback was not called");
+  CHECKF(status == IGAPARAM_STATUS_CANCELLED && spline == NULL, "fit: status %d: %s",
+         (int)status, last_message());
+}
+
+static void test_update_reentry(void) {
+  domain_probe probe = {new_built_domain(), 0, 0};
+  /* The same quadrilateral with its bottom side lowered a little. */
+  enum { N = 33 };
+  double bottom[4] = {0, -0.05, 1, -0.05}, right[4] = {1, -0.05, 1, 1}, left[4] = {0, 1, 0, -0.05};
+  double top[2 * N];
+  for (int i = 0; i < N; i++) {
+    double x = 1.0 - (double)i / (N - 1);
+    top[2 * i] = x;
+    top[2 * i + 1] = 1.0 + 0.3 * sin(3 * PI * x);
+  }
+  const size_t counts[4] = {2, 2, N, 2};
+  const double *points[4] = {bottom, right, top, left};
+  igaparam_status status = igaparam_domain_set_boundary_polylines(probe.domain, counts, points);
+  CHECKF(status == IGAPARAM_STATUS_OK, "new boundary: %d %s", (int)status, last_message());
+  igaparam_domain_update_options o = igaparam_domain_update_options_default();
+  o.progress = domain_probe_progress;
+  o.progress_user = &probe;
+  status = igaparam_domain_update(probe.domain, &o, NULL);
+  CHECKF(probe.freed, "the update's callback was not called");
+  CHECKF(status == IGAPARAM_STATUS_CANCELLED, "update: status %d: %s", (int)status,
+         last_message());
+}
+
+static void test_adaptive_reentry(void) {
+  domain_probe probe = {new_built_domain(), 0, 0};
+  igaparam_adapt_options o = igaparam_adapt_options_default();
+  o.target_quality = 0.99; /* refines: the callback comes before each refinement */
+  o.progress = domain_probe_progress;
+  o.progress_user = &probe;
+  igaparam_spline *spline = NULL;
+  igaparam_status status = igaparam_domain_fit_adaptive(probe.domain, &o, &spline, NULL);
+  CHECKF(probe.freed, "the adaptive loop's callback was not called");
+  CHECKF(status == IGAPARAM_STATUS_CANCELLED && spline == NULL, "adaptive: status %d: %s",
+         (int)status, last_message());
+}
+
 /* A level-16 build (4^16 cells) is refused at once with LIMIT_EXCEEDED, the process alive; the
    same build with max_cells raised to what it needs gets past the check (and is cancelled from
    its callback, which the adaptation calls between its rounds). */
@@ -310,6 +372,9 @@ int main(void) {
   test_mesh_usable_after_busy();
   test_two_threads();
   test_domain_reentry();
+  test_fit_reentry();
+  test_update_reentry();
+  test_adaptive_reentry();
   printf("%d passed, %d failed\n", passed, failed);
   return failed ? 1 : 0;
 }
