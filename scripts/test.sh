@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # Builds everything and runs all tests: the lints (cargo fmt --check, cargo clippy, cargo doc,
 # warnings as errors), the Rust tests (cargo test --release), then the C/C++ tests and example
-# runs (ctest) and the C API tests under valgrind memcheck and AddressSanitizer, then the Python
-# bindings' tests (pytest, in the virtual environment build/venv).
+# runs (ctest), the C API tests under valgrind memcheck and AddressSanitizer and a short run of
+# every fuzz target, then the Python bindings' tests (pytest, in the virtual environment
+# build/venv).
 # Runs every suite, and exits non-zero if any of them failed.
 set -euo pipefail
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
@@ -66,13 +67,15 @@ echo "+ ctest --test-dir build --output-on-failure -j2"
 ctest --test-dir build --output-on-failure -j2 || { status=1; echo "test.sh: ctest failed" >&2; }
 
 # The C API's own tests and its handle tests under valgrind memcheck (zero errors, zero definite
-# leaks), and with the loop and sensitivity tests under AddressSanitizer (a nightly build of the
-# library with -Zsanitizer=address); scripts/asan.sh runs all the C programs under both.
+# leaks), and with the loop and sensitivity tests under AddressSanitizer; then every fuzz target
+# for a short run (IGAPARAM_FUZZ_SECONDS each, default 10). The last two share one nightly build
+# (-Zsanitizer=address and libFuzzer's coverage); scripts/asan.sh runs all the C programs.
 IGAPARAM_SANITIZE_PROGRAMS="test_capi test_handles" \
   IGAPARAM_SANITIZE_LIBRARY="$library" bash scripts/asan.sh valgrind ||
   { status=1; echo "test.sh: valgrind memcheck failed" >&2; }
 IGAPARAM_SANITIZE_PROGRAMS="test_capi test_handles test_morph test_sensitivity" \
-  bash scripts/asan.sh asan || { status=1; echo "test.sh: AddressSanitizer run failed" >&2; }
+  bash scripts/asan.sh asan fuzz ||
+  { status=1; echo "test.sh: AddressSanitizer or fuzz run failed" >&2; }
 
 # Python bindings: bindings/python installed into build/venv, tested against the library just built.
 python_tests() {
