@@ -6,10 +6,11 @@
 # - asan: the library built by nightly Rust with -Zsanitizer=address (the unoptimized `asan`
 #   profile, debug assertions and overflow checks on) and the programs with -fsanitize=address,
 #   leaks reported (LeakSanitizer); any error fails the run.
-# - fuzz: every target of fuzz/ (libFuzzer, AddressSanitizer) for IGAPARAM_FUZZ_SECONDS each
-#   (default 10), from the seeds of the bundled data and the kept inputs, with a fresh corpus;
-#   a crash, a timeout or running out of memory fails the run (the input is kept in
-#   build/asan/fuzz/TARGET/). scripts/fuzz.sh runs them for longer.
+# - fuzz: every target of fuzz/ (libFuzzer, AddressSanitizer) for IGAPARAM_FUZZ_RUNS inputs
+#   (default 1000) and at most IGAPARAM_FUZZ_SECONDS (default 60), from the seeds of the bundled
+#   data and the kept inputs, with a fresh corpus and a fixed random seed (the same inputs in the
+#   same order at every run); a crash, a timeout or running out of memory fails the run (the
+#   input is kept in build/asan/fuzz/TARGET/). scripts/fuzz.sh runs them for longer, optimized.
 #   The asan and fuzz modes share one nightly build: the fuzz workspace's targets and the
 #   library's C API, with the same flags (ASan and libFuzzer's coverage instrumentation), so
 #   every dependency is compiled once.
@@ -17,7 +18,7 @@
 #   zero definite leaks required.
 #
 # scripts/test.sh runs all three: asan on test_capi, test_handles, test_morph and
-# test_sensitivity, fuzz for 10 s per target (about 2 minutes to build, 2 to run), valgrind on
+# test_sensitivity, fuzz with the defaults (about 2.5 minutes to build, 1 + 3.5 to run), valgrind on
 # test_capi and test_handles (half a minute); the domain and spline programs take several minutes
 # more (30 times slower under valgrind), so the full run is this script's. A tool that is
 # missing is reported and skipped, or fails the run under IGAPARAM_NO_SKIP (as scripts/test.sh
@@ -98,18 +99,22 @@ nightly_build() {
   nightly_built=0
 }
 
-# Runs every fuzz target for IGAPARAM_FUZZ_SECONDS from its seeds; fails on any failure.
+# Runs every fuzz target from its seeds for IGAPARAM_FUZZ_RUNS inputs, at most
+# IGAPARAM_FUZZ_SECONDS; fails on any failure.
 fuzz_all() {
   # shellcheck source=scripts/fuzz_seeds.sh
   source scripts/fuzz_seeds.sh
-  local seconds=${IGAPARAM_FUZZ_SECONDS:-10} target status=0
+  local seconds=${IGAPARAM_FUZZ_SECONDS:-60} runs=${IGAPARAM_FUZZ_RUNS:-1000} target status=0
   for target in "${fuzz_targets[@]}"; do
     local dir=$work/fuzz/$target
     fuzz_seeds "$target" "$dir/seeds"
     rm -rf "$dir/corpus" "$dir/artifacts"
     mkdir -p "$dir/corpus" "$dir/artifacts"
-    echo "+ fuzz $target ($seconds s)"
-    if ! "$nightly_dir/$target" "$dir/corpus" "$dir/seeds" -max_total_time="$seconds" \
+    echo "+ fuzz $target ($runs inputs, at most $seconds s)"
+    # A fixed seed and number of runs: the same inputs at every run (scripts/fuzz.sh draws them);
+    # the time limit only caps a slow machine.
+    if ! "$nightly_dir/$target" "$dir/corpus" "$dir/seeds" -seed=1 -runs="$runs" \
+      -max_total_time="$seconds" \
       -timeout=20 -rss_limit_mb=2560 -print_final_stats=1 -artifact_prefix="$dir/artifacts/" \
       >"$dir/log" 2>&1; then
       status=1
