@@ -99,6 +99,16 @@ nightly_build() {
   nightly_built=0
 }
 
+# Whether the nightly build is there (made on first use); a failed build, or a missing nightly
+# under IGAPARAM_NO_SKIP, fails the run.
+nightly_ready() {
+  local built=0
+  nightly_build || built=$?
+  ((built == 0)) && return 0
+  ((built == 2)) || status=1
+  return 1
+}
+
 # Runs every fuzz target from its seeds for IGAPARAM_FUZZ_RUNS inputs, at most
 # IGAPARAM_FUZZ_SECONDS; fails on any failure.
 fuzz_all() {
@@ -133,22 +143,12 @@ status=0
 for mode in "${modes[@]}"; do
   case $mode in
     asan)
-      built=0
-      nightly_build || built=$?
-      if ((built != 0)); then
-        ((built == 2)) || status=1
-        continue
-      fi
+      nightly_ready || continue
       build "$work/asan" "$nightly_dir/libigaparam.so" -fsanitize=address -fno-omit-frame-pointer
       ASAN_OPTIONS=detect_leaks=1:abort_on_error=0 run_all "$work/asan" env || status=1
       ;;
     fuzz)
-      built=0
-      nightly_build || built=$?
-      if ((built != 0)); then
-        ((built == 2)) || status=1
-        continue
-      fi
+      nightly_ready || continue
       fuzz_all || status=1
       ;;
     valgrind)

@@ -198,10 +198,9 @@ fn check_cells<const D: usize>(
 ) -> Result<()> {
     let spans = |level: u8| (1u64 << level) as f64;
     let mut cells = spans(shift).powi(D as i32);
-    for (level, corners) in boxes {
-        let side = spans(*level);
-        let extent =
-            |k: usize| (corners[D + k].clamp(0.0, side) - corners[k].clamp(0.0, side)).max(0.0);
+    for (_, corners) in boxes {
+        // The corners are checked (`check_box_corners`): whole, in range, lower below upper.
+        let extent = |k: usize| corners[D + k] - corners[k];
         cells += (0..D).map(extent).product::<f64>();
     }
     let limit = 16.0 * functions as f64 + (1u64 << 20) as f64;

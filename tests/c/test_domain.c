@@ -19,6 +19,7 @@
 
 #include "dirs.h"
 #include "expect.h"
+#include "vtu_check.h"
 
 /* A sentinel handle value: a failed constructor must leave it. */
 #define UNTOUCHED ((igaparam_domain *)(uintptr_t)0x1234)
@@ -224,33 +225,6 @@ static int progress(void *user, igaparam_stage stage, size_t done, size_t total)
   return calls >= cancel_at;
 }
 
-/* Reads back a T-mesh .vtu: its piece has `points` points and `cells` cells, and the arrays
- * the documentation names (point data `parametric`, cell data `quality` and `level`). */
-static void check_vtu(const char *path, size_t points, size_t cells) {
-  FILE *f = fopen(path, "rb");
-  CHECK(f != NULL, "%s: cannot open it", path);
-  if (!f) return;
-  fseek(f, 0, SEEK_END);
-  long size = ftell(f);
-  fseek(f, 0, SEEK_SET);
-  char *text = calloc((size_t)size + 1, 1);
-  size_t got = fread(text, 1, (size_t)size, f);
-  fclose(f);
-  const char *piece = strstr(text, "<Piece ");
-  unsigned long long np = 0, nc = 0;
-  const char *p = piece ? strstr(piece, "NumberOfPoints=\"") : NULL;
-  const char *c = piece ? strstr(piece, "NumberOfCells=\"") : NULL;
-  if (p) np = strtoull(p + strlen("NumberOfPoints=\""), NULL, 10);
-  if (c) nc = strtoull(c + strlen("NumberOfCells=\""), NULL, 10);
-  CHECK(got == (size_t)size && piece && np == points && nc == cells,
-        "%s: %llu points, %llu cells in the file; %zu vertices, %zu cells built", path, np, nc,
-        points, cells);
-  const char *names[3] = {"Name=\"parametric\"", "Name=\"quality\"", "Name=\"level\""};
-  for (int i = 0; i < 3; i++) CHECK(strstr(text, names[i]) != NULL, "%s: no %s array", path, names[i]);
-  CHECK(strstr(text, "</VTKFile>") != NULL, "%s: truncated", path);
-  free(text);
-}
-
 static void test_file(const char *name, const char *vtu) {
   igaparam_domain *d = NULL;
   EXPECT(igaparam_domain_new_from_file(joined(data_dir, name), &d), IGAPARAM_STATUS_OK);
@@ -326,7 +300,9 @@ static void test_file(const char *name, const char *vtu) {
   const char *path = joined(out_dir, vtu);
   remove(path);
   EXPECT(igaparam_domain_write_vtu(d, path), IGAPARAM_STATUS_OK);
-  check_vtu(path, nv, nc);
+  /* Read back: the counts, and the arrays the documentation names. */
+  static const char *const arrays[] = {"parametric", "quality", "level"};
+  check_vtu_file(path, nv, nc, arrays, 3);
 
   /* Cancellation leaves the earlier build: same counts, same vertices. */
   igaparam_domain_options o = igaparam_domain_options_default();

@@ -23,6 +23,7 @@
 
 #include "dirs.h"
 #include "expect.h"
+#include "vtu_check.h"
 
 /* Deterministic pseudo-random numbers in [0, 1). */
 static double uniform(void) {
@@ -399,32 +400,6 @@ static double distance(const igaparam_spline *a, const igaparam_spline *b) {
   return worst;
 }
 
-/* The .vtu file at `path`, read back: its piece has `points` points and `cells` cells, the point
- * arrays quality and det, the cell arrays level and element, and it is whole. */
-static void check_spline_vtu(const char *path, size_t points, size_t cells) {
-  FILE *f = fopen(path, "rb");
-  CHECK(f != NULL, "%s: cannot open it", path);
-  if (!f) return;
-  fseek(f, 0, SEEK_END);
-  long size = ftell(f);
-  fseek(f, 0, SEEK_SET);
-  char *text = calloc((size_t)size + 1, 1);
-  size_t got = fread(text, 1, (size_t)size, f);
-  fclose(f);
-  const char *piece = strstr(text, "<Piece ");
-  const char *p = piece ? strstr(piece, "NumberOfPoints=\"") : NULL;
-  const char *c = piece ? strstr(piece, "NumberOfCells=\"") : NULL;
-  unsigned long long np = p ? strtoull(p + strlen("NumberOfPoints=\""), NULL, 10) : 0;
-  unsigned long long nc = c ? strtoull(c + strlen("NumberOfCells=\""), NULL, 10) : 0;
-  CHECK(got == (size_t)size && np == points && nc == cells,
-        "%s: %llu points, %llu cells in the file; %zu and %zu expected", path, np, nc, points, cells);
-  const char *names[4] = {"Name=\"quality\"", "Name=\"det\"", "Name=\"level\"",
-                          "Name=\"element\""};
-  for (int i = 0; i < 4; i++) CHECK(strstr(text, names[i]) != NULL, "%s: no %s", path, names[i]);
-  CHECK(strstr(text, "</VTKFile>") != NULL, "%s: truncated", path);
-  free(text);
-}
-
 static void test_refine_and_files(const igaparam_spline *s) {
   igaparam_spline *r = NULL;
   EXPECT(igaparam_spline_clone(s, &r), IGAPARAM_STATUS_OK);
@@ -456,7 +431,8 @@ static void test_refine_and_files(const igaparam_spline *s) {
   size_t ne = 0;
   EXPECT(igaparam_spline_element_count(s, &ne), IGAPARAM_STATUS_OK);
   /* 4 x 4 quads on a 5 x 5 grid of points per element. */
-  check_spline_vtu(joined(out_dir, "male_spline.vtu"), 25 * ne, 16 * ne);
+  static const char *const arrays[] = {"quality", "det", "level", "element"};
+  check_vtu_file(joined(out_dir, "male_spline.vtu"), 25 * ne, 16 * ne, arrays, 4);
   igaparam_spline_free(back);
   igaparam_spline_free(r);
 }
