@@ -1,7 +1,7 @@
 // The tables of the generator (included by `generate.rs`): the C structs generated and the core
 // structs they mirror, the exceptions to the type rules, the enums held as integers, and the
 // heads of the generated files. Adding a field to a core struct needs nothing here; a new C
-// struct, a new enum or a C-only field does.
+// struct, a new enum, a C-only field or a C doc of its own does.
 
 /// A C struct generated from a core struct.
 struct Mirror {
@@ -15,9 +15,28 @@ struct Mirror {
     doc: &'static str,
     /// Fields of the C struct only, appended after the core's.
     c_only: &'static [CField],
-    /// A report: converted from the core only, and without the core fields in `skip`.
+    /// A report: converted from the core only.
     report: bool,
+    /// Core fields C leaves out (the C options keep the core's defaults for them).
     skip: &'static [&'static str],
+    /// Core fields holding a nested core struct whose fields the C struct holds in its place.
+    flatten: &'static [Flatten],
+}
+
+/// A core field holding a nested core struct that its C struct flattens: the nested fields
+/// take the place of the field, in the nested struct's order.
+struct Flatten {
+    /// The core field, and the nested struct's name, path and file.
+    field: &'static str,
+    core: &'static str,
+    core_path: &'static str,
+    source: &'static str,
+    /// The nested fields C holds (the others keep the core's defaults): those named here, or,
+    /// when this is empty, all but those of `skip`.
+    only: &'static [&'static str],
+    skip: &'static [&'static str],
+    /// Nested fields whose C name is not theirs: (nested field, C name).
+    renames: &'static [(&'static str, &'static str)],
 }
 
 /// A field of a C struct that the core struct does not have.
@@ -55,6 +74,13 @@ const TYPE_OVERRIDES: &[(&str, &str, &str)] = &[
     ("igaparam_domain_update_report", "tolerance_met", "i32"),
 ];
 
+/// The C constants of the core's array lengths: (core constant, C constant).
+const ARRAY_LENGTHS: &[(&str, &str)] = &[];
+
+/// C docs of their own, for the fields whose meaning in C is not the core's: (C struct, C
+/// field, doc).
+const DOC_OVERRIDES: &[(&str, &str, &str)] = &[];
+
 /// The progress callback's user pointer, the last field of the options with a callback.
 const PROGRESS_USER: CField = CField {
     name: "progress_user",
@@ -86,6 +112,7 @@ const MIRRORS: &[Mirror] = &[
         ],
         report: false,
         skip: &[],
+        flatten: &[],
     },
     Mirror {
         c_name: "igaparam_domain_update_options",
@@ -99,6 +126,7 @@ const MIRRORS: &[Mirror] = &[
         ],
         report: false,
         skip: &[],
+        flatten: &[],
     },
     Mirror {
         c_name: "igaparam_relocate_options",
@@ -109,6 +137,7 @@ const MIRRORS: &[Mirror] = &[
         c_only: &[progress("Progress callback, or NULL (default)."), PROGRESS_USER],
         report: false,
         skip: &[],
+        flatten: &[],
     },
     Mirror {
         c_name: "igaparam_validity_options",
@@ -119,6 +148,7 @@ const MIRRORS: &[Mirror] = &[
         c_only: &[],
         report: false,
         skip: &[],
+        flatten: &[],
     },
     Mirror {
         c_name: "igaparam_quality_bound_options",
@@ -129,6 +159,7 @@ const MIRRORS: &[Mirror] = &[
         c_only: &[],
         report: false,
         skip: &[],
+        flatten: &[],
     },
     Mirror {
         c_name: "igaparam_domain_report",
@@ -139,6 +170,7 @@ const MIRRORS: &[Mirror] = &[
         c_only: &[],
         report: true,
         skip: &["repair_rounds", "stages", "swapped"],
+        flatten: &[],
     },
     Mirror {
         c_name: "igaparam_domain_update_report",
@@ -149,6 +181,7 @@ const MIRRORS: &[Mirror] = &[
         c_only: &[],
         report: true,
         skip: &[],
+        flatten: &[],
     },
     Mirror {
         c_name: "igaparam_relocate_report",
@@ -159,6 +192,7 @@ const MIRRORS: &[Mirror] = &[
         c_only: &[],
         report: true,
         skip: &[],
+        flatten: &[],
     },
     Mirror {
         c_name: "igaparam_quality_bound_report",
@@ -169,6 +203,7 @@ const MIRRORS: &[Mirror] = &[
         c_only: &[],
         report: true,
         skip: &["elements"],
+        flatten: &[],
     },
 ];
 
