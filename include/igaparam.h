@@ -766,16 +766,17 @@ typedef struct {
  */
 typedef struct {
   /**
-   * The figures of the whole mesh, the same on every rank (`gradient_norm` is not computed
-   * on a partition: infinity; `seconds` is this rank's wall-clock time).
+   * The relocation's figures over the whole mesh, the same on every rank (`gradient_norm` is not
+   * computed on a partition: infinity; `seconds` is this rank's wall-clock time).
    */
   igaparam_relocate_report relocation;
   /**
-   * Seconds this rank spent in the exchange callback (waiting for the others included).
+   * Seconds this rank spent in the host's exchange (the exchange callback in C), waiting for the
+   * other ranks included.
    */
   double exchange_seconds;
   /**
-   * Calls of the exchange callback on this rank.
+   * Calls of the host's exchange (the exchange callback in C) on this rank.
    */
   size_t exchanges;
 } igaparam_partition_report;
@@ -789,7 +790,7 @@ typedef struct {
    */
   size_t basis_count;
   /**
-   * Elements (the leaves of the hierarchical mesh).
+   * Elements of the space (the leaves of the hierarchical mesh).
    */
   size_t element_count;
   /**
@@ -797,36 +798,38 @@ typedef struct {
    */
   double residual;
   /**
-   * 1 when a least-squares fit replaced a singular or badly conditioned interpolation at the
-   * Greville points, else 0.
+   * Whether a least-squares fit replaced a singular or badly conditioned interpolation at the
+   * Greville points (1 in C, else 0).
    */
   int32_t least_squares;
   /**
-   * 1 when the control points come from the local quasi-interpolant (a fit whose map was
-   * certified valid, or less invalid, than that of the interpolation; and every
-   * `igaparam_spline_refine`), else 0.
+   * Whether the control points come from the local quasi-interpolant
+   * (`SplineMap::fit_quasi_interpolation`: in a checked fit, when its map was certified valid,
+   * or less invalid, than that of the interpolation; and every exact refinement,
+   * `igaparam_spline_refine` in C) (1 in C, else 0).
    */
   int32_t quasi_interpolation;
   /**
-   * Control points that `igaparam_spline_fit_domain` moved to untangle a fitted map that was
-   * not certified valid (inner ones first; boundary ones, at most the domain's
-   * `boundary_offset` of the bounding box, only when that was not enough); 0 when the fitted
-   * map was kept as it was.
+   * Control points moved by the untangling (`SplineMap::untangle`) of a fitted map that was not
+   * certified valid (inner ones first; boundary ones, at most the untangling's `boundary_offset`
+   * of the bounding box, only when that was not enough); 0 when the fitted map was kept as it
+   * was.
    */
   size_t untangled;
   /**
-   * Largest move of a boundary control point by that untangling, relative to the bounding
-   * box (each axis scaled to 1); 0 when the boundary was kept.
+   * Largest move of a boundary control point by that untangling, relative to the bounding box
+   * (each axis scaled to 1; see `UntangleOptions::boundary_offset`); 0 when the boundary was
+   * kept.
    */
   double boundary_offset;
   /**
-   * Wall-clock seconds.
+   * Wall-clock seconds (with the certification and untangling of `SplineMap::fit_checked`).
    */
   double seconds;
   /**
-   * Inner control points the smoothing stage moved (on the spline's own mean ratio, kept
-   * only when the map stays certified and its smallest sampled mean ratio rises); 0 when
-   * the map was kept as it was.
+   * Inner control points moved by the smoothing stage (`SplineMap::smooth`: on the map's own
+   * mean ratio, kept only when the map stays certified and its smallest sampled mean ratio
+   * rises); 0 when the map was kept as it was.
    */
   size_t smoothed;
 } igaparam_fit_report;
@@ -837,8 +840,9 @@ typedef struct {
  */
 typedef struct {
   /**
-   * Target: every element certified valid with a smallest sampled mean ratio of at least
-   * this, in [0, 1) (default 0.1). Elements below it or not certified are refined.
+   * The loop stops once every element is certified valid and its smallest sampled mean ratio
+   * `q_S` reaches this (in [0, 1); default 0.1). Elements below it, or not certified, are
+   * refined.
    */
   double target_quality;
   /**
@@ -846,7 +850,7 @@ typedef struct {
    */
   uint32_t max_rounds;
   /**
-   * Cells at this level are not refined further, at most 16 (default 10).
+   * Cells at this level are not refined further (default 10, at most 16).
    */
   uint32_t max_level;
   /**
@@ -950,19 +954,22 @@ typedef struct {
  */
 typedef struct {
   /**
-   * The fit rule (default `IGAPARAM_FIT_CHOICE_BEST`).
+   * The fit rule. One of `IGAPARAM_FIT_CHOICE_BEST` (default),
+   * `IGAPARAM_FIT_CHOICE_INTERPOLATION` or `IGAPARAM_FIT_CHOICE_QUASI_INTERPOLATION`.
    */
   igaparam_fit_choice choice;
   /**
-   * The certification of the fitted, untangled and smoothed maps (default: the defaults of
-   * `igaparam_validity_options_default`); the spline keeps its result for
+   * The certification of the fitted maps and of the untangled and smoothed ones (default: the
+   * defaults of `ValidityOptions`); a spline handle of the C API keeps its result for
    * `igaparam_spline_check_validity` with equal options.
    */
   igaparam_validity_options validity;
   /**
-   * Largest number of untangling rounds per stage for a map that is not certified (default
-   * 4); 0 turns the untangling off: such a map is returned as fitted, with its uncertified
-   * elements in the report of `igaparam_spline_check_validity`.
+   * Largest number of untangling rounds (mark the uncertified elements, optimize the control
+   * points around them, certify again) per stage for a map that is not certified (default 4); a
+   * round that leaves as many elements uncertified as it found ends the stage. In a checked fit
+   * 0 turns the untangling off: such a map is returned as fitted, with its uncertified elements
+   * in its validity report (`igaparam_spline_check_validity` in C).
    */
   uint32_t untangle_rounds;
   /**
@@ -970,19 +977,21 @@ typedef struct {
    */
   uint32_t untangle_sweeps;
   /**
-   * Largest move of a boundary control point by the untangling, relative to the bounding
-   * box; negative (default) uses the `boundary_offset` the domain was built with, 0 keeps
-   * the boundary.
+   * Largest move of a boundary control point by the untangling, relative to the bounding box;
+   * negative (default) uses the `boundary_offset` the domain was built with, 0 keeps the
+   * boundary.
    */
   double boundary_offset;
   /**
    * Largest number of smoothing sweeps over the inner control points of a certified map
-   * (default 8); 0 turns the smoothing off.
+   * (`SplineMap::smooth`, the stage that follows the untangling, or a fit certified as it is, in
+   * a checked fit; default 8); 0 turns the smoothing off.
    */
   uint32_t smoothing_sweeps;
   /**
-   * Worker threads, at most 4096, capped to the machine's cores; 0 (default) uses one per
-   * core. The result does not depend on it.
+   * Worker threads, at most 4096, capped to the machine's cores; 0 (default) runs on the
+   * caller's thread pool: one thread per core, unless a Rust caller installed another. The
+   * result does not depend on it.
    */
   uint32_t threads;
   /**
@@ -1086,8 +1095,8 @@ typedef struct {
  */
 typedef struct {
   /**
-   * 1 when `det J_S > 0` is proven on every element (Bernstein coefficients of the
-   * determinant, with subdivision), else 0.
+   * Whether `det J_S > 0` is proven on every element (Bernstein coefficients of the determinant,
+   * with subdivision; 1 in C, else 0).
    */
   int32_t certified_positive;
   /**
@@ -1095,8 +1104,8 @@ typedef struct {
    */
   size_t uncertified;
   /**
-   * Smallest lower bound of `det J_S` over the elements (Jacobian with respect to the
-   * parametric coordinates).
+   * Smallest lower bound of `det J_S` over the elements (Jacobian with respect to the parametric
+   * coordinates).
    */
   double det_lower_bound;
   /**
@@ -1104,7 +1113,7 @@ typedef struct {
    */
   double min_quality;
   /**
-   * Mean of the element means of `q_S` at the samples.
+   * Mean of the element means of `q_S` at the samples (every element has as many).
    */
   double mean_quality;
   /**

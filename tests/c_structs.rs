@@ -33,9 +33,11 @@ fn c_structs_are_current() {
     }
 }
 
-/// A field added to a core struct reaches its C struct with its doc and both conversions, so the
-/// generated file differs from the checked-in one: `c_structs_are_current` (and, once that is
-/// blessed, the header test) fails until it is blessed. Run on a copy of the generator's inputs.
+/// Fields added to core structs reach their C structs with their docs and both conversions, so
+/// the generated files differ from the checked-in ones: `c_structs_are_current` (and, once that
+/// is blessed, the header test) fails until they are blessed. Run on a copy of the generator's
+/// inputs, with a field added to the options of a quality bound and of a fit, to the untangling
+/// options a fit's C options flatten, and to a fit's report.
 #[test]
 fn a_new_core_field_reaches_the_c_struct() {
     let root = Path::new(env!("CARGO_MANIFEST_DIR"));
@@ -45,27 +47,48 @@ fn a_new_core_field_reaches_the_c_struct() {
         std::fs::create_dir_all(to.parent().unwrap()).unwrap();
         std::fs::copy(root.join(file), &to).unwrap();
     }
-    let source = copy.join("src/spline/quality_bound.rs");
-    let text = std::fs::read_to_string(&source).unwrap();
-    let field = "    /// A new option (default 7).\n    pub extra: u32,\n}";
-    let changed = text.replacen(
-        "    pub gap: f64,\n}",
-        &format!("    pub gap: f64,\n{field}"),
-        1,
-    );
-    assert_ne!(
-        text, changed,
-        "QualityBoundOptions no longer ends with `gap`"
-    );
-    std::fs::write(&source, changed).unwrap();
+    let options_field = "    /// A new option (default 7).\n    pub extra: u32,\n";
+    let fit_field = "    /// A new fit option (default 0).\n    pub fit_extra: u32,\n";
+    let untangle_field = "    /// A new untangling option.\n    pub untangle_extra: u32,\n";
+    let report_field = "    /// A new figure of a fit.\n    pub report_extra: usize,\n";
+    // (file of src/spline, the last field of the struct, the field added after it)
+    let edits = [
+        ("quality_bound", "gap: f64", options_field),
+        ("fit_options", "threads: usize", fit_field),
+        ("untangle", "smoothing_sweeps: u32", untangle_field),
+        ("fit", "stages: FitStages", report_field),
+    ];
+    for (file, last, field) in edits {
+        let source = copy.join(format!("src/spline/{file}.rs"));
+        let text = std::fs::read_to_string(&source).unwrap();
+        let last = format!("    pub {last},\n");
+        let changed = text.replacen(&format!("{last}}}"), &format!("{last}{field}}}"), 1);
+        assert_ne!(
+            text, changed,
+            "{file}.rs: the struct no longer ends with `{last}`"
+        );
+        std::fs::write(&source, changed).unwrap();
+    }
     let generated = generate::generate(&copy);
     std::fs::remove_dir_all(&copy).unwrap();
-    let (file, options) = &generated[0];
-    assert_eq!(*file, generate::OPTIONS_FILE);
+    let [(options_file, options), (reports_file, reports)] = &generated;
+    assert_eq!(*options_file, generate::OPTIONS_FILE);
+    assert_eq!(*reports_file, generate::REPORTS_FILE);
     assert!(
-        options.contains(field),
-        "the field and its doc are not in the C struct"
+        options.contains(options_field)
+            && options.contains(fit_field)
+            && reports.contains(report_field),
+        "a field or its doc is not in its C struct"
     );
     assert!(options.contains("extra: o.extra,") && options.contains("extra: self.extra,"));
-    assert_ne!(options, &std::fs::read_to_string(root.join(file)).unwrap());
+    assert!(options.contains("fit_extra: o.fit_extra,"));
+    assert!(options.contains("fit_extra: self.fit_extra,"));
+    // The flattened untangling options: the field takes the C struct's level, its doc included.
+    assert!(options.contains(untangle_field));
+    assert!(options.contains("untangle_extra: o.untangle.untangle_extra,"));
+    assert!(options.contains("untangle_extra: self.untangle_extra,"));
+    assert!(reports.contains("report_extra: o.report_extra,"));
+    for (file, text) in &generated {
+        assert_ne!(text, &std::fs::read_to_string(root.join(file)).unwrap());
+    }
 }

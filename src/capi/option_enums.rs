@@ -1,10 +1,16 @@
 //! The integer types and `IGAPARAM_*` constants of the enums the option structs hold (the
 //! conversions to and from the core's enums are generated in `options_gen.rs`): a new variant of
 //! one of the core's enums needs its constant here, or the generated conversions do not compile.
+//! Also the C names of the array lengths of the generated reports.
 
 use std::ffi::c_int;
 
 use crate::error::Error;
+use crate::spline::HISTOGRAM_BINS;
+
+/// Number of bins of the quality histogram of `igaparam_validity_report`.
+pub const IGAPARAM_HISTOGRAM_BINS: usize = 10;
+const _: () = assert!(IGAPARAM_HISTOGRAM_BINS == HISTOGRAM_BINS);
 
 /// Where free nodes start: one of the `IGAPARAM_PLACEMENT_*` values.
 pub type igaparam_placement = c_int;

@@ -326,6 +326,138 @@ impl igaparam_quality_bound_options {
     }
 }
 
+/// Options of `igaparam_spline_fit_domain_with`; get the defaults (those of
+/// `igaparam_spline_fit_domain`) from `igaparam_fit_options_default`.
+#[repr(C)]
+#[derive(Clone, Copy, Debug)]
+pub struct igaparam_fit_options {
+    /// The fit rule. One of `IGAPARAM_FIT_CHOICE_BEST` (default),
+    /// `IGAPARAM_FIT_CHOICE_INTERPOLATION` or `IGAPARAM_FIT_CHOICE_QUASI_INTERPOLATION`.
+    pub choice: igaparam_fit_choice,
+    /// The certification of the fitted maps and of the untangled and smoothed ones (default: the
+    /// defaults of `ValidityOptions`); a spline handle of the C API keeps its result for
+    /// `igaparam_spline_check_validity` with equal options.
+    pub validity: igaparam_validity_options,
+    /// Largest number of untangling rounds (mark the uncertified elements, optimize the control
+    /// points around them, certify again) per stage for a map that is not certified (default 4); a
+    /// round that leaves as many elements uncertified as it found ends the stage. In a checked fit
+    /// 0 turns the untangling off: such a map is returned as fitted, with its uncertified elements
+    /// in its validity report (`igaparam_spline_check_validity` in C).
+    pub untangle_rounds: u32,
+    /// Sweeps over the free control points per untangling round (default 20).
+    pub untangle_sweeps: u32,
+    /// Largest move of a boundary control point by the untangling, relative to the bounding box;
+    /// negative (default) uses the `boundary_offset` the domain was built with, 0 keeps the
+    /// boundary.
+    pub boundary_offset: f64,
+    /// Largest number of smoothing sweeps over the inner control points of a certified map
+    /// (`SplineMap::smooth`, the stage that follows the untangling, or a fit certified as it is, in
+    /// a checked fit; default 8); 0 turns the smoothing off.
+    pub smoothing_sweeps: u32,
+    /// Worker threads, at most 4096, capped to the machine's cores; 0 (default) runs on the
+    /// caller's thread pool: one thread per core, unless a Rust caller installed another. The
+    /// result does not depend on it.
+    pub threads: u32,
+    /// Progress callback, or NULL (default): called on the calling thread with
+    /// `IGAPARAM_STAGE_FIT` (`done` of `total` fits and certifications),
+    /// `IGAPARAM_STAGE_UNTANGLING` (rounds) and `IGAPARAM_STAGE_SMOOTHING` (sweeps); returning
+    /// non-zero cancels (`IGAPARAM_STATUS_CANCELLED`, nothing written).
+    pub progress: igaparam_progress_fn,
+    /// Passed to `progress` as its first argument.
+    pub progress_user: *mut c_void,
+}
+
+impl From<&crate::spline::FitOptions> for igaparam_fit_options {
+    fn from(o: &crate::spline::FitOptions) -> Self {
+        igaparam_fit_options {
+            choice: c_fit_choice(o.choice),
+            validity: igaparam_validity_options::from(&o.validity),
+            untangle_rounds: o.untangle.rounds,
+            untangle_sweeps: o.untangle.sweeps,
+            boundary_offset: o.untangle.boundary_offset,
+            smoothing_sweeps: o.untangle.smoothing_sweeps,
+            threads: u32::try_from(o.threads).unwrap_or(u32::MAX),
+            progress: None,
+            progress_user: std::ptr::null_mut(),
+        }
+    }
+}
+
+impl igaparam_fit_options {
+    /// The core options of these C options: a conversion (an enum's value is checked; the
+    /// core's `validate` checks the others).
+    pub(crate) fn to_core(self) -> Result<crate::spline::FitOptions> {
+        Ok(crate::spline::FitOptions {
+            choice: fit_choice(self.choice)?,
+            validity: self.validity.to_core()?,
+            untangle: crate::spline::UntangleOptions {
+                rounds: self.untangle_rounds,
+                sweeps: self.untangle_sweeps,
+                boundary_offset: self.boundary_offset,
+                smoothing_sweeps: self.smoothing_sweeps,
+                ..crate::spline::FitOptions::default().untangle
+            },
+            threads: self.threads as usize,
+        })
+    }
+}
+
+/// Options of `igaparam_domain_fit_adaptive`; get the defaults from
+/// `igaparam_adapt_options_default`.
+#[repr(C)]
+#[derive(Clone, Copy, Debug)]
+pub struct igaparam_adapt_options {
+    /// The loop stops once every element is certified valid and its smallest sampled mean ratio
+    /// `q_S` reaches this (in [0, 1); default 0.1). Elements below it, or not certified, are
+    /// refined.
+    pub target_quality: f64,
+    /// Largest number of refinement rounds (default 4).
+    pub max_rounds: u32,
+    /// Cells at this level are not refined further (default 10, at most 16).
+    pub max_level: u32,
+    /// Largest number of optimization sweeps after each refinement (default 200).
+    pub max_sweeps: u32,
+    /// Worker threads, at most 4096, capped to the machine's cores; 0 (default) uses one per core.
+    pub threads: u32,
+    /// Progress callback, or NULL (default). Called with `IGAPARAM_STAGE_ADAPTATION`, `done`
+    /// rounds and `total` = `max_rounds` before each refinement; returning non-zero cancels.
+    pub progress: igaparam_progress_fn,
+    /// Passed to `progress` as its first argument.
+    pub progress_user: *mut c_void,
+}
+
+impl From<&crate::spline::AdaptOptions> for igaparam_adapt_options {
+    fn from(o: &crate::spline::AdaptOptions) -> Self {
+        igaparam_adapt_options {
+            target_quality: o.target_quality,
+            max_rounds: o.max_rounds,
+            max_level: u32::from(o.max_level),
+            max_sweeps: o.domain.max_sweeps,
+            threads: u32::try_from(o.domain.threads).unwrap_or(u32::MAX),
+            progress: None,
+            progress_user: std::ptr::null_mut(),
+        }
+    }
+}
+
+impl igaparam_adapt_options {
+    /// The core options of these C options: a conversion (an enum's value is checked; the
+    /// core's `validate` checks the others).
+    pub(crate) fn to_core(self) -> Result<crate::spline::AdaptOptions> {
+        Ok(crate::spline::AdaptOptions {
+            target_quality: self.target_quality,
+            max_rounds: self.max_rounds,
+            max_level: u8::try_from(self.max_level).unwrap_or(u8::MAX),
+            domain: crate::domain::DomainOptions {
+                max_sweeps: self.max_sweeps,
+                threads: self.threads as usize,
+                ..crate::spline::AdaptOptions::default().domain
+            },
+            ..crate::spline::AdaptOptions::default()
+        })
+    }
+}
+
 /// The `IGAPARAM_TARGET_*` value of `value`.
 pub(crate) fn c_target(value: crate::optimize::TargetKind) -> igaparam_target {
     match value {

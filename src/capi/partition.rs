@@ -14,7 +14,7 @@ use super::handle::{acquire, handle_type, into_raw, release, Guarded};
 use super::mesh::cell_type;
 use super::options_gen::igaparam_relocate_options;
 use super::relocate::{igaparam_relocate_options_default, relocation_progress};
-use super::reports_gen::igaparam_relocate_report;
+use super::reports_gen::igaparam_partition_report;
 use super::{igaparam_cell_type, igaparam_status};
 use crate::error::{Error, Result};
 use crate::partition::{Exchange, PartInput, Partition, Ranks};
@@ -52,19 +52,6 @@ pub struct igaparam_exchange {
     pub exchange: igaparam_exchange_fn,
     /// Passed to `exchange` as its first argument (e.g. a pointer to the communicator).
     pub user: *mut c_void,
-}
-
-/// What `igaparam_partition_relocate` did.
-#[repr(C)]
-#[derive(Clone, Copy, Debug, Default)]
-pub struct igaparam_partition_report {
-    /// The figures of the whole mesh, the same on every rank (`gradient_norm` is not computed
-    /// on a partition: infinity; `seconds` is this rank's wall-clock time).
-    pub relocation: igaparam_relocate_report,
-    /// Seconds this rank spent in the exchange callback (waiting for the others included).
-    pub exchange_seconds: f64,
-    /// Calls of the exchange callback on this rank.
-    pub exchanges: usize,
 }
 
 /// The host's exchange as the library sees it.
@@ -305,14 +292,7 @@ pub extern "C" fn igaparam_partition_relocate(
         let r = handle
             .relocate(&mut ranks, opts, &mut progress)
             .map_err(|e| watch.explain(e))?;
-        write_optional(
-            report,
-            igaparam_partition_report {
-                relocation: igaparam_relocate_report::from(&r.relocation),
-                exchange_seconds: r.exchange_seconds,
-                exchanges: r.exchanges,
-            },
-        );
+        write_optional(report, igaparam_partition_report::from(&r));
         Ok(())
     })
 }

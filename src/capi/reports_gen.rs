@@ -11,6 +11,8 @@
 
 use std::ffi::c_int;
 
+use super::option_enums::IGAPARAM_HISTOGRAM_BINS;
+
 /// What `igaparam_domain_build` did. Quality is the inverse mean distortion of a cell against its
 /// parametric (square) cell: 1 is a square, 0 an inverted cell.
 #[repr(C)]
@@ -195,6 +197,114 @@ impl From<&crate::spline::QualityBound> for igaparam_quality_bound_report {
             lower_bound: o.lower_bound,
             sampled_min: o.sampled_min,
             element: o.element,
+        }
+    }
+}
+
+/// What a fit (`igaparam_spline_fit_domain`, `igaparam_spline_refine`) did.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default)]
+pub struct igaparam_fit_report {
+    /// Basis functions (= control points).
+    pub basis_count: usize,
+    /// Elements of the space (the leaves of the hierarchical mesh).
+    pub element_count: usize,
+    /// Largest coordinate difference between the spline and the data at the fit points.
+    pub residual: f64,
+    /// Whether a least-squares fit replaced a singular or badly conditioned interpolation at the
+    /// Greville points (1 in C, else 0).
+    pub least_squares: i32,
+    /// Whether the control points come from the local quasi-interpolant
+    /// (`SplineMap::fit_quasi_interpolation`: in a checked fit, when its map was certified valid,
+    /// or less invalid, than that of the interpolation; and every exact refinement,
+    /// `igaparam_spline_refine` in C) (1 in C, else 0).
+    pub quasi_interpolation: i32,
+    /// Control points moved by the untangling (`SplineMap::untangle`) of a fitted map that was not
+    /// certified valid (inner ones first; boundary ones, at most the untangling's `boundary_offset`
+    /// of the bounding box, only when that was not enough); 0 when the fitted map was kept as it
+    /// was.
+    pub untangled: usize,
+    /// Largest move of a boundary control point by that untangling, relative to the bounding box
+    /// (each axis scaled to 1; see `UntangleOptions::boundary_offset`); 0 when the boundary was
+    /// kept.
+    pub boundary_offset: f64,
+    /// Wall-clock seconds (with the certification and untangling of `SplineMap::fit_checked`).
+    pub seconds: f64,
+    /// Inner control points moved by the smoothing stage (`SplineMap::smooth`: on the map's own
+    /// mean ratio, kept only when the map stays certified and its smallest sampled mean ratio
+    /// rises); 0 when the map was kept as it was.
+    pub smoothed: usize,
+}
+
+impl From<&crate::spline::FitReport> for igaparam_fit_report {
+    fn from(o: &crate::spline::FitReport) -> Self {
+        igaparam_fit_report {
+            basis_count: o.basis_count,
+            element_count: o.element_count,
+            residual: o.residual,
+            least_squares: i32::from(o.least_squares),
+            quasi_interpolation: i32::from(o.quasi_interpolation),
+            untangled: o.untangled,
+            boundary_offset: o.boundary_offset,
+            seconds: o.seconds,
+            smoothed: o.smoothed,
+        }
+    }
+}
+
+/// Certified validity and quality of a spline map.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default)]
+pub struct igaparam_validity_report {
+    /// Whether `det J_S > 0` is proven on every element (Bernstein coefficients of the determinant,
+    /// with subdivision; 1 in C, else 0).
+    pub certified_positive: i32,
+    /// Elements where positivity is not proven.
+    pub uncertified: usize,
+    /// Smallest lower bound of `det J_S` over the elements (Jacobian with respect to the parametric
+    /// coordinates).
+    pub det_lower_bound: f64,
+    /// Smallest mean ratio `q_S = d·det(J)^(2/d)/‖J‖²` at the samples (0 where det ≤ 0).
+    pub min_quality: f64,
+    /// Mean of the element means of `q_S` at the samples (every element has as many).
+    pub mean_quality: f64,
+    /// Samples per quality bin `[i/10, (i+1)/10)` (the last bin includes 1).
+    pub histogram: [usize; IGAPARAM_HISTOGRAM_BINS],
+}
+
+impl From<&crate::spline::ValidityReport> for igaparam_validity_report {
+    fn from(o: &crate::spline::ValidityReport) -> Self {
+        igaparam_validity_report {
+            certified_positive: i32::from(o.certified_positive),
+            uncertified: o.uncertified,
+            det_lower_bound: o.det_lower_bound,
+            min_quality: o.min_quality,
+            mean_quality: o.mean_quality,
+            histogram: o.histogram,
+        }
+    }
+}
+
+/// What `igaparam_partition_relocate` did.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default)]
+pub struct igaparam_partition_report {
+    /// The relocation's figures over the whole mesh, the same on every rank (`gradient_norm` is not
+    /// computed on a partition: infinity; `seconds` is this rank's wall-clock time).
+    pub relocation: igaparam_relocate_report,
+    /// Seconds this rank spent in the host's exchange (the exchange callback in C), waiting for the
+    /// other ranks included.
+    pub exchange_seconds: f64,
+    /// Calls of the host's exchange (the exchange callback in C) on this rank.
+    pub exchanges: usize,
+}
+
+impl From<&crate::partition::PartitionReport> for igaparam_partition_report {
+    fn from(o: &crate::partition::PartitionReport) -> Self {
+        igaparam_partition_report {
+            relocation: igaparam_relocate_report::from(&o.relocation),
+            exchange_seconds: o.exchange_seconds,
+            exchanges: o.exchanges,
         }
     }
 }

@@ -11,7 +11,7 @@ use super::ffi::{
     Failure,
 };
 use super::handle::{acquire, handle_type, into_raw, release, Guarded, Held};
-use super::igaparam_status;
+use super::{igaparam_fit_report, igaparam_status};
 use crate::error::{Error, Result};
 use crate::spline::{
     FitRecord, FitReport, SplineMap, SplineSpace, ValidityOptions, ValidityReport,
@@ -78,53 +78,6 @@ impl SplineData {
     fn set_map(&mut self, map: AnyMap) {
         self.map = map;
         self.validity = None;
-    }
-}
-
-/// What a fit (`igaparam_spline_fit_domain`, `igaparam_spline_refine`) did.
-#[repr(C)]
-#[derive(Clone, Copy, Debug, Default)]
-pub struct igaparam_fit_report {
-    /// Basis functions (= control points).
-    pub basis_count: usize,
-    /// Elements (the leaves of the hierarchical mesh).
-    pub element_count: usize,
-    /// Largest coordinate difference between the spline and the data at the fit points.
-    pub residual: f64,
-    /// 1 when a least-squares fit replaced a singular or badly conditioned interpolation at the
-    /// Greville points, else 0.
-    pub least_squares: i32,
-    /// 1 when the control points come from the local quasi-interpolant (a fit whose map was
-    /// certified valid, or less invalid, than that of the interpolation; and every
-    /// `igaparam_spline_refine`), else 0.
-    pub quasi_interpolation: i32,
-    /// Control points that `igaparam_spline_fit_domain` moved to untangle a fitted map that was
-    /// not certified valid (inner ones first; boundary ones, at most the domain's
-    /// `boundary_offset` of the bounding box, only when that was not enough); 0 when the fitted
-    /// map was kept as it was.
-    pub untangled: usize,
-    /// Largest move of a boundary control point by that untangling, relative to the bounding
-    /// box (each axis scaled to 1); 0 when the boundary was kept.
-    pub boundary_offset: f64,
-    /// Wall-clock seconds.
-    pub seconds: f64,
-    /// Inner control points the smoothing stage moved (on the spline's own mean ratio, kept
-    /// only when the map stays certified and its smallest sampled mean ratio rises); 0 when
-    /// the map was kept as it was.
-    pub smoothed: usize,
-}
-
-fn fit_report(r: &FitReport) -> igaparam_fit_report {
-    igaparam_fit_report {
-        basis_count: r.basis_count,
-        element_count: r.element_count,
-        residual: r.residual,
-        least_squares: r.least_squares as i32,
-        quasi_interpolation: r.quasi_interpolation as i32,
-        untangled: r.untangled,
-        boundary_offset: r.boundary_offset,
-        seconds: r.seconds,
-        smoothed: r.smoothed,
     }
 }
 
@@ -452,7 +405,7 @@ pub extern "C" fn igaparam_spline_refine(
             AnyMap::Two(m) => refine(m, marked).map(|(m, r)| (AnyMap::Two(m), r))?,
             AnyMap::Three(m) => refine(m, marked).map(|(m, r)| (AnyMap::Three(m), r))?,
         };
-        write_optional(report, fit_report(&r));
+        write_optional(report, igaparam_fit_report::from(&r));
         handle.set_map(refined);
         Ok(())
     })

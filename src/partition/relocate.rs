@@ -19,11 +19,13 @@ use crate::optimize::{laplace::MeshGraph, Problem, QualitySummary};
 /// and this rank's time in the host's exchange.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct PartitionReport {
-    /// The relocation's figures over the whole mesh (`gradient_norm` is not computed: `+∞`).
+    /// The relocation's figures over the whole mesh, the same on every rank (`gradient_norm`
+    /// is not computed on a partition: infinity; `seconds` is this rank's wall-clock time).
     pub relocation: RelocateReport,
-    /// Seconds this rank spent in the host's exchange (waiting for other ranks included).
+    /// Seconds this rank spent in the host's exchange (the exchange callback in C), waiting
+    /// for the other ranks included.
     pub exchange_seconds: f64,
-    /// Calls of the host's exchange on this rank.
+    /// Calls of the host's exchange (the exchange callback in C) on this rank.
     pub exchanges: usize,
 }
 

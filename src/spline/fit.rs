@@ -27,32 +27,40 @@ const CHUNK: usize = 64;
 /// What a fit did.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct FitReport {
-    /// Basis functions (= interpolation points).
+    /// Basis functions (= control points).
     pub basis_count: usize,
-    /// Elements of the space.
+    /// Elements of the space (the leaves of the hierarchical mesh).
     pub element_count: usize,
     /// Largest coordinate difference between the spline and the data at the fit points.
     pub residual: f64,
-    /// Whether the least-squares fit replaced a singular interpolation.
+    /// Whether a least-squares fit replaced a singular or badly conditioned interpolation at
+    /// the Greville points (1 in C, else 0).
     pub least_squares: bool,
-    /// Whether the coefficients come from the quasi-interpolant
-    /// ([`SplineMap::fit_quasi_interpolation`], or an exact refinement).
+    /// Whether the control points come from the local quasi-interpolant
+    /// ([`SplineMap::fit_quasi_interpolation`]: in a checked fit, when its map was certified
+    /// valid, or less invalid, than that of the interpolation; and every exact refinement,
+    /// `igaparam_spline_refine` in C) (1 in C, else 0).
     pub quasi_interpolation: bool,
-    /// Control points moved by the untangling ([`SplineMap::untangle`]) of a map the fit left
-    /// uncertified; 0 when the fitted map was kept as it was.
-    pub untangled: usize,
-    /// Largest move of a boundary control point by the untangling, relative to the bounding
-    /// box (see [`UntangleOptions::boundary_offset`](super::UntangleOptions::boundary_offset));
-    /// 0 when the boundary was kept.
-    pub boundary_offset: f64,
-    /// Inner control points moved by the smoothing stage ([`SplineMap::smooth`]); 0 when the
+    /// Control points moved by the untangling ([`SplineMap::untangle`]) of a fitted map that
+    /// was not certified valid (inner ones first; boundary ones, at most the untangling's
+    /// `boundary_offset` of the bounding box, only when that was not enough); 0 when the fitted
     /// map was kept as it was.
-    pub smoothed: usize,
+    pub untangled: usize,
+    /// Largest move of a boundary control point by that untangling, relative to the bounding
+    /// box (each axis scaled to 1; see
+    /// [`UntangleOptions::boundary_offset`](super::UntangleOptions::boundary_offset)); 0 when
+    /// the boundary was kept.
+    pub boundary_offset: f64,
     /// Estimated reciprocal condition number (1-norm) of the matrix solved: the collocation
     /// matrix, or the normal equations; 1 for the quasi-interpolant.
     pub reciprocal_condition: f64,
     /// Wall-clock seconds (with the certification and untangling of [`SplineMap::fit_checked`]).
     pub seconds: f64,
+    // After `seconds`, as in the C struct, which appended it.
+    /// Inner control points moved by the smoothing stage ([`SplineMap::smooth`]: on the map's
+    /// own mean ratio, kept only when the map stays certified and its smallest sampled mean
+    /// ratio rises); 0 when the map was kept as it was.
+    pub smoothed: usize,
     /// Wall-clock seconds of the stages of [`SplineMap::fit_checked`].
     pub stages: FitStages,
 }

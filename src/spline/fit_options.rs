@@ -50,13 +50,16 @@ pub type FitProgress<'a> = dyn FnMut(FitStage, usize, usize) -> bool + 'a;
 pub struct FitOptions {
     /// The fit rule.
     pub choice: FitChoice,
-    /// The certification of the fitted maps (and of the untangled and smoothed ones).
+    /// The certification of the fitted maps and of the untangled and smoothed ones (default:
+    /// the defaults of [`ValidityOptions`]); a spline handle of the C API keeps its result for
+    /// `igaparam_spline_check_validity` with equal options.
     pub validity: ValidityOptions,
     /// The untangling (`rounds = 0` turns it off: a map that is not certified is returned as
     /// fitted) and the smoothing (`smoothing_sweeps = 0` turns it off).
     pub untangle: UntangleOptions,
-    /// Worker threads; 0 runs on the caller's thread pool (one thread per core unless the
-    /// caller installed another). The result does not depend on it.
+    /// Worker threads, at most 4096, capped to the machine's cores; 0 (default) runs on the
+    /// caller's thread pool: one thread per core, unless a Rust caller installed another. The
+    /// result does not depend on it.
     pub threads: usize,
 }
 

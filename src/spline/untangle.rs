@@ -27,11 +27,13 @@ use crate::optimize::NodeSolverOptions;
 /// Options of [`SplineMap::untangle`].
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct UntangleOptions {
-    /// Largest number of rounds of (mark the uncertified elements, optimize the control points
-    /// around them, certify again) per stage; a round that leaves as many elements uncertified
-    /// as it found ends the stage.
+    /// Largest number of untangling rounds (mark the uncertified elements, optimize the control
+    /// points around them, certify again) per stage for a map that is not certified (default
+    /// 4); a round that leaves as many elements uncertified as it found ends the stage. In a
+    /// checked fit 0 turns the untangling off: such a map is returned as fitted, with its
+    /// uncertified elements in its validity report (`igaparam_spline_check_validity` in C).
     pub rounds: u32,
-    /// Sweeps over the free control points per round.
+    /// Sweeps over the free control points per untangling round (default 20).
     pub sweeps: u32,
     /// Sample points per direction and element (the element's corners included).
     pub samples: usize,
@@ -42,8 +44,9 @@ pub struct UntangleOptions {
     /// when moving the inner control points alone leaves elements uncertified. Default 1e-2,
     /// as [`DomainOptions::boundary_offset`](crate::domain::DomainOptions::boundary_offset).
     pub boundary_offset: f64,
-    /// Largest number of sweeps of the smoothing stage ([`SplineMap::smooth`]) that follows
-    /// the untangling (or a fit certified as it is) in the checked fit; 0 turns it off.
+    /// Largest number of smoothing sweeps over the inner control points of a certified map
+    /// ([`SplineMap::smooth`], the stage that follows the untangling, or a fit certified as it
+    /// is, in a checked fit; default 8); 0 turns the smoothing off.
     pub smoothing_sweeps: u32,
 }
 

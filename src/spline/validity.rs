@@ -60,15 +60,17 @@ pub struct ElementValidity {
 pub struct ValidityReport {
     /// Per element, in element order.
     pub elements: Vec<ElementValidity>,
-    /// Whether every element is certified positive.
+    /// Whether `det J_S > 0` is proven on every element (Bernstein coefficients of the
+    /// determinant, with subdivision; 1 in C, else 0).
     pub certified_positive: bool,
-    /// Elements not certified positive.
+    /// Elements where positivity is not proven.
     pub uncertified: usize,
-    /// Smallest lower bound of `det J_S`.
+    /// Smallest lower bound of `det J_S` over the elements (Jacobian with respect to the
+    /// parametric coordinates).
     pub det_lower_bound: f64,
-    /// Smallest sampled mean ratio.
+    /// Smallest mean ratio `q_S = d·det(J)^(2/d)/‖J‖²` at the samples (0 where det ≤ 0).
     pub min_quality: f64,
-    /// Mean of the sampled mean ratio over all samples.
+    /// Mean of the element means of `q_S` at the samples (every element has as many).
     pub mean_quality: f64,
     /// Samples per quality bin `[i/10, (i+1)/10)` (the last bin includes 1).
     pub histogram: [usize; HISTOGRAM_BINS],

@@ -13,11 +13,18 @@
 //! - an enum of [`ENUMS`] becomes its C integer type, checked on the way in (an error names the
 //!   `IGAPARAM_*` values allowed), and its field's C doc ends with the values and the default;
 //! - a struct that has a mirror itself becomes that mirror;
+//! - an array whose length is a constant of [`ARRAY_LENGTHS`] stays an array, of that length's C
+//!   constant;
+//! - a field of [`Mirror::flatten`] is replaced by the fields of its nested struct (the fields
+//!   named there, under their C names), each by these rules; the C options' `to_core` gathers
+//!   them again, the nested fields C does not hold keeping the core's defaults;
 //! - anything else fails here, naming the field.
 //!
 //! The C-only fields (the progress callback and its user pointer) are appended from
-//! [`Mirror::c_only`]; a report leaves out the core fields of [`Mirror::skip`] and is only
-//! converted from the core. Rustdoc links of the core docs become plain names, the names cbindgen
+//! [`Mirror::c_only`]; a C struct leaves out the core fields of [`Mirror::skip`] (C options keep
+//! the core's defaults for them); a report is only converted from the core. A field's C doc is
+//! its core doc, unless [`DOC_OVERRIDES`] gives one (a field whose meaning in C is not the
+//! core's, as a C sentinel value). Rustdoc links of the core docs become plain names, the names cbindgen
 //! renames (`cbindgen.toml`, `[export.rename]`) take their C names, and each paragraph is
 //! filled again to the width of the file (so write the core docs as prose paragraphs). Plain
 //! `//` comments of the core fields stay in the core. The tables (which structs, which enums,
@@ -32,12 +39,19 @@ use std::process::{Command, Stdio};
 // What is generated: the structs, their rules, the enums and the heads of the files.
 include!("spec.rs");
 
-/// A field of a core struct.
+/// A field of a core struct, or of a nested core struct that its C struct flattens.
 struct Field {
+    /// Its name in C: the core's, or the flattening's rename.
     name: String,
-    /// The last segment of its type's path.
+    /// Its path from the core struct: its name, or `nested.name` for a flattened field.
+    path: String,
+    /// The last segment of its type's path (of the element type of an array).
     ty: String,
+    /// The length of an array, `[ty; len]`: the name of a constant.
+    len: Option<String>,
     doc: Vec<String>,
+    /// The flattening it comes from.
+    nested: Option<&'static Flatten>,
 }
 
 fn parse(root: &Path, source: &str) -> syn::File {
@@ -73,7 +87,19 @@ fn doc_lines(attrs: &[syn::Attribute]) -> Vec<String> {
 fn last_ident(ty: &syn::Type) -> String {
     match ty {
         syn::Type::Path(p) => p.path.segments.last().unwrap().ident.to_string(),
+        syn::Type::Array(a) => last_ident(&a.elem),
         _ => String::new(),
+    }
+}
+
+/// The length of an array type whose length is a constant.
+fn array_len(ty: &syn::Type) -> Option<String> {
+    match ty {
+        syn::Type::Array(syn::TypeArray {
+            len: syn::Expr::Path(p),
+            ..
+        }) => Some(p.path.segments.last().unwrap().ident.to_string()),
+        _ => None,
     }
 }
 
@@ -86,10 +112,16 @@ fn core_struct(file: &syn::File, name: &str) -> Vec<Field> {
     s.fields
         .iter()
         .filter(|f| matches!(f.vis, syn::Visibility::Public(_)))
-        .map(|f| Field {
-            name: f.ident.as_ref().unwrap().to_string(),
-            ty: last_ident(&f.ty),
-            doc: doc_lines(&f.attrs),
+        .map(|f| {
+            let name = f.ident.as_ref().unwrap().to_string();
+            Field {
+                path: name.clone(),
+                name,
+                ty: last_ident(&f.ty),
+                len: array_len(&f.ty),
+                doc: doc_lines(&f.attrs),
+                nested: None,
+            }
         })
         .collect()
 }
@@ -242,7 +274,7 @@ struct Conversion {
 }
 
 fn conversion(g: &Generator, mirror: &Mirror, field: &Field) -> Conversion {
-    let f = &field.name;
+    let (f, p) = (&field.name, &field.path);
     let plain = |c_type: &str, to_c: String, to_core: String| Conversion {
         c_type: c_type.into(),
         to_c,
@@ -253,29 +285,43 @@ fn conversion(g: &Generator, mirror: &Mirror, field: &Field) -> Conversion {
         .iter()
         .find(|(s, n, _)| *s == mirror.c_name && n == f)
         .map(|(_, _, t)| *t);
+    if let Some(len) = &field.len {
+        let c_len = ARRAY_LENGTHS.iter().find(|(core, _)| core == len);
+        return match (field.ty.as_str(), c_len) {
+            ("f64" | "u32" | "usize", Some((_, c_len))) => plain(
+                &format!("[{}; {c_len}]", field.ty),
+                format!("o.{p}"),
+                format!("self.{f}"),
+            ),
+            _ => panic!(
+                "{}.{p}: no C form of an array of `{}` of length `{len}` (see ARRAY_LENGTHS)",
+                mirror.core, field.ty
+            ),
+        };
+    }
     match field.ty.as_str() {
-        "f64" | "u32" => plain(&field.ty, format!("o.{f}"), format!("self.{f}")),
+        "f64" | "u32" => plain(&field.ty, format!("o.{p}"), format!("self.{f}")),
         "u8" => plain(
             "u32",
-            format!("u32::from(o.{f})"),
+            format!("u32::from(o.{p})"),
             format!("u8::try_from(self.{f}).unwrap_or(u8::MAX)"),
         ),
         "usize" if U32_COUNTS.contains(&f.as_str()) => plain(
             "u32",
-            format!("u32::try_from(o.{f}).unwrap_or(u32::MAX)"),
+            format!("u32::try_from(o.{p}).unwrap_or(u32::MAX)"),
             format!("self.{f} as usize"),
         ),
-        "usize" => plain("usize", format!("o.{f}"), format!("self.{f}")),
+        "usize" => plain("usize", format!("o.{p}"), format!("self.{f}")),
         "bool" => {
             let ty = overridden.unwrap_or("c_int");
-            plain(ty, format!("{ty}::from(o.{f})"), format!("self.{f} != 0"))
+            plain(ty, format!("{ty}::from(o.{p})"), format!("self.{f} != 0"))
         }
         ty => {
             if let Some(e) = ENUMS.iter().find(|e| e.core == ty) {
-                let default = g.enum_default(mirror, e, f);
+                let default = g.enum_default(mirror, e, p);
                 return Conversion {
                     c_type: e.c_type.into(),
-                    to_c: format!("c_{}(o.{f})", e.from_c),
+                    to_c: format!("c_{}(o.{p})", e.from_c),
                     to_core: format!("{}(self.{f})?", e.from_c),
                     doc_tail: Some(g.values_sentence(e, default.as_deref())),
                 };
@@ -283,15 +329,37 @@ fn conversion(g: &Generator, mirror: &Mirror, field: &Field) -> Conversion {
             if let Some(m) = MIRRORS.iter().find(|m| m.core == ty) {
                 return plain(
                     m.c_name,
-                    format!("{}::from(&o.{f})", m.c_name),
+                    format!("{}::from(&o.{p})", m.c_name),
                     format!("self.{f}.to_core()?"),
                 );
             }
             panic!(
-                "{}.{f}: no C form of type `{ty}` (see the rules of tests/c_structs.rs)",
+                "{}.{p}: no C form of type `{ty}` (see the rules of tests/c_structs.rs)",
                 mirror.core
             )
         }
+    }
+}
+
+/// The core sources the tables name.
+fn sources() -> impl Iterator<Item = &'static str> {
+    let nested = MIRRORS
+        .iter()
+        .flat_map(|m| m.flatten.iter().map(|n| n.source));
+    MIRRORS
+        .iter()
+        .map(|m| m.source)
+        .chain(nested)
+        .chain(ENUMS.iter().map(|e| e.source))
+}
+
+/// Panics unless every name of `names` is a field of core struct `core` (`fields`).
+fn check_names<'a>(core: &str, fields: &[Field], names: impl Iterator<Item = &'a &'static str>) {
+    for name in names {
+        assert!(
+            fields.iter().any(|f| f.name == *name),
+            "{core}.{name}: no such field (see the tables of spec.rs)"
+        );
     }
 }
 
@@ -303,12 +371,8 @@ struct Generator {
 
 impl Generator {
     fn read(root: &Path) -> Generator {
-        let sources = MIRRORS
-            .iter()
-            .map(|m| m.source)
-            .chain(ENUMS.iter().map(|e| e.source));
         Generator {
-            files: sources.map(|s| (s, parse(root, s))).collect(),
+            files: sources().map(|s| (s, parse(root, s))).collect(),
             renames: renames(root),
         }
     }
@@ -352,16 +416,68 @@ impl Generator {
         }
     }
 
-    fn mirror(&self, out: &mut String, m: &Mirror) {
-        let mut fields = core_struct(&self.files[m.source], m.core);
-        for name in m.skip {
-            assert!(
-                fields.iter().any(|f| f.name == *name),
-                "{}.{name}: no such field to skip",
-                m.core
-            );
+    /// The fields of mirror `m` in C order: the core's but those of [`Mirror::skip`], the
+    /// fields of a nested struct of [`Mirror::flatten`] in its place.
+    fn fields(&self, m: &Mirror) -> Vec<Field> {
+        let core = core_struct(&self.files[m.source], m.core);
+        let names = m.skip.iter().chain(m.flatten.iter().map(|n| &n.field));
+        check_names(m.core, &core, names);
+        let mut out = Vec::new();
+        for field in core {
+            if m.skip.contains(&field.name.as_str()) {
+                continue;
+            }
+            match m.flatten.iter().find(|n| n.field == field.name) {
+                Some(n) => out.extend(self.flattened(n)),
+                None => out.push(field),
+            }
         }
-        fields.retain(|f| !m.skip.contains(&f.name.as_str()));
+        out
+    }
+
+    /// The fields of the nested struct of `n` that its C struct holds, under their C names.
+    fn flattened(&self, n: &'static Flatten) -> Vec<Field> {
+        let nested = core_struct(&self.files[n.source], n.core);
+        let names = n
+            .only
+            .iter()
+            .chain(n.skip)
+            .chain(n.renames.iter().map(|(a, _)| a));
+        check_names(n.core, &nested, names);
+        let held = |f: &Field| {
+            (n.only.is_empty() || n.only.contains(&f.name.as_str()))
+                && !n.skip.contains(&f.name.as_str())
+        };
+        nested
+            .into_iter()
+            .filter(held)
+            .map(|mut f| {
+                f.path = format!("{}.{}", n.field, f.name);
+                if let Some((_, c)) = n.renames.iter().find(|(core, _)| *core == f.name) {
+                    f.name = c.to_string();
+                }
+                f.nested = Some(n);
+                f
+            })
+            .collect()
+    }
+
+    /// The C doc of field `f` of mirror `m`: that of [`DOC_OVERRIDES`], else the core's made
+    /// plain, with what its conversion adds.
+    fn field_doc(&self, m: &Mirror, f: &Field, c: &Conversion) -> Vec<String> {
+        let overridden = DOC_OVERRIDES
+            .iter()
+            .find(|(s, n, _)| *s == m.c_name && *n == f.name);
+        let mut text: Vec<String> = match overridden {
+            Some((_, _, doc)) => doc.lines().map(String::from).collect(),
+            None => f.doc.iter().map(|l| plain(l, &self.renames)).collect(),
+        };
+        text.extend(c.doc_tail.clone());
+        reflow(&text)
+    }
+
+    fn mirror(&self, out: &mut String, m: &Mirror) {
+        let fields = self.fields(m);
         let conversions: Vec<Conversion> = fields.iter().map(|f| conversion(self, m, f)).collect();
         doc_comment(out, &m.doc.lines().map(String::from).collect::<Vec<_>>());
         writeln!(
@@ -372,9 +488,7 @@ impl Generator {
         )
         .unwrap();
         for (f, c) in fields.iter().zip(&conversions) {
-            let mut text: Vec<String> = f.doc.iter().map(|l| plain(l, &self.renames)).collect();
-            text.extend(c.doc_tail.clone());
-            doc_comment(out, &reflow(&text));
+            doc_comment(out, &self.field_doc(m, f, c));
             writeln!(out, "pub {}: {},", f.name, c.c_type).unwrap();
         }
         for f in m.c_only {
@@ -395,9 +509,14 @@ impl Generator {
             writeln!(out, "{}: {},", f.name, f.init).unwrap();
         }
         out.push_str("}\n}\n}\n\n");
-        if m.report {
-            return;
+        if !m.report {
+            self.to_core(out, m, &fields, &conversions);
         }
+    }
+
+    /// The `to_core` of the C options of `m`: the fields of a flattened struct are gathered
+    /// into it again, and the fields C does not hold keep the core's defaults.
+    fn to_core(&self, out: &mut String, m: &Mirror, fields: &[Field], conversions: &[Conversion]) {
         writeln!(out, "impl {} {{", m.c_name).unwrap();
         out.push_str("/// The core options of these C options: a conversion (an enum's value is checked; the\n/// core's `validate` checks the others).\n");
         writeln!(
@@ -406,8 +525,28 @@ impl Generator {
             m.core_path
         )
         .unwrap();
-        for (f, c) in fields.iter().zip(&conversions) {
-            writeln!(out, "{}: {},", f.name, c.to_core).unwrap();
+        let pairs: Vec<(&Field, &Conversion)> = fields.iter().zip(conversions).collect();
+        for (i, (f, c)) in pairs.iter().enumerate() {
+            let Some(n) = f.nested else {
+                writeln!(out, "{}: {},", f.name, c.to_core).unwrap();
+                continue;
+            };
+            let in_n = |f: &Field| f.nested.is_some_and(|x| x.field == n.field);
+            if i > 0 && in_n(pairs[i - 1].0) {
+                continue;
+            }
+            writeln!(out, "{}: {} {{", n.field, n.core_path).unwrap();
+            let group: Vec<_> = pairs[i..].iter().take_while(|(f, _)| in_n(f)).collect();
+            for (g, d) in &group {
+                writeln!(out, "{}: {},", &g.path[n.field.len() + 1..], d.to_core).unwrap();
+            }
+            if group.len() < core_struct(&self.files[n.source], n.core).len() {
+                writeln!(out, "..{}::default().{}", m.core_path, n.field).unwrap();
+            }
+            out.push_str("},\n");
+        }
+        if !m.skip.is_empty() {
+            writeln!(out, "..{}::default()", m.core_path).unwrap();
         }
         out.push_str("})\n}\n}\n\n");
     }
@@ -524,8 +663,7 @@ pub const REPORTS_FILE: &str = "src/capi/reports_gen.rs";
 // Used by tests/c_structs.rs, not by main.rs.
 #[allow(dead_code)]
 pub fn inputs() -> Vec<&'static str> {
-    let mut files: Vec<&str> = MIRRORS.iter().map(|m| m.source).collect();
-    files.extend(ENUMS.iter().map(|e| e.source));
+    let mut files: Vec<&str> = sources().collect();
     files.push("cbindgen.toml");
     files.sort_unstable();
     files.dedup();

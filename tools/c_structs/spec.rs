@@ -1,7 +1,7 @@
 // The tables of the generator (included by `generate.rs`): the C structs generated and the core
 // structs they mirror, the exceptions to the type rules, the enums held as integers, and the
 // heads of the generated files. Adding a field to a core struct needs nothing here; a new C
-// struct, a new enum or a C-only field does.
+// struct, a new enum, a C-only field or a C doc of its own does.
 
 /// A C struct generated from a core struct.
 struct Mirror {
@@ -15,9 +15,28 @@ struct Mirror {
     doc: &'static str,
     /// Fields of the C struct only, appended after the core's.
     c_only: &'static [CField],
-    /// A report: converted from the core only, and without the core fields in `skip`.
+    /// A report: converted from the core only.
     report: bool,
+    /// Core fields C leaves out (the C options keep the core's defaults for them).
     skip: &'static [&'static str],
+    /// Core fields holding a nested core struct whose fields the C struct holds in its place.
+    flatten: &'static [Flatten],
+}
+
+/// A core field holding a nested core struct that its C struct flattens: the nested fields
+/// take the place of the field, in the nested struct's order.
+struct Flatten {
+    /// The core field, and the nested struct's name, path and file.
+    field: &'static str,
+    core: &'static str,
+    core_path: &'static str,
+    source: &'static str,
+    /// The nested fields C holds (the others keep the core's defaults): those named here, or,
+    /// when this is empty, all but those of `skip`.
+    only: &'static [&'static str],
+    skip: &'static [&'static str],
+    /// Nested fields whose C name is not theirs: (nested field, C name).
+    renames: &'static [(&'static str, &'static str)],
 }
 
 /// A field of a C struct that the core struct does not have.
@@ -53,6 +72,31 @@ const U32_COUNTS: &[&str] = &["threads", "samples"];
 const TYPE_OVERRIDES: &[(&str, &str, &str)] = &[
     ("igaparam_domain_update_options", "refine", "i32"),
     ("igaparam_domain_update_report", "tolerance_met", "i32"),
+    ("igaparam_fit_report", "least_squares", "i32"),
+    ("igaparam_fit_report", "quasi_interpolation", "i32"),
+    ("igaparam_validity_report", "certified_positive", "i32"),
+];
+
+/// The C constants of the core's array lengths: (core constant, C constant).
+const ARRAY_LENGTHS: &[(&str, &str)] = &[("HISTOGRAM_BINS", "IGAPARAM_HISTOGRAM_BINS")];
+
+/// C docs of their own, for the fields whose meaning in C is not the core's: (C struct, C
+/// field, doc).
+const DOC_OVERRIDES: &[(&str, &str, &str)] = &[
+    // A C sentinel: `fit_options` in `capi/spline/fit_with.rs` replaces a negative value.
+    (
+        "igaparam_fit_options",
+        "boundary_offset",
+        "Largest move of a boundary control point by the untangling, relative to the bounding
+box; negative (default) uses the `boundary_offset` the domain was built with, 0 keeps the
+boundary.",
+    ),
+    // `DomainOptions::max_sweeps` is that of a build's stages.
+    (
+        "igaparam_adapt_options",
+        "max_sweeps",
+        "Largest number of optimization sweeps after each refinement (default 200).",
+    ),
 ];
 
 /// The progress callback's user pointer, the last field of the options with a callback.
@@ -86,6 +130,7 @@ const MIRRORS: &[Mirror] = &[
         ],
         report: false,
         skip: &[],
+        flatten: &[],
     },
     Mirror {
         c_name: "igaparam_domain_update_options",
@@ -99,6 +144,7 @@ const MIRRORS: &[Mirror] = &[
         ],
         report: false,
         skip: &[],
+        flatten: &[],
     },
     Mirror {
         c_name: "igaparam_relocate_options",
@@ -109,6 +155,7 @@ const MIRRORS: &[Mirror] = &[
         c_only: &[progress("Progress callback, or NULL (default)."), PROGRESS_USER],
         report: false,
         skip: &[],
+        flatten: &[],
     },
     Mirror {
         c_name: "igaparam_validity_options",
@@ -119,6 +166,7 @@ const MIRRORS: &[Mirror] = &[
         c_only: &[],
         report: false,
         skip: &[],
+        flatten: &[],
     },
     Mirror {
         c_name: "igaparam_quality_bound_options",
@@ -129,6 +177,7 @@ const MIRRORS: &[Mirror] = &[
         c_only: &[],
         report: false,
         skip: &[],
+        flatten: &[],
     },
     Mirror {
         c_name: "igaparam_domain_report",
@@ -139,6 +188,7 @@ const MIRRORS: &[Mirror] = &[
         c_only: &[],
         report: true,
         skip: &["repair_rounds", "stages", "swapped"],
+        flatten: &[],
     },
     Mirror {
         c_name: "igaparam_domain_update_report",
@@ -149,6 +199,7 @@ const MIRRORS: &[Mirror] = &[
         c_only: &[],
         report: true,
         skip: &[],
+        flatten: &[],
     },
     Mirror {
         c_name: "igaparam_relocate_report",
@@ -159,6 +210,7 @@ const MIRRORS: &[Mirror] = &[
         c_only: &[],
         report: true,
         skip: &[],
+        flatten: &[],
     },
     Mirror {
         c_name: "igaparam_quality_bound_report",
@@ -169,6 +221,87 @@ const MIRRORS: &[Mirror] = &[
         c_only: &[],
         report: true,
         skip: &["elements"],
+        flatten: &[],
+    },
+    Mirror {
+        c_name: "igaparam_fit_options",
+        core: "FitOptions",
+        core_path: "crate::spline::FitOptions",
+        source: "src/spline/fit_options.rs",
+        doc: "Options of `igaparam_spline_fit_domain_with`; get the defaults (those of\n`igaparam_spline_fit_domain`) from `igaparam_fit_options_default`.",
+        c_only: &[
+            progress("Progress callback, or NULL (default): called on the calling thread with\n`IGAPARAM_STAGE_FIT` (`done` of `total` fits and certifications),\n`IGAPARAM_STAGE_UNTANGLING` (rounds) and `IGAPARAM_STAGE_SMOOTHING` (sweeps); returning\nnon-zero cancels (`IGAPARAM_STATUS_CANCELLED`, nothing written)."),
+            PROGRESS_USER,
+        ],
+        report: false,
+        skip: &[],
+        flatten: &[Flatten {
+            field: "untangle",
+            core: "UntangleOptions",
+            core_path: "crate::spline::UntangleOptions",
+            source: "src/spline/untangle.rs",
+            only: &[],
+            skip: &["samples", "rings"],
+            renames: &[("rounds", "untangle_rounds"), ("sweeps", "untangle_sweeps")],
+        }],
+    },
+    Mirror {
+        c_name: "igaparam_adapt_options",
+        core: "AdaptOptions",
+        core_path: "crate::spline::AdaptOptions",
+        source: "src/spline/adapt.rs",
+        doc: "Options of `igaparam_domain_fit_adaptive`; get the defaults from\n`igaparam_adapt_options_default`.",
+        c_only: &[
+            progress("Progress callback, or NULL (default). Called with `IGAPARAM_STAGE_ADAPTATION`, `done`\nrounds and `total` = `max_rounds` before each refinement; returning non-zero cancels."),
+            PROGRESS_USER,
+        ],
+        report: false,
+        // The certification is the default one, that `igaparam_spline_check_validity` keeps.
+        skip: &["validity"],
+        flatten: &[Flatten {
+            field: "domain",
+            core: "DomainOptions",
+            core_path: "crate::domain::DomainOptions",
+            source: "src/domain/options.rs",
+            // The loop uses these two; the others are those the domain was built with.
+            only: &["max_sweeps", "threads"],
+            skip: &[],
+            renames: &[],
+        }],
+    },
+    Mirror {
+        c_name: "igaparam_fit_report",
+        core: "FitReport",
+        core_path: "crate::spline::FitReport",
+        source: "src/spline/fit.rs",
+        doc: "What a fit (`igaparam_spline_fit_domain`, `igaparam_spline_refine`) did.",
+        c_only: &[],
+        report: true,
+        skip: &["reciprocal_condition", "stages"],
+        flatten: &[],
+    },
+    Mirror {
+        c_name: "igaparam_validity_report",
+        core: "ValidityReport",
+        core_path: "crate::spline::ValidityReport",
+        source: "src/spline/validity.rs",
+        doc: "Certified validity and quality of a spline map.",
+        c_only: &[],
+        report: true,
+        // Given by `igaparam_spline_check_validity` in arrays of the caller's.
+        skip: &["elements"],
+        flatten: &[],
+    },
+    Mirror {
+        c_name: "igaparam_partition_report",
+        core: "PartitionReport",
+        core_path: "crate::partition::PartitionReport",
+        source: "src/partition/relocate.rs",
+        doc: "What `igaparam_partition_relocate` did.",
+        c_only: &[],
+        report: true,
+        skip: &[],
+        flatten: &[],
     },
 ];
 
@@ -252,4 +385,6 @@ const REPORTS_HEAD: &str = "//! The C mirrors of the core reports: `#[repr(C)]` 
 #![allow(rustdoc::broken_intra_doc_links)]
 
 use std::ffi::c_int;
+
+use super::option_enums::IGAPARAM_HISTOGRAM_BINS;
 ";

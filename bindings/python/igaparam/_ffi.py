@@ -663,12 +663,13 @@ class PartitionReport(ctypes.Structure):
     Fields:
 
     relocation:
-        The figures of the whole mesh, the same on every rank (`gradient_norm` is not computed
-        on a partition: infinity; `seconds` is this rank's wall-clock time).
+        The relocation's figures over the whole mesh, the same on every rank (`gradient_norm` is not
+        computed on a partition: infinity; `seconds` is this rank's wall-clock time).
     exchange_seconds:
-        Seconds this rank spent in the exchange callback (waiting for the others included).
+        Seconds this rank spent in the host's exchange (the exchange callback in C), waiting for the
+        other ranks included.
     exchanges:
-        Calls of the exchange callback on this rank.
+        Calls of the host's exchange (the exchange callback in C) on this rank.
     """
 
     _fields_ = [
@@ -688,30 +689,32 @@ class FitReport(ctypes.Structure):
     basis_count:
         Basis functions (= control points).
     element_count:
-        Elements (the leaves of the hierarchical mesh).
+        Elements of the space (the leaves of the hierarchical mesh).
     residual:
         Largest coordinate difference between the spline and the data at the fit points.
     least_squares:
-        1 when a least-squares fit replaced a singular or badly conditioned interpolation at the
-        Greville points, else 0.
+        Whether a least-squares fit replaced a singular or badly conditioned interpolation at the
+        Greville points (1 in C, else 0).
     quasi_interpolation:
-        1 when the control points come from the local quasi-interpolant (a fit whose map was
-        certified valid, or less invalid, than that of the interpolation; and every
-        `igaparam_spline_refine`), else 0.
+        Whether the control points come from the local quasi-interpolant
+        (`SplineMap::fit_quasi_interpolation`: in a checked fit, when its map was certified valid,
+        or less invalid, than that of the interpolation; and every exact refinement,
+        `igaparam_spline_refine` in C) (1 in C, else 0).
     untangled:
-        Control points that `igaparam_spline_fit_domain` moved to untangle a fitted map that was
-        not certified valid (inner ones first; boundary ones, at most the domain's
-        `boundary_offset` of the bounding box, only when that was not enough); 0 when the fitted
-        map was kept as it was.
+        Control points moved by the untangling (`SplineMap::untangle`) of a fitted map that was not
+        certified valid (inner ones first; boundary ones, at most the untangling's `boundary_offset`
+        of the bounding box, only when that was not enough); 0 when the fitted map was kept as it
+        was.
     boundary_offset:
-        Largest move of a boundary control point by that untangling, relative to the bounding
-        box (each axis scaled to 1); 0 when the boundary was kept.
+        Largest move of a boundary control point by that untangling, relative to the bounding box
+        (each axis scaled to 1; see `UntangleOptions::boundary_offset`); 0 when the boundary was
+        kept.
     seconds:
-        Wall-clock seconds.
+        Wall-clock seconds (with the certification and untangling of `SplineMap::fit_checked`).
     smoothed:
-        Inner control points the smoothing stage moved (on the spline's own mean ratio, kept
-        only when the map stays certified and its smallest sampled mean ratio rises); 0 when
-        the map was kept as it was.
+        Inner control points moved by the smoothing stage (`SplineMap::smooth`: on the map's own
+        mean ratio, kept only when the map stays certified and its smallest sampled mean ratio
+        rises); 0 when the map was kept as it was.
     """
 
     _fields_ = [
@@ -736,12 +739,13 @@ class AdaptOptions(ctypes.Structure):
     Fields:
 
     target_quality:
-        Target: every element certified valid with a smallest sampled mean ratio of at least
-        this, in [0, 1) (default 0.1). Elements below it or not certified are refined.
+        The loop stops once every element is certified valid and its smallest sampled mean ratio
+        `q_S` reaches this (in [0, 1); default 0.1). Elements below it, or not certified, are
+        refined.
     max_rounds:
         Largest number of refinement rounds (default 4).
     max_level:
-        Cells at this level are not refined further, at most 16 (default 10).
+        Cells at this level are not refined further (default 10, at most 16).
     max_sweeps:
         Largest number of optimization sweeps after each refinement (default 200).
     threads:
@@ -849,27 +853,32 @@ class FitOptions(ctypes.Structure):
     Fields:
 
     choice:
-        The fit rule (default `IGAPARAM_FIT_CHOICE_BEST`).
+        The fit rule. One of `IGAPARAM_FIT_CHOICE_BEST` (default),
+        `IGAPARAM_FIT_CHOICE_INTERPOLATION` or `IGAPARAM_FIT_CHOICE_QUASI_INTERPOLATION`.
     validity:
-        The certification of the fitted, untangled and smoothed maps (default: the defaults of
-        `igaparam_validity_options_default`); the spline keeps its result for
+        The certification of the fitted maps and of the untangled and smoothed ones (default: the
+        defaults of `ValidityOptions`); a spline handle of the C API keeps its result for
         `igaparam_spline_check_validity` with equal options.
     untangle_rounds:
-        Largest number of untangling rounds per stage for a map that is not certified (default
-        4); 0 turns the untangling off: such a map is returned as fitted, with its uncertified
-        elements in the report of `igaparam_spline_check_validity`.
+        Largest number of untangling rounds (mark the uncertified elements, optimize the control
+        points around them, certify again) per stage for a map that is not certified (default 4); a
+        round that leaves as many elements uncertified as it found ends the stage. In a checked fit
+        0 turns the untangling off: such a map is returned as fitted, with its uncertified elements
+        in its validity report (`igaparam_spline_check_validity` in C).
     untangle_sweeps:
         Sweeps over the free control points per untangling round (default 20).
     boundary_offset:
-        Largest move of a boundary control point by the untangling, relative to the bounding
-        box; negative (default) uses the `boundary_offset` the domain was built with, 0 keeps
-        the boundary.
+        Largest move of a boundary control point by the untangling, relative to the bounding box;
+        negative (default) uses the `boundary_offset` the domain was built with, 0 keeps the
+        boundary.
     smoothing_sweeps:
         Largest number of smoothing sweeps over the inner control points of a certified map
-        (default 8); 0 turns the smoothing off.
+        (`SplineMap::smooth`, the stage that follows the untangling, or a fit certified as it is, in
+        a checked fit; default 8); 0 turns the smoothing off.
     threads:
-        Worker threads, at most 4096, capped to the machine's cores; 0 (default) uses one per
-        core. The result does not depend on it.
+        Worker threads, at most 4096, capped to the machine's cores; 0 (default) runs on the
+        caller's thread pool: one thread per core, unless a Rust caller installed another. The
+        result does not depend on it.
     progress:
         Progress callback, or NULL (default): called on the calling thread with
         `IGAPARAM_STAGE_FIT` (`done` of `total` fits and certifications),
@@ -991,17 +1000,17 @@ class ValidityReport(ctypes.Structure):
     Fields:
 
     certified_positive:
-        1 when `det J_S > 0` is proven on every element (Bernstein coefficients of the
-        determinant, with subdivision), else 0.
+        Whether `det J_S > 0` is proven on every element (Bernstein coefficients of the determinant,
+        with subdivision; 1 in C, else 0).
     uncertified:
         Elements where positivity is not proven.
     det_lower_bound:
-        Smallest lower bound of `det J_S` over the elements (Jacobian with respect to the
-        parametric coordinates).
+        Smallest lower bound of `det J_S` over the elements (Jacobian with respect to the parametric
+        coordinates).
     min_quality:
         Smallest mean ratio `q_S = d·det(J)^(2/d)/‖J‖²` at the samples (0 where det ≤ 0).
     mean_quality:
-        Mean of the element means of `q_S` at the samples.
+        Mean of the element means of `q_S` at the samples (every element has as many).
     histogram:
         Samples per quality bin `[i/10, (i+1)/10)` (the last bin includes 1).
     """

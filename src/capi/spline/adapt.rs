@@ -1,38 +1,14 @@
-//! The method's adaptive loop from C: `igaparam_domain_fit_adaptive`, its options and report.
-
-use std::ffi::c_void;
+//! The method's adaptive loop from C: `igaparam_domain_fit_adaptive`, its default options (the
+//! struct is generated from the core's in `options_gen.rs`) and its report.
 
 use super::{igaparam_spline, new_recorded_handle, AnyMap};
 use crate::capi::domain::{current, igaparam_domain, Built};
 use crate::capi::ffi::{non_null_mut, options_or, run, write_optional, Failure};
 use crate::capi::progress::call_progress;
-use crate::capi::{igaparam_progress_fn, igaparam_stage, igaparam_status};
-use crate::domain::{CubeMap, Domain, DomainOptions};
+use crate::capi::{igaparam_adapt_options, igaparam_stage, igaparam_status};
+use crate::domain::{CubeMap, Domain};
 use crate::error::Result;
 use crate::spline::{adapt, AdaptOptions, AdaptReport, FitRecord, SplineMap};
-
-/// Options of `igaparam_domain_fit_adaptive`; get the defaults from
-/// `igaparam_adapt_options_default`.
-#[repr(C)]
-#[derive(Clone, Copy, Debug)]
-pub struct igaparam_adapt_options {
-    /// Target: every element certified valid with a smallest sampled mean ratio of at least
-    /// this, in [0, 1) (default 0.1). Elements below it or not certified are refined.
-    pub target_quality: f64,
-    /// Largest number of refinement rounds (default 4).
-    pub max_rounds: u32,
-    /// Cells at this level are not refined further, at most 16 (default 10).
-    pub max_level: u32,
-    /// Largest number of optimization sweeps after each refinement (default 200).
-    pub max_sweeps: u32,
-    /// Worker threads, at most 4096, capped to the machine's cores; 0 (default) uses one per core.
-    pub threads: u32,
-    /// Progress callback, or NULL (default). Called with `IGAPARAM_STAGE_ADAPTATION`, `done`
-    /// rounds and `total` = `max_rounds` before each refinement; returning non-zero cancels.
-    pub progress: igaparam_progress_fn,
-    /// Passed to `progress` as its first argument.
-    pub progress_user: *mut c_void,
-}
 
 /// What `igaparam_domain_fit_adaptive` did.
 #[repr(C)]
@@ -67,34 +43,7 @@ pub struct igaparam_adapt_report {
 /// The default adaptation options.
 #[no_mangle]
 pub extern "C" fn igaparam_adapt_options_default() -> igaparam_adapt_options {
-    let d = AdaptOptions::default();
-    igaparam_adapt_options {
-        target_quality: d.target_quality,
-        max_rounds: d.max_rounds,
-        max_level: d.max_level as u32,
-        max_sweeps: d.domain.max_sweeps,
-        threads: d.domain.threads as u32,
-        progress: None,
-        progress_user: std::ptr::null_mut(),
-    }
-}
-
-/// The core's options of C options `raw` (a conversion; [`AdaptOptions::validate`] checks the
-/// ranges).
-fn adapt_options(raw: &igaparam_adapt_options) -> AdaptOptions {
-    let defaults = AdaptOptions::default();
-    AdaptOptions {
-        target_quality: raw.target_quality,
-        max_rounds: raw.max_rounds,
-        // A level above 255 becomes 255, which the core refuses as above 16 with the others.
-        max_level: u8::try_from(raw.max_level).unwrap_or(u8::MAX),
-        domain: DomainOptions {
-            max_sweeps: raw.max_sweeps,
-            threads: raw.threads as usize,
-            ..defaults.domain
-        },
-        ..defaults
-    }
+    igaparam_adapt_options::from(&AdaptOptions::default())
 }
 
 /// The adaptive loop on a copy of `domain`, which takes the refined T-mesh on success only.
@@ -157,7 +106,7 @@ pub extern "C" fn igaparam_domain_fit_adaptive(
     run("igaparam_domain_fit_adaptive", || {
         non_null_mut(out, "out")?;
         let raw = options_or(options, igaparam_adapt_options_default());
-        let opts = adapt_options(&raw);
+        let opts = raw.to_core()?;
         opts.validate()?;
         let mut progress = |done: usize, total: usize| {
             call_progress(

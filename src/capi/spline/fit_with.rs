@@ -1,95 +1,35 @@
 //! The fit with options: `igaparam_spline_fit_domain_with` (rule, certification, untangling,
-//! smoothing, threads, progress and cancellation).
+//! smoothing, threads, progress and cancellation); its options struct is generated from the
+//! core's in `options_gen.rs`.
 
-use std::ffi::c_void;
-
-use super::{fit_report, igaparam_fit_report, igaparam_spline};
-use super::{new_recorded_handle, AnyMap};
+use super::{igaparam_spline, new_recorded_handle, AnyMap};
 use crate::capi::domain::{current, igaparam_domain, Built};
 use crate::capi::ffi::{non_null_mut, options_or, run, write_optional, Failure};
-use crate::capi::options_gen::{c_fit_choice, fit_choice};
 use crate::capi::progress::call_progress;
-use crate::capi::{
-    igaparam_fit_choice, igaparam_progress_fn, igaparam_stage, igaparam_status,
-    igaparam_validity_options,
-};
+use crate::capi::{igaparam_fit_options, igaparam_fit_report, igaparam_stage, igaparam_status};
 use crate::domain::{CubeMap, Domain};
 use crate::error::Result;
 use crate::spline::{
-    FitChoice, FitOptions, FitProgress, FitRecord, FitReport, FitStage, SplineMap, UntangleOptions,
-    ValidityReport,
+    FitOptions, FitProgress, FitRecord, FitReport, FitStage, SplineMap, ValidityReport,
 };
-
-/// Options of `igaparam_spline_fit_domain_with`; get the defaults (those of
-/// `igaparam_spline_fit_domain`) from `igaparam_fit_options_default`.
-#[repr(C)]
-#[derive(Clone, Copy, Debug)]
-pub struct igaparam_fit_options {
-    /// The fit rule (default `IGAPARAM_FIT_CHOICE_BEST`).
-    pub choice: igaparam_fit_choice,
-    /// The certification of the fitted, untangled and smoothed maps (default: the defaults of
-    /// `igaparam_validity_options_default`); the spline keeps its result for
-    /// `igaparam_spline_check_validity` with equal options.
-    pub validity: igaparam_validity_options,
-    /// Largest number of untangling rounds per stage for a map that is not certified (default
-    /// 4); 0 turns the untangling off: such a map is returned as fitted, with its uncertified
-    /// elements in the report of `igaparam_spline_check_validity`.
-    pub untangle_rounds: u32,
-    /// Sweeps over the free control points per untangling round (default 20).
-    pub untangle_sweeps: u32,
-    /// Largest move of a boundary control point by the untangling, relative to the bounding
-    /// box; negative (default) uses the `boundary_offset` the domain was built with, 0 keeps
-    /// the boundary.
-    pub boundary_offset: f64,
-    /// Largest number of smoothing sweeps over the inner control points of a certified map
-    /// (default 8); 0 turns the smoothing off.
-    pub smoothing_sweeps: u32,
-    /// Worker threads, at most 4096, capped to the machine's cores; 0 (default) uses one per
-    /// core. The result does not depend on it.
-    pub threads: u32,
-    /// Progress callback, or NULL (default): called on the calling thread with
-    /// `IGAPARAM_STAGE_FIT` (`done` of `total` fits and certifications),
-    /// `IGAPARAM_STAGE_UNTANGLING` (rounds) and `IGAPARAM_STAGE_SMOOTHING` (sweeps); returning
-    /// non-zero cancels (`IGAPARAM_STATUS_CANCELLED`, nothing written).
-    pub progress: igaparam_progress_fn,
-    /// Passed to `progress` as its first argument.
-    pub progress_user: *mut c_void,
-}
 
 /// The default fit options: those of `igaparam_spline_fit_domain`.
 #[no_mangle]
 pub extern "C" fn igaparam_fit_options_default() -> igaparam_fit_options {
-    let u = UntangleOptions::default();
     igaparam_fit_options {
-        choice: c_fit_choice(FitChoice::default()),
-        validity: super::igaparam_validity_options_default(),
-        untangle_rounds: u.rounds,
-        untangle_sweeps: u.sweeps,
+        // The C sentinel: the boundary offset the domain was built with (see `fit_options`).
         boundary_offset: -1.0,
-        smoothing_sweeps: u.smoothing_sweeps,
-        threads: 0,
-        progress: None,
-        progress_user: std::ptr::null_mut(),
+        ..igaparam_fit_options::from(&FitOptions::default())
     }
 }
 
-/// The core options of `raw` for a domain built with `boundary_offset`.
+/// The core options of `raw` for a domain built with `boundary_offset`: a negative
+/// `raw.boundary_offset` (the default) is that one.
 fn fit_options(raw: &igaparam_fit_options, boundary_offset: f64) -> Result<FitOptions> {
-    let options = FitOptions {
-        choice: fit_choice(raw.choice)?,
-        validity: raw.validity.to_core()?,
-        untangle: UntangleOptions {
-            rounds: raw.untangle_rounds,
-            sweeps: raw.untangle_sweeps,
-            boundary_offset: match raw.boundary_offset < 0.0 {
-                true => boundary_offset,
-                false => raw.boundary_offset,
-            },
-            smoothing_sweeps: raw.smoothing_sweeps,
-            ..UntangleOptions::default()
-        },
-        threads: raw.threads as usize,
-    };
+    let mut options = raw.to_core()?;
+    if raw.boundary_offset < 0.0 {
+        options.untangle.boundary_offset = boundary_offset;
+    }
     options.validate()?;
     Ok(options)
 }
@@ -143,7 +83,7 @@ pub(super) fn fit_into(
             (AnyMap::Three(m), r, v, o, rec)
         }
     };
-    write_optional(report, fit_report(&r));
+    write_optional(report, igaparam_fit_report::from(&r));
     new_recorded_handle(map, Some((opts.validity, validity)), Some(record), out)
 }
 

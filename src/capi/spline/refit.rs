@@ -1,10 +1,10 @@
 //! Refitting a spline in its own space after `igaparam_domain_update` moved the domain's
 //! T-mesh: `igaparam_spline_refit`, and the rule a spline's control points come from.
 
-use super::{dim, fit_report, igaparam_fit_report, igaparam_spline, AnyMap};
+use super::{dim, igaparam_spline, AnyMap};
 use crate::capi::domain::{current, igaparam_domain, untangle_options, Built};
 use crate::capi::ffi::{non_null_mut, run, write_optional, Failure};
-use crate::capi::igaparam_status;
+use crate::capi::{igaparam_fit_report, igaparam_status};
 use crate::domain::{CubeMap, Domain};
 use crate::error::{Error, Result};
 use crate::spline::{FitRecord, FitReport, FitRule, SplineMap, ValidityOptions, ValidityReport};
@@ -110,7 +110,7 @@ pub extern "C" fn igaparam_spline_refit(
         write_optional(
             report,
             igaparam_refit_report {
-                fit: fit_report(&fit),
+                fit: igaparam_fit_report::from(&fit),
                 rule: record.rule.into(),
                 corrected: corrected(&record, dim(&s.map)),
                 certified_positive: validity.certified_positive as i32,

@@ -1,34 +1,11 @@
-//! Certified validity of a spline map from C: `igaparam_spline_check_validity`, its default
-//! options (the struct is generated from the core's in `options_gen.rs`) and its report.
+//! Certified validity of a spline map from C: `igaparam_spline_check_validity` and its default
+//! options (the option and report structs are generated from the core's in `options_gen.rs` and
+//! `reports_gen.rs`).
 
 use super::{held, igaparam_spline};
 use crate::capi::ffi::{check_capacity, non_null_mut, options_or, run, slice_mut};
-use crate::capi::{igaparam_status, igaparam_validity_options};
-use crate::spline::{ValidityOptions, HISTOGRAM_BINS};
-
-/// Number of bins of the quality histogram of `igaparam_validity_report`.
-pub const IGAPARAM_HISTOGRAM_BINS: usize = 10;
-const _: () = assert!(IGAPARAM_HISTOGRAM_BINS == HISTOGRAM_BINS);
-
-/// Certified validity and quality of a spline map.
-#[repr(C)]
-#[derive(Clone, Copy, Debug, Default)]
-pub struct igaparam_validity_report {
-    /// 1 when `det J_S > 0` is proven on every element (Bernstein coefficients of the
-    /// determinant, with subdivision), else 0.
-    pub certified_positive: i32,
-    /// Elements where positivity is not proven.
-    pub uncertified: usize,
-    /// Smallest lower bound of `det J_S` over the elements (Jacobian with respect to the
-    /// parametric coordinates).
-    pub det_lower_bound: f64,
-    /// Smallest mean ratio `q_S = d·det(J)^(2/d)/‖J‖²` at the samples (0 where det ≤ 0).
-    pub min_quality: f64,
-    /// Mean of the element means of `q_S` at the samples.
-    pub mean_quality: f64,
-    /// Samples per quality bin `[i/10, (i+1)/10)` (the last bin includes 1).
-    pub histogram: [usize; IGAPARAM_HISTOGRAM_BINS],
-}
+use crate::capi::{igaparam_status, igaparam_validity_options, igaparam_validity_report};
+use crate::spline::ValidityOptions;
 
 /// The default validity options.
 #[no_mangle]
@@ -88,14 +65,7 @@ pub extern "C" fn igaparam_spline_check_validity(
                 *o = e.min_quality;
             }
         }
-        *out = igaparam_validity_report {
-            certified_positive: v.certified_positive as i32,
-            uncertified: v.uncertified,
-            det_lower_bound: v.det_lower_bound,
-            min_quality: v.min_quality,
-            mean_quality: v.mean_quality,
-            histogram: v.histogram,
-        };
+        *out = igaparam_validity_report::from(v);
         Ok(())
     })
 }
