@@ -6,7 +6,7 @@ use std::time::Instant;
 
 use super::budget::Sweeps;
 use super::cube_map::{cell_boundary_error, facet_scale, transfinite, CubeMap};
-use super::frame::{signed_measure, Frame, Framed};
+use super::frame::{on_grid_point, signed_measure, Frame, Framed};
 use super::options::{
     cells_within, check_uniform_cells, sweep_options, thread_pool, DomainOptions, DomainReport,
     StageSeconds,
@@ -50,7 +50,7 @@ impl<const D: usize, B: CubeMap<D>> Domain<D, B> {
         let framed_boundary = Framed {
             inner: &boundary,
             swap: swapped,
-            frame,
+            frame: Some(frame),
         };
         let mesh = adapted_mesh(&framed_boundary, options, progress)?;
         let mut stages = StageSeconds {
@@ -75,10 +75,11 @@ impl<const D: usize, B: CubeMap<D>> Domain<D, B> {
             frame,
             options: *options,
             mesh,
-            positions: x.iter().map(|&p| frame.to_physical(p)).collect(),
+            positions: Vec::new(),
             quality: QualitySummary::of(&pool, &problem, &x).quality,
-            framed: x,
+            framed: Vec::new(),
         };
+        domain.set_framed(x);
         let repair_rounds = domain.relieve_and_repair(options, &pool, &mut sweeps)?;
         stages.repair = clock.elapsed().as_secs_f64();
         let (spent, exhausted) = (sweeps.spent(), sweeps.exhausted());
@@ -102,8 +103,36 @@ impl<const D: usize, B: CubeMap<D>> Domain<D, B> {
         Framed {
             inner: &self.boundary,
             swap: self.swapped,
-            frame: self.frame,
+            frame: Some(self.frame),
         }
+    }
+
+    /// Sets the vertex positions in the frame's coordinates, `x`, and the physical ones: those of
+    /// [`Frame::to_physical`], except that a boundary vertex at its point of the boundary (to
+    /// the grid onto which the framed boundary is rounded) goes to the exact physical point: the
+    /// rounding moves no boundary vertex off the boundary (two domains sharing a curve keep
+    /// their vertices on it, each exactly).
+    pub(super) fn set_framed(&mut self, x: Vec<[f64; D]>) {
+        debug_assert_eq!(x.len(), self.mesh.vertex_count());
+        let framed = self.framed_boundary();
+        let physical = Framed {
+            frame: None,
+            ..framed
+        };
+        let parametric = self.mesh.parametric();
+        self.positions = x
+            .iter()
+            .zip(parametric)
+            .enumerate()
+            .map(|(v, (&y, p))| {
+                if self.mesh.on_boundary(v) && on_grid_point(y, framed.boundary_point(p)) {
+                    physical.boundary_point(p)
+                } else {
+                    self.frame.to_physical(y)
+                }
+            })
+            .collect();
+        self.framed = x;
     }
 
     /// The report of the current T-mesh (`invalid_after_placement`, `sweeps`, `seconds` and the
@@ -225,7 +254,7 @@ fn oriented_frame<const D: usize, B: CubeMap<D>>(boundary: &B) -> Result<(bool, 
     let frame = Frame::of(&Framed {
         inner: boundary,
         swap: swapped,
-        frame: Frame::IDENTITY,
+        frame: None,
     })
     .ok_or_else(|| {
         Error::invalid("the boundary has no extent: its bounding box is flat or not finite")

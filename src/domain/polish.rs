@@ -62,8 +62,7 @@ impl<const D: usize, B: CubeMap<D>> Domain<D, B> {
         // Every accepted step lowered F, which is finite only on a valid mesh.
         debug_assert!(invalid_cells(pool, &problem, &x).is_empty());
         self.quality = QualitySummary::of(pool, &problem, &x).quality;
-        self.positions = x.iter().map(|&p| self.frame.to_physical(p)).collect();
-        self.framed = x;
+        self.set_framed(x);
         Ok(stats)
     }
 }

@@ -165,9 +165,8 @@ impl<const D: usize, B: CubeMap<D>> Domain<D, B> {
         let placement_invalid = invalid_cells(pool, &problem, &x).len();
         let stats = optimize_in_place(pool, &problem, &mut x, &sweep_options(options), progress)?;
         self.quality = QualitySummary::of(pool, &problem, &x).quality;
-        self.positions = x.iter().map(|&p| self.frame.to_physical(p)).collect();
-        self.framed = x;
         self.mesh = mesh;
+        self.set_framed(x);
         Ok((placement_invalid, stats.sweeps))
     }
 }

@@ -148,8 +148,7 @@ impl<const D: usize, B: CubeMap<D>> Domain<D, B> {
         }
         if invalid.len() < initial.len() {
             self.quality = QualitySummary::of(pool, &problem, &x).quality;
-            self.positions = x.iter().map(|&p| self.frame.to_physical(p)).collect();
-            self.framed = x;
+            self.set_framed(x);
             Ok(invalid)
         } else {
             Ok(initial)

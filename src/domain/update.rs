@@ -214,8 +214,7 @@ impl<const D: usize, B: CubeMap<D>> Domain<D, B> {
             ));
         };
         self.quality = QualitySummary::of(pool, &problem, &x).quality;
-        self.positions = x.iter().map(|&p| self.frame.to_physical(p)).collect();
-        self.framed = x;
+        self.set_framed(x);
         Ok(UpdateReport {
             domain: DomainReport {
                 invalid_after_placement,
@@ -256,7 +255,7 @@ impl<const D: usize, B: CubeMap<D>> Domain<D, B> {
         let framed = Framed {
             inner: &self.boundary,
             swap: self.swapped,
-            frame,
+            frame: Some(frame),
         };
         let tree = self.mesh.tree();
         let limit = self.options.tolerance * facet_scale::<D>();
@@ -278,7 +277,7 @@ fn own_frame<const D: usize, B: CubeMap<D>>(boundary: &B, swap: bool) -> Result<
     Frame::of(&Framed {
         inner: boundary,
         swap,
-        frame: Frame::IDENTITY,
+        frame: None,
     })
     .ok_or_else(|| {
         Error::invalid("the new boundary has no extent: its bounding box is flat or not finite")

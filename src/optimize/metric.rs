@@ -11,10 +11,16 @@ use super::small_matrix::{cofactor, det, dot, frobenius2, mul_vec, Matrix, Vecto
 /// `ε` of the δ rule: 10⁶ machine epsilons, for Jacobians normalised by their targets.
 pub const DELTA_EPSILON: f64 = 1e6 * f64::EPSILON;
 
-/// Mean ratio `d·det(S)^{2/d}/‖S‖²` of a Jacobian; 0 when `det S ≤ 0`.
+/// Mean ratio `d·det(S)^{2/d}/‖S‖²` of a Jacobian; 0 when `det S ≤ 0`. Computed on `S` scaled
+/// by the power of two that brings its largest entry into [1, 2) (exactly: the ratio is
+/// invariant), so that `det S` neither under- nor overflows for Jacobians of any size.
 pub fn mean_ratio<const D: usize>(s: &Matrix<D>) -> f64 {
-    let sigma = det(s);
-    let n = frobenius2(s);
+    let largest = s.iter().flatten().fold(0.0f64, |m, v| m.max(v.abs()));
+    let exponent = ((largest.to_bits() >> 52) & 0x7ff) as i64 - 1023;
+    let unit = f64::from_bits(((1023 - exponent.clamp(-1022, 1022)) as u64) << 52);
+    let s: Matrix<D> = s.map(|row| row.map(|v| v * unit));
+    let sigma = det(&s);
+    let n = frobenius2(&s);
     if sigma <= 0.0 || n == 0.0 || !sigma.is_finite() {
         return 0.0;
     }

@@ -174,6 +174,8 @@ fn affine3([u, v, w]: [f64; 3]) -> [f64; 3] {
 /// the same Jacobian, and by symmetry each vertex's objective is stationary there. (On a T-mesh
 /// it is not exactly: the cells around a hanging vertex are not symmetric and coarser ones weigh
 /// 2, so the affine map is only near the optimum; the identity is exact there, see below.)
+/// Exactly up to the rounding of the framed boundary points onto a grid of 2⁻³⁸ of the bounding
+/// box, which moves the optimum by a few 10⁻¹² of the box.
 #[test]
 fn an_affine_image_gives_the_affine_map_on_uniform_meshes() {
     let uniform = |level| igaparam::domain::DomainOptions {
@@ -184,13 +186,19 @@ fn an_affine_image_gives_the_affine_map_on_uniform_meshes() {
     let (planar, report) = build(mapped_square(affine2, 4), &uniform(3));
     assert_eq!(report.invalid_cells, 0);
     let worst = distance_from(&planar, affine2);
-    assert!(worst < 1e-12, "2D: moved by {worst}");
+    assert!(
+        worst < 1e-11 * planar.frame().diagonal(),
+        "2D: moved by {worst}"
+    );
     let (solid, report) =
         igaparam::domain::Domain::build(MappedCube(affine3), &uniform(2), &mut |_, _| true)
             .unwrap();
     assert_eq!(report.invalid_cells, 0);
     let worst = distance_from(&solid, affine3);
-    assert!(worst < 1e-12, "3D: moved by {worst}");
+    assert!(
+        worst < 1e-11 * solid.frame().diagonal(),
+        "3D: moved by {worst}"
+    );
 }
 
 /// The identity on T-meshes (hanging vertices, cells of two levels): refining cells of the unit

@@ -141,17 +141,24 @@ fn the_sweeps_of_all_stages_stay_within_the_total_budget() {
         max_level: 4,
         ..Default::default()
     };
-    // Level 4 needs about 4,200 sweeps over its stages (growth from the bounding box, relief,
-    // repair), more than 20 times `max_sweeps`: within the default budget it is not cut.
+    // Level 4 needs thousands of sweeps over its stages (growth from the bounding box, relief,
+    // repair), more than 10 times `max_sweeps` (about 4,200 before the framed boundary was
+    // rounded onto a grid, 5,000 and more since: which basin the untangling of this
+    // degenerate boundary ends in is chaotic): within a budget 4 times the default it is not
+    // cut.
     let mut calls = 0;
-    let (_, full) = PlanarDomain::build(boundary.clone(), &options, &mut |d, _| {
+    let generous = DomainOptions {
+        max_total_sweeps: 4 * DEFAULT_MAX_TOTAL_SWEEPS,
+        ..options
+    };
+    let (_, full) = PlanarDomain::build(boundary.clone(), &generous, &mut |d, _| {
         // Calls with 0 come between the rounds of the adaptation.
         calls += usize::from(d > 0);
         true
     })
     .unwrap();
     assert!(full.sweeps > 10 * options.max_sweeps, "{full:?}");
-    assert!(full.sweeps <= DEFAULT_MAX_TOTAL_SWEEPS, "{full:?}");
+    assert!(full.sweeps <= generous.max_total_sweeps, "{full:?}");
     assert!(!full.sweep_budget_exhausted, "{full:?}");
     assert_eq!(calls, full.sweeps as usize, "one progress call per sweep");
     // A budget below it stops the build there, with a consistent T-mesh and report.
