@@ -1330,6 +1330,9 @@ igaparam_domain_options igaparam_domain_options_default_solid(void);
  * earlier build. `options` may be NULL for the defaults (`igaparam_domain_options_default`, or
  * `igaparam_domain_options_default_solid` for a solid); `report` may be NULL. On any error or
  * cancellation the handle is unchanged (an earlier build stays) and `*report` is not written.
+ * A planar build fails with `IGAPARAM_STATUS_INVALID_ARGUMENT` when cells stay invalid because
+ * the T-mesh's boundary facets cut across the boundary (it comes closer to itself than the
+ * cells resolve); the message says where.
  */
 igaparam_status igaparam_domain_build(igaparam_domain *domain,
                                       const igaparam_domain_options *options,
@@ -1628,7 +1631,9 @@ igaparam_status igaparam_domain_set_boundary_from_file_scaled(igaparam_domain *d
  * (call `igaparam_domain_build` first) or for threads above 4096, `IGAPARAM_STATUS_CANCELLED`,
  * `IGAPARAM_STATUS_LIMIT_EXCEEDED` when the build's `max_total_sweeps` runs out while the
  * vertices follow the boundary (later stages stop there and succeed, setting the report's
- * `sweep_budget_exhausted`). On any error the domain is unchanged and `*report` is not written.
+ * `sweep_budget_exhausted`), `IGAPARAM_STATUS_INVALID_ARGUMENT` also when cells stay invalid
+ * on a planar T-mesh whose boundary facets cut across the new boundary (the message says
+ * where). On any error the domain is unchanged and `*report` is not written.
  */
 igaparam_status igaparam_domain_update(igaparam_domain *domain,
                                        const igaparam_domain_update_options *options,

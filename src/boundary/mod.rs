@@ -4,7 +4,7 @@
 
 pub mod bspline;
 mod controls;
-mod crossing;
+pub(crate) mod crossing;
 pub mod curve;
 mod face;
 pub mod gismo_xml;

@@ -29,6 +29,9 @@ pub extern "C" fn igaparam_domain_options_default_solid() -> igaparam_domain_opt
 /// earlier build. `options` may be NULL for the defaults (`igaparam_domain_options_default`, or
 /// `igaparam_domain_options_default_solid` for a solid); `report` may be NULL. On any error or
 /// cancellation the handle is unchanged (an earlier build stays) and `*report` is not written.
+/// A planar build fails with `IGAPARAM_STATUS_INVALID_ARGUMENT` when cells stay invalid because
+/// the T-mesh's boundary facets cut across the boundary (it comes closer to itself than the
+/// cells resolve); the message says where.
 #[no_mangle]
 pub extern "C" fn igaparam_domain_build(
     domain: *mut igaparam_domain,

@@ -214,7 +214,9 @@ pub extern "C" fn igaparam_domain_set_boundary_from_file_scaled(
 /// (call `igaparam_domain_build` first) or for threads above 4096, `IGAPARAM_STATUS_CANCELLED`,
 /// `IGAPARAM_STATUS_LIMIT_EXCEEDED` when the build's `max_total_sweeps` runs out while the
 /// vertices follow the boundary (later stages stop there and succeed, setting the report's
-/// `sweep_budget_exhausted`). On any error the domain is unchanged and `*report` is not written.
+/// `sweep_budget_exhausted`), `IGAPARAM_STATUS_INVALID_ARGUMENT` also when cells stay invalid
+/// on a planar T-mesh whose boundary facets cut across the new boundary (the message says
+/// where). On any error the domain is unchanged and `*report` is not written.
 #[no_mangle]
 pub extern "C" fn igaparam_domain_update(
     domain: *mut igaparam_domain,

@@ -38,7 +38,9 @@ pub struct Domain<const D: usize, B> {
 
 impl<const D: usize, B: CubeMap<D>> Domain<D, B> {
     /// Adapts a T-mesh to the boundary, places its vertices and optimizes them.
-    /// `progress(sweeps, 0)` is called after every sweep; returning false cancels.
+    /// `progress(sweeps, 0)` is called after every sweep; returning false cancels. Fails when
+    /// cells stay invalid on a planar T-mesh whose boundary facets' images cross each other (the
+    /// boundary comes closer to itself than the cells resolve), saying where.
     pub fn build(
         boundary: B,
         options: &DomainOptions,
@@ -95,6 +97,7 @@ impl<const D: usize, B: CubeMap<D>> Domain<D, B> {
         report.gradient_norm = polished.gradient_norm;
         report.stages = stages;
         report.seconds = start.elapsed().as_secs_f64();
+        domain.refuse_crossing_image(report.invalid_cells)?;
         Ok((domain, report))
     }
 

@@ -3,6 +3,7 @@
 //! the boundary, inner ones by transfinite interpolation), then untangle and smooth with the
 //! optimizer; move the boundary of a built domain keeping its tree.
 
+mod boundary_image;
 mod budget;
 mod build;
 mod controls;

@@ -107,7 +107,8 @@ impl<const D: usize, B: CubeMap<D>> Domain<D, B> {
     /// `stationarity_tolerance > 0` gets its Newton polish again (the state
     /// [`Domain::boundary_tangent`] differentiates). The tree changes only with
     /// [`UpdateOptions::refine`]. `progress(sweeps, 0)` is called after every sweep; returning
-    /// false cancels. On any error the domain is unchanged.
+    /// false cancels. Fails as [`Domain::build`] does when cells stay invalid on boundary facets
+    /// whose images cross. On any error the domain is unchanged.
     pub fn update(
         &mut self,
         boundary: B,
@@ -164,6 +165,7 @@ impl<const D: usize, B: CubeMap<D>> Domain<D, B> {
         };
         report.cells_over_tolerance = over.0.len();
         report.tolerance_met = over.0.is_empty();
+        next.refuse_crossing_image(report.domain.invalid_cells)?;
         *self = next;
         Ok(report)
     }

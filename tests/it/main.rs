@@ -8,6 +8,7 @@ mod common;
 mod morph_cases;
 
 mod boundary;
+mod boundary_image;
 mod boundary_sensitivity;
 mod c_api;
 mod determinism;
