@@ -3,8 +3,8 @@
 # test_morph.c, test_sensitivity.c) under AddressSanitizer and under valgrind memcheck, and a short
 # run of every fuzz target: bash scripts/asan.sh [asan|fuzz|valgrind ...] (default: all three).
 #
-# - asan: the library built by nightly Rust with -Zsanitizer=address (the unoptimized `asan`
-#   profile, debug assertions and overflow checks on) and the programs with -fsanitize=address,
+# - asan: the library built by nightly Rust with -Zsanitizer=address (the `asan` profile at
+#   opt-level 1, debug assertions and overflow checks on) and the programs with -fsanitize=address,
 #   leaks reported (LeakSanitizer); any error fails the run.
 # - fuzz: every target of fuzz/ (libFuzzer, AddressSanitizer) for IGAPARAM_FUZZ_RUNS inputs
 #   (default 1000) and at most IGAPARAM_FUZZ_SECONDS (default 60), from the seeds of the bundled

@@ -323,7 +323,10 @@ fn optimize_or_grow<const D: usize>(
     let sweep_options = sweep_options(options);
     let first = optimize_in_place(pool, problem, x, &sweep_options, &mut sweeps.stage());
     sweeps.absorb(first)?;
-    if sweeps.exhausted() || invalid_cells(pool, problem, x).is_empty() {
+    let invalid = invalid_cells(pool, problem, x);
+    // The growth is kept only if it leaves fewer folded cells; it cannot when every folded cell
+    // has a fold that only fixed (boundary) vertices make, as on a solid's seams.
+    if sweeps.exhausted() || invalid.iter().all(|&c| problem.has_fixed_fold(c, x)) {
         return Ok(());
     }
     // The transfinite start folds too much (deep necks): grow the domain instead from its
@@ -345,7 +348,7 @@ fn optimize_or_grow<const D: usize>(
         &mut sweeps.stage(),
     );
     if let Some((grown, _)) = sweeps.absorb(grown)? {
-        if invalid_cells(pool, problem, &grown).len() < invalid_cells(pool, problem, x).len() {
+        if invalid_cells(pool, problem, &grown).len() < invalid.len() {
             *x = grown;
         }
     }

@@ -241,6 +241,20 @@ impl<const D: usize> Problem<D> {
         (0..Self::POINTS).all(|q| det(&self.jacobian(c, q, positions)) > 0.0)
     }
 
+    /// Whether cell `c` is folded (`det J ≤ 0`) at a Gauss–Lobatto point whose Jacobian depends
+    /// on fixed nodes only (every node of its stencil has no free component): no placement of
+    /// the free nodes makes that cell valid.
+    pub fn has_fixed_fold(&self, c: usize, positions: &[Vector<D>]) -> bool {
+        let nodes = self.cell_nodes(c);
+        let pattern = self.pattern(c);
+        (0..Self::POINTS).any(|q| {
+            pattern.jacobian[q]
+                .iter()
+                .all(|&(r, _)| self.free[nodes[r as usize] as usize] == 0)
+                && det(&self.jacobian(c, q, positions)) <= 0.0
+        })
+    }
+
     /// Quality of cell `c`: the inverse of its mean distortion over the Gauss–Lobatto points
     /// (1 = the target shape up to rotation and scale; 0 = inverted somewhere).
     pub fn cell_quality(&self, c: usize, positions: &[Vector<D>]) -> f64 {

@@ -15,7 +15,8 @@ use crate::error::{Error, Result};
 pub struct SweepOptions {
     /// Largest number of sweeps.
     pub max_sweeps: u32,
-    /// Stop once the mesh is valid and no node moved more than this fraction of its local length.
+    /// Stop once the mesh is valid (but for cells that fixed nodes alone fold) and no node moved
+    /// more than this fraction of its local length.
     pub move_tolerance: f64,
     /// The per-node solver's stopping rules.
     pub node: NodeSolverOptions,
@@ -28,7 +29,9 @@ pub struct SweepStats {
     pub sweeps: u32,
     /// Largest relative move in the last sweep.
     pub last_max_move: f64,
-    /// Whether the stopping rule (valid, small moves) was met before the sweep limit.
+    /// Whether the stopping rule (valid, small moves) was met before the sweep limit. The sweeps
+    /// also stop, not converged, on small moves when the only invalid cells are folded where
+    /// fixed nodes alone act ([`Problem::has_fixed_fold`]).
     pub converged: bool,
 }
 
@@ -95,11 +98,14 @@ pub fn optimize_on<const D: usize, T: Team>(
             .checked_sub(STALL_WINDOW)
             .is_some_and(|i| quality.stalled_since(history[i]));
         history.push((quality.min, quality.mean));
-        if quality.invalid_count == 0 && (max_move < options.move_tolerance || stalled) {
-            stats.converged = true;
+        // Cells folded where only fixed nodes act stay folded whatever the sweeps do: the
+        // others decide when to stop and which nodes to revisit.
+        let mendable = mendable(problem, &quality.invalid, positions);
+        if count_on(team, &mendable)? == 0 && (max_move < options.move_tolerance || stalled) {
+            stats.converged = quality.invalid_count == 0;
             break;
         }
-        for &c in &quality.invalid {
+        for &c in &mendable {
             for &v in problem.cell_nodes(c) {
                 marks[v as usize] = 1.0;
             }
@@ -249,8 +255,37 @@ pub fn invalid_count_on<const D: usize, T: Team>(
     problem: &Problem<D>,
     positions: &[Vector<D>],
 ) -> Result<usize> {
+    count_on(team, &invalid_cells(pool, problem, positions))
+}
+
+/// The number of invalid cells over the ranks of `team` that the free nodes may mend: those
+/// without a fold where only fixed nodes act ([`Problem::has_fixed_fold`]).
+pub fn mendable_count_on<const D: usize, T: Team>(
+    team: &mut T,
+    pool: &ThreadPool,
+    problem: &Problem<D>,
+    positions: &[Vector<D>],
+) -> Result<usize> {
     let invalid = invalid_cells(pool, problem, positions);
-    team.count(invalid.iter().filter(|&&c| team.counts(c)).count())
+    count_on(team, &mendable(problem, &invalid, positions))
+}
+
+/// How many of the local `cells` there are over the ranks of `team` (each counted once).
+fn count_on<T: Team>(team: &mut T, cells: &[usize]) -> Result<usize> {
+    team.count(cells.iter().filter(|&&c| team.counts(c)).count())
+}
+
+/// The cells of `invalid` without a fold where only fixed nodes act.
+fn mendable<const D: usize>(
+    problem: &Problem<D>,
+    invalid: &[usize],
+    positions: &[Vector<D>],
+) -> Vec<usize> {
+    invalid
+        .iter()
+        .copied()
+        .filter(|&c| !problem.has_fixed_fold(c, positions))
+        .collect()
 }
 
 fn mark_neighbours<const D: usize>(problem: &Problem<D>, v: usize, active: &mut [bool]) {

@@ -262,3 +262,35 @@ fn cancellation_leaves_the_mesh_unchanged() {
         assert_eq!(mesh.positions(), &before[..]);
     }
 }
+
+#[test]
+fn sweeps_stop_when_only_fixed_nodes_fold_a_cell() {
+    // A Q4 grid whose corner cell has all four nodes prescribed, its inner corner pulled out
+    // of the square: that cell and its two neighbours along the boundary are folded at corners
+    // where only prescribed nodes act, whatever the free nodes do. The sweeps stop on small
+    // moves (they used to run to `max_sweeps`).
+    let (xyz, conn) = grid(CellType::Quad4, 6);
+    let mut mask = boundary_mask(&xyz, 2);
+    let mut moved = xyz.clone();
+    let pulled = xyz
+        .chunks(3)
+        .position(|p| p[0] == 1.0 / 6.0 && p[1] == 1.0 / 6.0)
+        .unwrap();
+    mask[pulled] = 3;
+    moved[3 * pulled] = -0.05;
+    moved[3 * pulled + 1] = -0.05;
+    let mut mesh = Mesh::new(CellType::Quad4, &xyz, &conn).unwrap();
+    mesh.prescribe(&mask, &moved).unwrap();
+    for placement in [Placement::Current, Placement::Laplacian] {
+        let options = RelocateOptions {
+            placement,
+            method: Method::Sweeps,
+            max_sweeps: 500,
+            ..Default::default()
+        };
+        let report = relocate(&mut mesh.clone(), &options);
+        assert_eq!(report.invalid_after, 3, "{placement:?}: {report:?}");
+        assert!(!report.converged, "{placement:?}: {report:?}");
+        assert!(report.sweeps < 100, "{placement:?}: {report:?}");
+    }
+}
