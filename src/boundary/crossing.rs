@@ -53,6 +53,44 @@ pub(crate) fn first_crossing(points: &[Point2]) -> Option<Crossing> {
     None
 }
 
+/// A closed polygon built point by point, each point tagged with what it was taken from (a
+/// curve, a facet), consecutive repeats merged as [`first_crossing`] needs.
+#[derive(Default)]
+pub(crate) struct TaggedPolygon {
+    points: Vec<Point2>,
+    tags: Vec<usize>,
+}
+
+impl TaggedPolygon {
+    /// Appends `p`, unless it repeats the last point.
+    pub(crate) fn push(&mut self, p: Point2, tag: usize) {
+        if self.points.last() != Some(&p) {
+            self.points.push(p);
+            self.tags.push(tag);
+        }
+    }
+
+    /// Closes the polygon (drops last points that repeat the first) and returns its first
+    /// crossing, as [`first_crossing`].
+    pub(crate) fn first_crossing(&mut self) -> Option<Crossing> {
+        while self.points.len() > 1 && self.points.last() == self.points.first() {
+            self.points.pop();
+            self.tags.pop();
+        }
+        first_crossing(&self.points)
+    }
+
+    /// The tag of edge `edge` (that of its first point).
+    pub(crate) fn tag(&self, edge: usize) -> usize {
+        self.tags[edge]
+    }
+
+    /// The number of points.
+    pub(crate) fn point_count(&self) -> usize {
+        self.points.len()
+    }
+}
+
 fn low_x((p, q): (Point2, Point2)) -> f64 {
     p[0].min(q[0])
 }

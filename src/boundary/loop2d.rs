@@ -3,7 +3,7 @@
 
 use std::path::Path;
 
-use super::crossing::first_crossing;
+use super::crossing::TaggedPolygon;
 use super::curve::{distance, Curve2, CurveKind, Point2};
 use super::gismo_xml::read_gismo_curves;
 use crate::error::{Error, ErrorKind, Result};
@@ -13,8 +13,7 @@ use crate::optimize::small_matrix::bounding_box;
 /// polyline's own vertices, a spline sampled at 16 points per control point and at least 256)
 /// must be simple. `chain` holds the curves head to tail with their given indices.
 fn check_simple(chain: &[(usize, Curve2)]) -> Result<()> {
-    let mut points: Vec<Point2> = Vec::new();
-    let mut owner: Vec<usize> = Vec::new();
+    let mut polygon = TaggedPolygon::default();
     for (index, curve) in chain {
         let samples = match curve.kind() {
             CurveKind::Polyline(_) => curve.sample(0),
@@ -22,27 +21,20 @@ fn check_simple(chain: &[(usize, Curve2)]) -> Result<()> {
         };
         // The last point is the next curve's first, to the loop's tolerance.
         for &p in &samples[..samples.len() - 1] {
-            if points.last() != Some(&p) {
-                points.push(p);
-                owner.push(*index);
-            }
+            polygon.push(p, *index);
         }
     }
-    while points.len() > 1 && points.last() == points.first() {
-        points.pop();
-        owner.pop();
-    }
-    match first_crossing(&points) {
+    match polygon.first_crossing() {
         None => Ok(()),
         Some(c) => Err(Error::invalid(format!(
             "the boundary loop crosses itself: curve {} meets curve {} at {} (edges {} and {} of \
              its {}-point polygon); the boundary of a domain must be a simple closed curve",
-            owner[c.first],
-            owner[c.second],
+            polygon.tag(c.first),
+            polygon.tag(c.second),
             fmt_point(c.at),
             c.first,
             c.second,
-            points.len()
+            polygon.point_count()
         ))),
     }
 }

@@ -15,7 +15,7 @@
 
 use super::build::Domain;
 use super::cube_map::CubeMap;
-use crate::boundary::crossing::first_crossing;
+use crate::boundary::crossing::TaggedPolygon;
 use crate::boundary::Point2;
 use crate::error::{Error, Result};
 use crate::tmesh::{Tree, UNIT};
@@ -115,23 +115,15 @@ pub(super) fn image_crossing<const D: usize>(
         let x = boundary.boundary_point(std::array::from_fn(|k| p[k.min(1)]));
         [x[0], x[1]]
     };
-    let mut points: Vec<Point2> = Vec::with_capacity(2 * facets.len());
-    let mut owner: Vec<usize> = Vec::with_capacity(2 * facets.len());
+    let mut polygon = TaggedPolygon::default();
     for (f, facet) in facets.iter().enumerate() {
+        // A side mapped onto one point (a triangle's) gives repeated points: one is kept.
         for p in facet.start_and_middle().map(image) {
-            // A side mapped onto one point (a triangle's) gives repeated points: one is kept.
-            if points.last() != Some(&p) {
-                points.push(p);
-                owner.push(f);
-            }
+            polygon.push(p, f);
         }
     }
-    while points.len() > 1 && points.last() == points.first() {
-        points.pop();
-        owner.pop();
-    }
-    let crossing = first_crossing(&points)?;
-    let middle = |edge: usize| facets[owner[edge]].start_and_middle()[1];
+    let crossing = polygon.first_crossing()?;
+    let middle = |edge: usize| facets[polygon.tag(edge)].start_and_middle()[1];
     Some(ImageCrossing {
         facets: [middle(crossing.first), middle(crossing.second)],
         at: crossing.at,

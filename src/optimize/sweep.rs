@@ -214,12 +214,11 @@ impl QualitySummary {
         let min = counted().map(|c| quality[c]).fold(f64::INFINITY, f64::min);
         let sum = ExactSum::of(counted().map(|c| quality[c]));
         let cells = counted().count();
-        let invalid_here = invalid.iter().filter(|&&c| team.counts(c)).count();
         let cells = team.count(cells)?;
         Ok(QualitySummary {
             min: team.min(min)?,
             mean: team.sum(&sum)? / cells.max(1) as f64,
-            invalid_count: team.count(invalid_here)?,
+            invalid_count: count_on(team, &invalid)?,
             invalid,
             quality,
         })
