@@ -6,11 +6,13 @@ mod cell_type;
 mod from_vtu;
 mod newton;
 mod node_order;
+mod refine;
 mod relocate;
 mod sensitivity;
 
 pub use cell_type::CellType;
 pub use node_order::NodeOrder;
+pub use refine::{refined_grid, MAX_SPLITS};
 pub(crate) use relocate::sweep_motion;
 pub use relocate::{
     Method, Placement, RelocateOptions, RelocateReport, Stage, DEFAULT_NEWTON_TOLERANCE,

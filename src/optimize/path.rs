@@ -84,9 +84,8 @@ pub fn follow<const D: usize>(
         converged: false,
         gradient_norm: f64::INFINITY,
     };
-    let mut dt = 1.0f64;
-    while outcome.reached < 1.0 && dt >= MIN_STEP {
-        let t = (outcome.reached + dt).min(1.0);
+    let mut schedule = Schedule::default();
+    while let Some(t) = schedule.next() {
         let last = t >= 1.0;
         // The prescribed coordinates at t, and their motion over this step.
         let target: Vec<Vector<D>> = (0..goal.len())
@@ -101,7 +100,7 @@ pub fn follow<const D: usize>(
         let invalid = predicted
             .as_ref()
             .map_or(usize::MAX, |x| invalid_cells(pool, problem, x).len());
-        if outcome.steps == 0 && dt == 1.0 {
+        if outcome.steps == 0 && schedule.first() {
             outcome.first_invalid = invalid;
         }
         let corrected = match predicted {
@@ -136,12 +135,54 @@ pub fn follow<const D: usize>(
                 outcome.reached = t;
                 outcome.steps += 1;
                 outcome.converged = last;
-                dt = (2.0 * dt).min(1.0);
+                schedule.accept(t);
             }
-            None => dt *= 0.5,
+            None => schedule.reject(t),
         }
     }
     Ok(outcome)
+}
+
+/// The fractions of the motion path following tries: the whole rest first, half the step tried
+/// after a failure, twice the last step after a success, until the goal or a step below
+/// [`MIN_STEP`].
+#[derive(Clone, Copy, Debug)]
+struct Schedule {
+    reached: f64,
+    dt: f64,
+}
+
+impl Default for Schedule {
+    fn default() -> Self {
+        Schedule {
+            reached: 0.0,
+            dt: 1.0,
+        }
+    }
+}
+
+impl Schedule {
+    /// The next fraction to reach, `None` when done or the step became too small.
+    fn next(&self) -> Option<f64> {
+        (self.reached < 1.0 && self.dt >= MIN_STEP).then(|| (self.reached + self.dt).min(1.0))
+    }
+
+    /// Whether nothing was tried yet.
+    fn first(&self) -> bool {
+        self.reached == 0.0 && self.dt == 1.0
+    }
+
+    /// `t` was reached.
+    fn accept(&mut self, t: f64) {
+        self.dt = (2.0 * (t - self.reached)).min(1.0);
+        self.reached = t;
+    }
+
+    /// `t` could not be reached: half the step tried next (not half of a `dt` that reached
+    /// past the goal, which would try the same step again).
+    fn reject(&mut self, t: f64) {
+        self.dt = 0.5 * (t - self.reached);
+    }
 }
 
 /// Component `k` of a prescribed node at fraction `t` of its motion from `origin` to `goal`.
@@ -179,4 +220,31 @@ fn predict<const D: usize>(
             })
             .collect(),
     ))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Whatever steps fail, no step is tried twice, and the goal is reached where steps of
+    /// some size at least `MIN_STEP` succeed. Here the longest step that succeeds shrinks
+    /// towards the goal, as where the end of the motion is the hard part.
+    #[test]
+    fn the_schedule_never_repeats_a_failed_step() {
+        for longest in [0.9, 0.6, 0.5, 0.4, 0.3, 0.2, 0.13, 0.1, 0.08] {
+            let mut schedule = Schedule::default();
+            let mut tried = Vec::new();
+            while let Some(t) = schedule.next() {
+                let step = (schedule.reached, t);
+                assert!(!tried.contains(&step), "{step:?} twice (longest {longest})");
+                tried.push(step);
+                match t - schedule.reached <= longest * (1.2 - schedule.reached) {
+                    true => schedule.accept(t),
+                    false => schedule.reject(t),
+                }
+                assert!(tried.len() < 200);
+            }
+            assert_eq!(schedule.reached, 1.0, "longest {longest}");
+        }
+    }
 }

@@ -1,0 +1,114 @@
+//! How relocation scales with the mesh: the bundled airfoil (Q9) and wing (H27), each cell split
+//! into `s^d` cells on its own quadratic map (`igaparam::fe_mesh::refined_grid`), so that every
+//! size has the same geometry and the same boundary motion; relocated with the default options.
+//!
+//! `cargo bench --bench scale` runs every size; `-- airfoil` or `-- wing` one family;
+//! `--max-nodes N` skips meshes of more nodes (an estimate before refining). Each size runs in a
+//! process of its own, so that its peak memory (`VmHWM`, reset after the mesh is built, so the
+//! relocation's own peak with the mesh it works on) is its own.
+
+use std::path::Path;
+use std::process::Command;
+
+use igaparam::{fe_mesh::refined_grid, io::vtu, Mesh, RelocateOptions};
+
+/// The families: name, bundled file, splits per direction.
+const CASES: [(&str, &str, &[usize]); 2] = [
+    ("airfoil Q9", "airfoil_0012_q9.vtu", &[1, 3, 7]),
+    ("wing H27", "wing_0012_h27.vtu", &[1, 2]),
+];
+
+fn main() {
+    let args: Vec<String> = std::env::args().skip(1).collect();
+    if let Some(i) = args.iter().position(|a| a == "--case") {
+        let splits = args[i + 2].parse().expect("splits");
+        return child(&args[i + 1], splits);
+    }
+    let max_nodes: f64 = args
+        .iter()
+        .position(|a| a == "--max-nodes")
+        .and_then(|i| args.get(i + 1))
+        .map_or(f64::INFINITY, |v| v.parse().expect("--max-nodes N"));
+    let filter = args
+        .iter()
+        .enumerate()
+        .find(|(i, a)| !a.starts_with('-') && (*i == 0 || args[i - 1] != "--max-nodes"))
+        .map(|(_, a)| a.clone());
+    let cores = std::thread::available_parallelism().map_or(1, |n| n.get());
+    println!("machine: {cores} cores; default options (method AUTO, threads: all)");
+    println!("| mesh | splits | cells | nodes | method | seconds | µs per node | sweeps | Newton iterations | invalid after | min q | mean q | peak MB |");
+    println!("|---|---|---|---|---|---|---|---|---|---|---|---|---|");
+    for (name, file, splits) in CASES {
+        if filter.as_ref().is_some_and(|f| !name.contains(f.as_str())) {
+            continue;
+        }
+        let grid = vtu::read(&data(file)).expect("bundled mesh");
+        let d = if name.contains("H27") { 3 } else { 2 };
+        for &s in splits {
+            if grid.point_count() as f64 * (s as f64).powi(d) > max_nodes {
+                continue;
+            }
+            let exe = std::env::current_exe().expect("own path");
+            let out = Command::new(exe)
+                .args(["--case", file, &s.to_string()])
+                .output()
+                .expect("child process");
+            let line = String::from_utf8_lossy(&out.stdout);
+            match line.lines().find_map(|l| l.strip_prefix("RESULT ")) {
+                Some(row) => println!("| {name} | {s} | {row} |"),
+                None => println!(
+                    "| {name} | {s} | failed: {} |",
+                    String::from_utf8_lossy(&out.stderr).trim()
+                ),
+            }
+        }
+    }
+}
+
+fn data(file: &str) -> std::path::PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("tests/data")
+        .join(file)
+}
+
+/// One size: refines, relocates and prints the row after `RESULT `.
+fn child(file: &str, splits: usize) {
+    let grid = vtu::read(&data(file)).expect("bundled mesh");
+    let fine = refined_grid(&grid, splits).expect("refinement");
+    drop(grid);
+    let mut mesh = Mesh::from_grid_with_motion(&fine).expect("mesh");
+    drop(fine);
+    // Linux: "5" resets the peak resident size, so the peak is the relocation's.
+    let _ = std::fs::write("/proc/self/clear_refs", "5");
+    let r = mesh
+        .relocate(&RelocateOptions::default(), &mut |_, _, _| true)
+        .expect("relocation");
+    let method = match r.sweeps {
+        0 => "Newton",
+        _ if r.newton_iterations > 0 => "Newton, sweeps",
+        _ => "sweeps",
+    };
+    println!(
+        "RESULT {} | {} | {method} | {:.2} | {:.1} | {} | {} | {} | {:.3} | {:.3} | {:.0}",
+        r.cells,
+        r.nodes,
+        r.seconds,
+        1e6 * r.seconds / r.nodes as f64,
+        r.sweeps,
+        r.newton_iterations,
+        r.invalid_after,
+        r.min_quality,
+        r.mean_quality,
+        peak_megabytes()
+    );
+}
+
+/// The process's peak resident size (`VmHWM`), in MB; NaN where unknown.
+fn peak_megabytes() -> f64 {
+    let status = std::fs::read_to_string("/proc/self/status").unwrap_or_default();
+    status
+        .lines()
+        .find_map(|l| l.strip_prefix("VmHWM:"))
+        .and_then(|v| v.trim().trim_end_matches("kB").trim().parse::<f64>().ok())
+        .map_or(f64::NAN, |kb| kb / 1024.0)
+}

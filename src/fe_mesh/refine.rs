@@ -1,0 +1,417 @@
+//! Uniform refinement of Lagrange-quadratic meshes (Q9, H27) with their prescribed motion: every
+//! cell split into `s^d` children on its own quadratic map, so that the refined mesh has the same
+//! geometry and boundary motion at any size (the scale benchmark's meshes, convergence studies).
+
+use std::collections::HashMap;
+
+use super::CellType;
+use crate::error::{Error, Result};
+use crate::io::vtu::{DataArray, UnstructuredGrid};
+
+/// Largest number of splits per direction.
+pub const MAX_SPLITS: usize = 64;
+
+/// Largest number of points of a refined grid (indices are 32-bit inside the library).
+const MAX_POINTS: usize = 1 << 31;
+
+/// The grid with each Q9 or H27 cell split into `splits^d` cells of the same type: the new nodes
+/// are the cell's quadratic map at the children's lattice points, so the geometry is unchanged.
+/// Point arrays `fixed_components` (masks) and `moved` (prescribed positions), when present, are
+/// carried over: a new node's `moved` is the quadratic interpolation of its cell's, and its mask
+/// is the common bits of the nodes whose shape functions act at it — the nodes of the face or
+/// edge it lies on (so a node inside a fixed boundary face is fixed as the face is), none inside a
+/// cell. Other arrays are dropped. Nodes are numbered in the order the cells first meet them.
+pub fn refined_grid(grid: &UnstructuredGrid, splits: usize) -> Result<UnstructuredGrid> {
+    let cell_type = lagrange_type(grid)?;
+    if !(1..=MAX_SPLITS).contains(&splits) {
+        return Err(Error::invalid(format!(
+            "splits = {splits}: expected 1 to {MAX_SPLITS}"
+        )));
+    }
+    let d = cell_type.dimension();
+    let per_cell = (2 * splits + 1).pow(d as u32);
+    if grid.types.len().saturating_mul(per_cell) > MAX_POINTS {
+        return Err(Error::invalid(format!(
+            "{} cells split {splits} times per direction would exceed {MAX_POINTS} points",
+            grid.types.len()
+        )));
+    }
+    let mask = point_array(grid, "fixed_components", 1)?;
+    let moved = point_array(grid, "moved", 3)?;
+    let mut out = Refinement {
+        cell_type,
+        splits,
+        ids: HashMap::new(),
+        points: Vec::new(),
+        mask: mask.map(|_| Vec::new()),
+        moved: moved.map(|_| Vec::new()),
+        connectivity: Vec::new(),
+    };
+    let nodes = cell_type.node_count();
+    for cell in grid.connectivity.chunks(nodes) {
+        let lattice_nodes = lattice_nodes(cell_type, cell, grid.point_count())?;
+        let source = Source {
+            grid,
+            nodes: &lattice_nodes,
+            mask,
+            moved,
+        };
+        out.cell(&source);
+    }
+    Ok(out.into_grid())
+}
+
+/// The cell type of a grid of Q9 or H27 cells with consistent offsets.
+fn lagrange_type(grid: &UnstructuredGrid) -> Result<CellType> {
+    let first = grid.types.first().copied().unwrap_or(0);
+    let cell_type = CellType::from_vtk(first as i64)
+        .filter(|t| matches!(t, CellType::Quad9 | CellType::Hex27))
+        .ok_or_else(|| Error::invalid("refinement needs Q9 or H27 cells (VTK types 28, 29)"))?;
+    let nodes = cell_type.node_count();
+    let consistent = grid.types.iter().all(|&t| t == first)
+        && grid.connectivity.len() == nodes * grid.types.len()
+        && grid.offsets.len() == grid.types.len()
+        && (grid.offsets.iter().enumerate()).all(|(c, &end)| end == ((c + 1) * nodes) as i64);
+    match consistent {
+        true => Ok(cell_type),
+        false => Err(Error::invalid(format!(
+            "refinement needs one cell type and {nodes} nodes per cell"
+        ))),
+    }
+}
+
+/// The point array `name` with `components` per point, if present.
+fn point_array<'g>(
+    grid: &'g UnstructuredGrid,
+    name: &str,
+    components: usize,
+) -> Result<Option<&'g [f64]>> {
+    match grid.point_array(name) {
+        Some(a)
+            if a.components != components || a.values.len() != components * grid.point_count() =>
+        {
+            Err(Error::invalid(format!(
+                "point array `{name}` needs {components} value(s) per point"
+            )))
+        }
+        Some(a) => Ok(Some(&a.values)),
+        None => Ok(None),
+    }
+}
+
+/// The global node of each lattice point (`i + 3j + 9k`) of one cell.
+fn lattice_nodes(cell_type: CellType, cell: &[i64], points: usize) -> Result<Vec<usize>> {
+    let mut out = vec![0; cell.len()];
+    for (&l, &node) in cell_type.lattice().iter().zip(cell) {
+        out[l] = usize::try_from(node)
+            .ok()
+            .filter(|&n| n < points)
+            .ok_or_else(|| Error::invalid(format!("node index {node} is out of range")))?;
+    }
+    Ok(out)
+}
+
+/// One parent cell: its lattice nodes and the grid's arrays.
+struct Source<'a> {
+    grid: &'a UnstructuredGrid,
+    nodes: &'a [usize],
+    mask: Option<&'a [f64]>,
+    moved: Option<&'a [f64]>,
+}
+
+/// The refined grid being built.
+struct Refinement {
+    cell_type: CellType,
+    splits: usize,
+    /// A new node's key: the parent's corner nodes with the integer weights of the point in
+    /// their multilinear combination — the same from every cell that shares the point,
+    /// whatever its orientation.
+    ids: HashMap<Vec<(usize, usize)>, u32>,
+    points: Vec<f64>,
+    mask: Option<Vec<f64>>,
+    moved: Option<Vec<f64>>,
+    connectivity: Vec<i64>,
+}
+
+impl Refinement {
+    /// Adds the children of one cell.
+    fn cell(&mut self, source: &Source<'_>) {
+        let d = self.cell_type.dimension();
+        let n = 2 * self.splits + 1;
+        let fine: Vec<u32> = (0..n.pow(d as u32))
+            .map(|f| self.node(source, &digits(f, n, d)))
+            .collect();
+        let lattice = self.cell_type.lattice();
+        for child in 0..self.splits.pow(d as u32) {
+            let corner = digits(child, self.splits, d);
+            for &l in lattice {
+                let local = digits(l, 3, d);
+                let index = (0..d)
+                    .rev()
+                    .fold(0, |acc, k| acc * n + 2 * corner[k] + local[k]);
+                self.connectivity.push(fine[index] as i64);
+            }
+        }
+    }
+
+    /// The id of the point at fine lattice index `at` (per direction in `0..=2s`, the first `d`
+    /// used) of the cell,
+    /// created on first sight.
+    fn node(&mut self, source: &Source<'_>, at: &[usize; 3]) -> u32 {
+        let d = self.cell_type.dimension();
+        let s = self.splits;
+        let mut key: Vec<(usize, usize)> = (0..1usize << d)
+            .map(|corner| {
+                let weight = (0..d)
+                    .map(|k| match corner >> k & 1 {
+                        0 => 2 * s - at[k],
+                        _ => at[k],
+                    })
+                    .product();
+                let lattice = (0..d)
+                    .rev()
+                    .fold(0, |acc, k| acc * 3 + 2 * (corner >> k & 1));
+                (source.nodes[lattice], weight)
+            })
+            .filter(|&(_, w)| w > 0)
+            .collect();
+        key.sort_unstable();
+        if let Some(&id) = self.ids.get(&key) {
+            return id;
+        }
+        let id = self.ids.len() as u32;
+        self.ids.insert(key, id);
+        self.add_point(source, at);
+        id
+    }
+
+    /// Appends the point at fine index `at`: position, `moved` and mask from the cell's nodes.
+    fn add_point(&mut self, source: &Source<'_>, at: &[usize; 3]) {
+        let d = self.cell_type.dimension();
+        let s = self.splits;
+        let basis: Vec<[f64; 3]> = at[..d].iter().map(|&i| quadratic_basis(i, s)).collect();
+        let mut position = [0.0; 3];
+        let mut moved = [0.0; 3];
+        let mut bits = 7u8;
+        for (l, &node) in source.nodes.iter().enumerate() {
+            let local = digits(l, 3, d);
+            let weight: f64 = (0..d).map(|k| basis[k][local[k]]).product();
+            if weight == 0.0 {
+                continue;
+            }
+            for k in 0..3 {
+                position[k] += weight * source.grid.points[3 * node + k];
+                if let Some(m) = source.moved {
+                    moved[k] += weight * m[3 * node + k];
+                }
+            }
+            if let Some(mask) = source.mask {
+                bits &= mask[node] as u8;
+            }
+        }
+        self.points.extend(position);
+        if let Some(out) = self.moved.as_mut() {
+            out.extend(moved);
+        }
+        if let Some(out) = self.mask.as_mut() {
+            out.push(bits as f64);
+        }
+    }
+
+    fn into_grid(self) -> UnstructuredGrid {
+        let nodes = self.cell_type.node_count();
+        let cells = self.connectivity.len() / nodes;
+        let mut point_data = Vec::new();
+        let mut uint8_arrays = Vec::new();
+        if let Some(values) = self.mask {
+            point_data.push(array("fixed_components", 1, values));
+            uint8_arrays.push("fixed_components".to_string());
+        }
+        if let Some(values) = self.moved {
+            point_data.push(array("moved", 3, values));
+        }
+        UnstructuredGrid {
+            points: self.points,
+            connectivity: self.connectivity,
+            offsets: (1..=cells).map(|c| (c * nodes) as i64).collect(),
+            types: vec![self.cell_type as u8; cells],
+            point_data,
+            cell_data: Vec::new(),
+            uint8_arrays,
+        }
+    }
+}
+
+fn array(name: &str, components: usize, values: Vec<f64>) -> DataArray {
+    DataArray {
+        name: name.to_string(),
+        components,
+        values,
+    }
+}
+
+/// The `d` base-`n` digits of `index`, least significant first.
+fn digits(index: usize, n: usize, d: usize) -> [usize; 3] {
+    let mut out = [0; 3];
+    let mut rest = index;
+    for digit in out.iter_mut().take(d) {
+        *digit = rest % n;
+        rest /= n;
+    }
+    out
+}
+
+/// The three 1D quadratic Lagrange functions (nodes −1, 0, 1) at fine index `i` of `0..=2s`
+/// (`t = i/s − 1`): exactly 0 and 1 at the nodes.
+fn quadratic_basis(i: usize, s: usize) -> [f64; 3] {
+    if i % s == 0 {
+        let mut exact = [0.0; 3];
+        exact[i / s] = 1.0;
+        return exact;
+    }
+    let t = i as f64 / s as f64 - 1.0;
+    [0.5 * t * (t - 1.0), 1.0 - t * t, 0.5 * t * (t + 1.0)]
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::Mesh;
+
+    /// A structured grid of `nx × ny (× nz)` Lagrange cells on the map `f` of the box
+    /// `[0, nx] × [0, ny] (× [0, nz])`, with mask 3 (7 in 3D) and `moved = motion(x)` on the
+    /// boundary. `turned` lists cells whose local axes 0 and 1 are reversed (turned half a turn).
+    fn structured(
+        n: [usize; 3],
+        d: usize,
+        f: impl Fn([f64; 3]) -> [f64; 3],
+        motion: impl Fn([f64; 3]) -> [f64; 3],
+        turned: &[usize],
+    ) -> UnstructuredGrid {
+        let lattice_n: Vec<usize> = (0..3)
+            .map(|k| if k < d { 2 * n[k] + 1 } else { 1 })
+            .collect();
+        let id = |i: usize, j: usize, k: usize| i + lattice_n[0] * (j + lattice_n[1] * k);
+        let mut grid = UnstructuredGrid::default();
+        let (mut mask, mut moved) = (Vec::new(), Vec::new());
+        for k in 0..lattice_n[2] {
+            for j in 0..lattice_n[1] {
+                for i in 0..lattice_n[0] {
+                    let x = f([i as f64 / 2.0, j as f64 / 2.0, k as f64 / 2.0]);
+                    grid.points.extend(x);
+                    let boundary = [i, j, k]
+                        .iter()
+                        .zip(&lattice_n)
+                        .take(d)
+                        .any(|(&a, &m)| a == 0 || a == m - 1);
+                    mask.push(if boundary { ((1 << d) - 1) as f64 } else { 0.0 });
+                    moved.extend(if boundary { motion(x) } else { x });
+                }
+            }
+        }
+        let cell_type = if d == 2 {
+            CellType::Quad9
+        } else {
+            CellType::Hex27
+        };
+        let cells = n[0] * n[1] * if d == 3 { n[2] } else { 1 };
+        for c in 0..cells {
+            let (ci, cj, ck) = (c % n[0], (c / n[0]) % n[1], c / (n[0] * n[1]));
+            for &l in cell_type.lattice() {
+                let mut local = digits(l, 3, d);
+                if turned.contains(&c) {
+                    local[0] = 2 - local[0];
+                    local[1] = 2 - local[1];
+                }
+                let node = id(2 * ci + local[0], 2 * cj + local[1], 2 * ck + local[2]);
+                grid.connectivity.push(node as i64);
+            }
+            grid.offsets.push(grid.connectivity.len() as i64);
+            grid.types.push(cell_type as u8);
+        }
+        grid.point_data = vec![array("fixed_components", 1, mask), array("moved", 3, moved)];
+        grid
+    }
+
+    fn curved(x: [f64; 3]) -> [f64; 3] {
+        [x[0], x[1] + 0.1 * x[0] * x[0], x[2] + 0.05 * x[1] * x[1]]
+    }
+
+    fn affine(x: [f64; 3]) -> [f64; 3] {
+        [
+            1.1 * x[0] - 0.2 * x[1] + 0.3,
+            0.1 * x[0] + 0.9 * x[1],
+            x[2] - 0.05 * x[0],
+        ]
+    }
+
+    /// The refined Q9 grid has the structured grid's point count, lies on the parent map at the
+    /// fine lattice, carries an affine motion exactly and fixes its boundary only.
+    #[test]
+    fn q9_refinement_keeps_the_geometry_and_the_motion() {
+        let grid = structured([2, 1, 1], 2, curved, affine, &[]);
+        let s = 3;
+        let fine = refined_grid(&grid, s).unwrap();
+        assert_eq!(fine.point_count(), 13 * 7);
+        assert_eq!(fine.types.len(), 2 * s * s);
+        let mask = &fine.point_array("fixed_components").unwrap().values;
+        let moved = &fine.point_array("moved").unwrap().values;
+        for p in 0..fine.point_count() {
+            let x = [fine.points[3 * p], fine.points[3 * p + 1], 0.0];
+            let (u, v) = (x[0], x[1] - 0.1 * x[0] * x[0]);
+            for t in [u, v] {
+                assert!((t * 6.0 - (t * 6.0).round()).abs() < 1e-12, "{x:?}");
+            }
+            let boundary = [u, v - 0.0, u - 2.0, v - 1.0]
+                .iter()
+                .any(|t| t.abs() < 1e-12);
+            assert_eq!(mask[p], if boundary { 3.0 } else { 0.0 }, "{x:?}");
+            if boundary {
+                let m = affine(x);
+                assert!((moved[3 * p] - m[0]).abs() < 1e-12);
+                assert!((moved[3 * p + 1] - m[1]).abs() < 1e-12);
+            }
+        }
+        let mut mesh = Mesh::from_grid_with_motion(&fine).unwrap();
+        let report = mesh
+            .relocate(&Default::default(), &mut |_, _, _| true)
+            .unwrap();
+        assert_eq!(report.invalid_after, 0);
+    }
+
+    /// H27 cells meeting with different local orientations share the new nodes of their face.
+    #[test]
+    fn h27_refinement_merges_faces_of_any_orientation() {
+        let invalid = |g: &UnstructuredGrid| Mesh::from_grid(g).unwrap().invalid_cell_count();
+        let grid = structured([2, 1, 1], 3, curved, affine, &[1]);
+        assert_eq!(invalid(&grid).unwrap(), 0);
+        let fine = refined_grid(&grid, 2).unwrap();
+        assert_eq!(fine.point_count(), 9 * 5 * 5);
+        assert_eq!(fine.types.len(), 16);
+        assert_eq!(invalid(&fine).unwrap(), 0);
+        let once = refined_grid(&grid, 1).unwrap();
+        assert_eq!(once.point_count(), grid.point_count());
+        let sorted = |points: &[f64]| {
+            let mut p: Vec<[u64; 3]> = points
+                .chunks(3)
+                .map(|x| [x[0].to_bits(), x[1].to_bits(), x[2].to_bits()])
+                .collect();
+            p.sort_unstable();
+            p
+        };
+        assert_eq!(sorted(&once.points), sorted(&grid.points));
+    }
+
+    #[test]
+    fn refinement_refuses_other_cells_and_splits() {
+        let grid = structured([1, 1, 1], 2, curved, affine, &[]);
+        assert!(refined_grid(&grid, 0).is_err());
+        assert!(refined_grid(&grid, MAX_SPLITS + 1).is_err());
+        let mut linear = grid.clone();
+        linear.types = vec![CellType::Quad4 as u8];
+        assert!(refined_grid(&linear, 2).is_err());
+        let mut short = grid;
+        short.connectivity.pop();
+        assert!(refined_grid(&short, 2).is_err());
+    }
+}
