@@ -9,12 +9,13 @@ use crate::error::{Error, Result};
 use crate::io::vtu::{DataArray, UnstructuredGrid};
 
 /// Largest number of splits per direction.
-pub const MAX_SPLITS: usize = 64;
+const MAX_SPLITS: usize = 64;
 
 /// Largest number of points of a refined grid (indices are 32-bit inside the library).
 const MAX_POINTS: usize = 1 << 31;
 
-/// The grid with each Q9 or H27 cell split into `splits^d` cells of the same type: the new nodes
+/// The grid with each Q9 or H27 cell split into `splits^d` cells of the same type (`splits` from
+/// 1 to 64): the new nodes
 /// are the cell's quadratic map at the children's lattice points, so the geometry is unchanged.
 /// Point arrays `fixed_components` (masks) and `moved` (prescribed positions), when present, are
 /// carried over: a new node's `moved` is the quadratic interpolation of its cell's, and its mask
