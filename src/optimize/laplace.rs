@@ -141,6 +141,7 @@ impl MeshGraph {
                 apply: &apply,
                 diagonal: &diagonal,
                 rows: &row,
+                pool,
             };
             iterations +=
                 conjugate_gradients(team, &system, &rhs, &mut u, 1e-10, 4 * global_n + 100)?;
@@ -174,12 +175,34 @@ struct System<'a> {
     apply: &'a dyn Fn(&[f64], &mut [f64]),
     diagonal: &'a [f64],
     rows: &'a [bool],
+    /// Where the parallel work runs (`None`: the caller's pool).
+    pool: Option<&'a ThreadPool>,
 }
 
-/// The dot product over the rows of this rank, summed exactly over the team.
-fn dot<T: Team>(team: &mut T, rows: &[bool], a: &[f64], b: &[f64]) -> Result<f64> {
-    let products = (0..a.len()).filter(|&i| rows[i]).map(|i| a[i] * b[i]);
-    team.sum(&ExactSum::of(products))
+/// Entries per exact partial sum of [`dot`].
+const DOT_CHUNK: usize = 4096;
+
+/// The dot product over the rows of this rank, summed exactly over the team. The chunks' exact
+/// sums are added in parallel (on the caller's pool): being exact, the result does not depend on
+/// how they are grouped.
+fn dot<T: Team>(team: &mut T, system: &System<'_>, a: &[f64], b: &[f64]) -> Result<f64> {
+    let sum = || {
+        (a.par_chunks(DOT_CHUNK).zip(b.par_chunks(DOT_CHUNK)))
+            .zip(system.rows.par_chunks(DOT_CHUNK))
+            .map(|((a, b), rows)| {
+                let products = (0..a.len()).filter(|&i| rows[i]).map(|i| a[i] * b[i]);
+                ExactSum::of(products)
+            })
+            .reduce(ExactSum::default, |mut total, part| {
+                total.merge(&part);
+                total
+            })
+    };
+    let sum = match system.pool {
+        Some(pool) => pool.install(sum),
+        None => sum(),
+    };
+    team.sum(&sum)
 }
 
 /// Solves `A u = b` by conjugate gradients with the Jacobi preconditioner; stops at
@@ -194,27 +217,26 @@ fn conjugate_gradients<T: Team>(
     max_iterations: usize,
 ) -> Result<usize> {
     let n = b.len();
-    let rows = system.rows;
     let mut r = vec![0.0; n];
     team.refresh(u, 1)?;
     (system.apply)(u, &mut r);
     for (ri, bi) in r.iter_mut().zip(b) {
         *ri = bi - *ri;
     }
-    let stop = tolerance * dot(team, rows, b, b)?.sqrt().max(1.0);
+    let stop = tolerance * dot(team, system, b, b)?.sqrt().max(1.0);
     let precondition =
         |r: &[f64]| -> Vec<f64> { r.iter().zip(system.diagonal).map(|(x, d)| x / d).collect() };
     let mut z = precondition(&r);
     let mut p = z.clone();
     let mut ap = vec![0.0; n];
-    let mut rz = dot(team, rows, &r, &z)?;
+    let mut rz = dot(team, system, &r, &z)?;
     for it in 0..max_iterations {
-        if dot(team, rows, &r, &r)?.sqrt() <= stop {
+        if dot(team, system, &r, &r)?.sqrt() <= stop {
             return Ok(it);
         }
         team.refresh(&mut p, 1)?;
         (system.apply)(&p, &mut ap);
-        let pap = dot(team, rows, &p, &ap)?;
+        let pap = dot(team, system, &p, &ap)?;
         if pap <= 0.0 {
             return Ok(it);
         }
@@ -224,7 +246,7 @@ fn conjugate_gradients<T: Team>(
             r[i] -= alpha * ap[i];
         }
         z = precondition(&r);
-        let rz_new = dot(team, rows, &r, &z)?;
+        let rz_new = dot(team, system, &r, &z)?;
         let beta = rz_new / rz;
         rz = rz_new;
         for i in 0..n {
