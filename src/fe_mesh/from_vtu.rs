@@ -10,29 +10,7 @@ use crate::optimize::TargetKind;
 impl Mesh {
     /// Builds a mesh from a grid whose cells all have one supported type.
     pub fn from_grid(grid: &UnstructuredGrid) -> Result<Mesh> {
-        let first = *grid
-            .types
-            .first()
-            .ok_or_else(|| Error::mesh("the grid has no cells"))?;
-        let cell_type = CellType::from_vtk(first as i64).ok_or_else(|| {
-            Error::mesh(format!(
-                "VTK cell type {first} is not a supported quad/hex type"
-            ))
-        })?;
-        if let Some(c) = grid.types.iter().position(|&t| t != first) {
-            return Err(Error::mesh(format!(
-                "cell {c} has VTK type {}, but cell 0 has type {first}: one cell type per mesh",
-                grid.types[c]
-            )));
-        }
-        let per_cell = cell_type.node_count() as i64;
-        for (c, &end) in grid.offsets.iter().enumerate() {
-            if end != (c as i64 + 1) * per_cell {
-                return Err(Error::mesh(format!(
-                    "cell {c} does not have {per_cell} nodes"
-                )));
-            }
-        }
+        let cell_type = grid_cell_type(grid)?;
         Mesh::new(cell_type, &grid.points, &grid.connectivity)
     }
 
@@ -148,4 +126,33 @@ impl Mesh {
     pub fn write_vtu(&self, path: &Path, format: Format) -> Result<()> {
         vtu::write_as(path, &self.to_grid()?, format)
     }
+}
+
+/// The one supported cell type of a grid's cells, each with that type's node count (offsets
+/// checked).
+pub(super) fn grid_cell_type(grid: &UnstructuredGrid) -> Result<CellType> {
+    let first = *grid
+        .types
+        .first()
+        .ok_or_else(|| Error::mesh("the grid has no cells"))?;
+    let cell_type = CellType::from_vtk(first as i64).ok_or_else(|| {
+        Error::mesh(format!(
+            "VTK cell type {first} is not a supported quad/hex type"
+        ))
+    })?;
+    if let Some(c) = grid.types.iter().position(|&t| t != first) {
+        return Err(Error::mesh(format!(
+            "cell {c} has VTK type {}, but cell 0 has type {first}: one cell type per mesh",
+            grid.types[c]
+        )));
+    }
+    let per_cell = cell_type.node_count() as i64;
+    for (c, &end) in grid.offsets.iter().enumerate() {
+        if end != (c as i64 + 1) * per_cell {
+            return Err(Error::mesh(format!(
+                "cell {c} does not have {per_cell} nodes"
+            )));
+        }
+    }
+    Ok(cell_type)
 }

@@ -4,6 +4,7 @@
 
 use std::collections::HashMap;
 
+use super::from_vtu::grid_cell_type;
 use super::CellType;
 use crate::error::{Error, Result};
 use crate::io::vtu::{DataArray, UnstructuredGrid};
@@ -15,8 +16,8 @@ const MAX_SPLITS: usize = 64;
 const MAX_POINTS: usize = 1 << 31;
 
 /// The grid with each Q9 or H27 cell split into `splits^d` cells of the same type (`splits` from
-/// 1 to 64): the new nodes
-/// are the cell's quadratic map at the children's lattice points, so the geometry is unchanged.
+/// 1 to 64): the new nodes are the cell's quadratic map at the children's lattice points, so the
+/// geometry is unchanged.
 /// Point arrays `fixed_components` (masks) and `moved` (prescribed positions), when present, are
 /// carried over: a new node's `moved` is the quadratic interpolation of its cell's, and its mask
 /// is the common bits of the nodes whose shape functions act at it — the nodes of the face or
@@ -62,21 +63,22 @@ pub fn refined_grid(grid: &UnstructuredGrid, splits: usize) -> Result<Unstructur
     Ok(out.into_grid())
 }
 
-/// The cell type of a grid of Q9 or H27 cells with consistent offsets.
+/// The cell type of a grid of Q9 or H27 cells ([`grid_cell_type`]'s checks) whose
+/// connectivity holds exactly its cells.
 fn lagrange_type(grid: &UnstructuredGrid) -> Result<CellType> {
-    let first = grid.types.first().copied().unwrap_or(0);
-    let cell_type = CellType::from_vtk(first as i64)
-        .filter(|t| matches!(t, CellType::Quad9 | CellType::Hex27))
-        .ok_or_else(|| Error::invalid("refinement needs Q9 or H27 cells (VTK types 28, 29)"))?;
+    let cell_type = grid_cell_type(grid)?;
+    if !matches!(cell_type, CellType::Quad9 | CellType::Hex27) {
+        return Err(Error::invalid(
+            "refinement needs Q9 or H27 cells (VTK types 28, 29)",
+        ));
+    }
     let nodes = cell_type.node_count();
-    let consistent = grid.types.iter().all(|&t| t == first)
-        && grid.connectivity.len() == nodes * grid.types.len()
+    match grid.connectivity.len() == nodes * grid.types.len()
         && grid.offsets.len() == grid.types.len()
-        && (grid.offsets.iter().enumerate()).all(|(c, &end)| end == ((c + 1) * nodes) as i64);
-    match consistent {
+    {
         true => Ok(cell_type),
         false => Err(Error::invalid(format!(
-            "refinement needs one cell type and {nodes} nodes per cell"
+            "refinement needs {nodes} nodes per cell"
         ))),
     }
 }
@@ -156,8 +158,7 @@ impl Refinement {
     }
 
     /// The id of the point at fine lattice index `at` (per direction in `0..=2s`, the first `d`
-    /// used) of the cell,
-    /// created on first sight.
+    /// used) of the cell, created on first sight.
     fn node(&mut self, source: &Source<'_>, at: &[usize; 3]) -> u32 {
         let d = self.cell_type.dimension();
         let s = self.splits;
@@ -363,9 +364,7 @@ mod tests {
             for t in [u, v] {
                 assert!((t * 6.0 - (t * 6.0).round()).abs() < 1e-12, "{x:?}");
             }
-            let boundary = [u, v - 0.0, u - 2.0, v - 1.0]
-                .iter()
-                .any(|t| t.abs() < 1e-12);
+            let boundary = [u, v, u - 2.0, v - 1.0].iter().any(|t| t.abs() < 1e-12);
             assert_eq!(mask[p], if boundary { 3.0 } else { 0.0 }, "{x:?}");
             if boundary {
                 let m = affine(x);
