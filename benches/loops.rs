@@ -45,39 +45,67 @@ fn median(mut values: Vec<f64>) -> f64 {
     values[values.len() / 2]
 }
 
-fn warm_loop(threads: usize) {
-    let base = load("airfoil_0012_q9.vtu");
+/// The prescribed motion of step `step` (1 to 20) of the loop: the profile at 3·step degrees.
+fn step_motion(reference: &[[f64; 3]], fixed: &[u8], step: usize) -> (Vec<usize>, Vec<f64>) {
+    rotated(reference, fixed, (3.0 * step as f64).to_radians())
+}
+
+/// The 20 steps relocated warm, back to back as in a host's loop; their reports.
+fn warm_steps(
+    base: &Mesh,
+    options: &dyn Fn(Placement, Method) -> RelocateOptions,
+) -> Vec<RelocateReport> {
     let reference = base.reference().to_vec();
     let mut warm = base.clone();
+    // The bundled file's positions are the rotated state: the loop starts from the reference.
     let xyz: Vec<f64> = reference.iter().flatten().copied().collect();
     warm.move_nodes(None, &xyz).unwrap();
+    relocate(&mut warm, &options(Placement::Laplacian, Method::Auto));
+    (1..=20)
+        .map(|step| {
+            let (indices, xyz) = step_motion(&reference, base.fixed(), step);
+            warm.move_nodes(Some(&indices), &xyz).unwrap();
+            relocate(&mut warm, &options(Placement::Incremental, Method::Auto))
+        })
+        .collect()
+}
+
+/// A cold relocation of the state of `step` with `method`.
+fn cold_step(
+    base: &Mesh,
+    step: usize,
+    options: &dyn Fn(Placement, Method) -> RelocateOptions,
+    method: Method,
+) -> RelocateReport {
+    let (indices, xyz) = step_motion(base.reference(), base.fixed(), step);
+    let mut cold = base.clone();
+    cold.move_nodes(Some(&indices), &xyz).unwrap();
+    relocate(&mut cold, &options(Placement::Laplacian, method))
+}
+
+fn warm_loop(threads: usize) {
+    let base = load("airfoil_0012_q9.vtu");
     let options = |placement, method| RelocateOptions {
         threads,
         placement,
         method,
         ..Default::default()
     };
-    relocate(&mut warm, &options(Placement::Laplacian, Method::Auto));
+    // The loop alone first (its steps timed as a host's loop sees them), then the cold
+    // relocations of every step's state for comparison.
+    let warm = warm_steps(&base, &options);
     println!("| step | angle | warm ms | newton | warm min q | cold ms | cold min q | sweeps (previous method) ms |");
     println!("|---|---|---|---|---|---|---|---|");
-    let (mut warm_times, mut cold_times) = (Vec::new(), Vec::new());
-    let mut worst_gap = 0.0f64;
-    for step in 1..=20 {
-        let angle = (3.0 * step as f64).to_radians();
-        let (indices, xyz) = rotated(&reference, base.fixed(), angle);
-        warm.move_nodes(Some(&indices), &xyz).unwrap();
-        let w = relocate(&mut warm, &options(Placement::Incremental, Method::Auto));
-        let mut cold = base.clone();
-        cold.move_nodes(Some(&indices), &xyz).unwrap();
-        let c = relocate(&mut cold, &options(Placement::Laplacian, Method::Auto));
-        let mut old = base.clone();
-        old.move_nodes(Some(&indices), &xyz).unwrap();
-        let o = relocate(&mut old, &options(Placement::Laplacian, Method::Sweeps));
+    let (mut step_ratios, mut worst_gap) = (Vec::new(), 0.0f64);
+    for (step, w) in (1..=20).zip(&warm) {
+        let c = cold_step(&base, step, &options, Method::Auto);
+        let o = cold_step(&base, step, &options, Method::Sweeps);
         assert!(w.invalid_after == 0 && c.invalid_after == 0 && o.invalid_after == 0);
         worst_gap = worst_gap.max((c.min_quality - w.min_quality) / c.min_quality);
+        step_ratios.push(w.seconds / c.seconds);
         println!(
-            "| {step} | {:.0}° | {:.1} | {} | {:.3} | {:.1} | {:.3} | {:.1} |",
-            angle.to_degrees(),
+            "| {step} | {}° | {:.1} | {} | {:.3} | {:.1} | {:.3} | {:.1} |",
+            3 * step,
             1e3 * w.seconds,
             w.newton_iterations,
             w.min_quality,
@@ -85,26 +113,14 @@ fn warm_loop(threads: usize) {
             c.min_quality,
             1e3 * o.seconds
         );
-        warm_times.push(w.seconds);
-        cold_times.push(c.seconds);
     }
     // The final state's cold relocations, repeated: one timing on a shared machine is noise.
-    let (indices, xyz) = rotated(&reference, base.fixed(), 60f64.to_radians());
     let repeated = |method| {
-        let times = (0..5).map(|_| {
-            let mut cold = base.clone();
-            cold.move_nodes(Some(&indices), &xyz).unwrap();
-            relocate(&mut cold, &options(Placement::Laplacian, method)).seconds
-        });
+        let times = (0..5).map(|_| cold_step(&base, 20, &options, method).seconds);
         median(times.collect())
     };
     let (final_cold, final_old) = (repeated(Method::Auto), repeated(Method::Sweeps));
-    let step_ratios = warm_times
-        .iter()
-        .zip(&cold_times)
-        .map(|(w, c)| w / c)
-        .collect();
-    let warm = median(warm_times);
+    let warm = median(warm.iter().map(|r| r.seconds).collect());
     println!(
         "\nwarm median {:.1} ms; cold relocation of the final state {:.1} ms (median of 5; ratio \
          {:.2}; median over the steps of warm / cold at the same angle {:.2}); previous method's \

@@ -27,7 +27,7 @@ const MIN_STEP: f64 = 1.0 / 64.0;
 const STEP_TOLERANCE: f64 = 1e-4;
 
 /// Relative residual of the predictor's solve: the corrector takes it from there.
-const PREDICTION_TOLERANCE: f64 = 1e-4;
+const PREDICTION_TOLERANCE: f64 = 1e-3;
 
 /// Newton iterations allowed to the corrector of one step.
 const CORRECTOR_ITERATIONS: u32 = 30;

@@ -230,7 +230,8 @@ impl<const D: usize> HessianSolver<D> {
 
     /// Solves `H_ff y = b` over the free coordinates (entries of `b` elsewhere are ignored,
     /// those of `y` are 0) by preconditioned CG to a relative residual `tolerance`, in at most
-    /// `max_iterations`; CG stops early at negative curvature (the stats say so).
+    /// `max_iterations`; CG stops early at negative curvature (the stats say so) and where its
+    /// rate so far shows the tolerance out of reach within `max_iterations`.
     pub fn solve_with(
         &self,
         pool: &ThreadPool,
@@ -317,7 +318,8 @@ fn block_jacobi<const D: usize>(
 }
 
 /// Preconditioned conjugate gradients from 0 to a relative residual `tolerance`; stops at
-/// negative curvature (returning the iterate so far) or after `max_iterations`.
+/// negative curvature (returning the iterate so far), after `max_iterations`, or earlier where
+/// the rate so far cannot reach the tolerance within them.
 fn conjugate_gradients<const D: usize>(
     apply: &dyn Fn(&[Vector<D>], &mut [Vector<D>]),
     precondition: &dyn Fn(&[Vector<D>]) -> Vec<Vector<D>>,
@@ -354,6 +356,17 @@ fn conjugate_gradients<const D: usize>(
         }
         stats.iterations += 1;
         stats.residual = norm(&r) / b_norm;
+        if stats.iterations >= max_iterations || stats.residual <= tolerance {
+            // Done: the next direction (one more preconditioner application) is not needed.
+            break;
+        }
+        // At the rate so far (from the second iteration on, once the residual fell), the
+        // iterations the tolerance needs.
+        let projected = stats.iterations as f64 * tolerance.ln() / stats.residual.ln();
+        if stats.iterations >= 2 && stats.residual < 1.0 && projected > max_iterations as f64 {
+            // The tolerance is out of reach within `max_iterations`: give up early.
+            break;
+        }
         z = precondition(&r);
         let rz_next = dot(&r, &z);
         let beta = rz_next / rz;
@@ -365,4 +378,56 @@ fn conjugate_gradients<const D: usize>(
         }
     }
     (x, stats)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use std::cell::Cell;
+
+    /// A diagonal system `diag(1..=n) y = 1` with a preconditioner that counts its applications.
+    fn diagonal_solve(
+        exact: bool,
+        tolerance: f64,
+        max_iterations: usize,
+    ) -> (Vec<Vector<1>>, SolveStats, usize) {
+        let n = 50;
+        let apply = |x: &[Vector<1>], y: &mut [Vector<1>]| {
+            for (i, (y, x)) in y.iter_mut().zip(x).enumerate() {
+                y[0] = (i + 1) as f64 * x[0];
+            }
+        };
+        let calls = Cell::new(0);
+        let precondition = |r: &[Vector<1>]| {
+            calls.set(calls.get() + 1);
+            r.iter()
+                .enumerate()
+                .map(|(i, r)| [if exact { r[0] / (i + 1) as f64 } else { r[0] }])
+                .collect()
+        };
+        let b = vec![[1.0]; n];
+        let (y, stats) = conjugate_gradients(&apply, &precondition, &b, tolerance, max_iterations);
+        (y, stats, calls.get())
+    }
+
+    /// With the exact inverse as preconditioner, one iteration and one application: none after
+    /// the last iteration.
+    #[test]
+    fn an_exact_preconditioner_is_applied_once() {
+        let (y, stats, calls) = diagonal_solve(true, 1e-12, 10);
+        assert_eq!((stats.iterations, calls), (1, 1));
+        for (i, y) in y.iter().enumerate() {
+            assert!((y[0] - 1.0 / (i + 1) as f64).abs() < 1e-14);
+        }
+    }
+
+    /// Without preconditioning the residual falls slowly: with few iterations allowed CG gives up
+    /// as soon as its rate shows the tolerance out of reach; with enough it gets there.
+    #[test]
+    fn conjugate_gradients_give_up_where_the_rate_cannot_reach_the_tolerance() {
+        let (_, stats, _) = diagonal_solve(false, 1e-12, 8);
+        assert!(stats.iterations < 8 && stats.residual > 1e-12, "{stats:?}");
+        let (_, stats, _) = diagonal_solve(false, 1e-12, 1000);
+        assert!(stats.residual <= 1e-12, "{stats:?}");
+    }
 }
