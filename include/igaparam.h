@@ -989,6 +989,15 @@ typedef struct {
    */
   uint32_t smoothing_sweeps;
   /**
+   * Exponent `p` of the smoothing's objective, the sum of the distortions `η*^p` at the samples
+   * (default 4; at least 1, at most 16): above 1 the worst samples weigh most, which lifts the
+   * smallest q_S where the mean distortion (`p = 1`) would not move it. Such a smoothing samples
+   * one point more per direction than `samples` (with four, `p = 4` folded Gran Canaria's map
+   * between samples), and where it cannot lift the map (its smallest q_S held by the fixed
+   * boundary, as on the 3D duck) the `p = 1` smoothing runs instead.
+   */
+  double smoothing_power;
+  /**
    * Worker threads, at most 4096, capped to the machine's cores; 0 (default) runs on the
    * caller's thread pool: one thread per core, unless a Rust caller installed another. The
    * result does not depend on it.

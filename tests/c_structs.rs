@@ -55,7 +55,7 @@ fn a_new_core_field_reaches_the_c_struct() {
     let edits = [
         ("quality_bound", "gap: f64", options_field),
         ("fit_options", "threads: usize", fit_field),
-        ("untangle", "smoothing_sweeps: u32", untangle_field),
+        ("untangle", "smoothing_power: f64", untangle_field),
         ("fit", "stages: FitStages", report_field),
     ];
     for (file, last, field) in edits {

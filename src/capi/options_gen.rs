@@ -354,6 +354,13 @@ pub struct igaparam_fit_options {
     /// (`SplineMap::smooth`, the stage that follows the untangling, or a fit certified as it is, in
     /// a checked fit; default 8); 0 turns the smoothing off.
     pub smoothing_sweeps: u32,
+    /// Exponent `p` of the smoothing's objective, the sum of the distortions `η*^p` at the samples
+    /// (default 4; at least 1, at most 16): above 1 the worst samples weigh most, which lifts the
+    /// smallest q_S where the mean distortion (`p = 1`) would not move it. Such a smoothing samples
+    /// one point more per direction than `samples` (with four, `p = 4` folded Gran Canaria's map
+    /// between samples), and where it cannot lift the map (its smallest q_S held by the fixed
+    /// boundary, as on the 3D duck) the `p = 1` smoothing runs instead.
+    pub smoothing_power: f64,
     /// Worker threads, at most 4096, capped to the machine's cores; 0 (default) runs on the
     /// caller's thread pool: one thread per core, unless a Rust caller installed another. The
     /// result does not depend on it.
@@ -376,6 +383,7 @@ impl From<&crate::spline::FitOptions> for igaparam_fit_options {
             untangle_sweeps: o.untangle.sweeps,
             boundary_offset: o.untangle.boundary_offset,
             smoothing_sweeps: o.untangle.smoothing_sweeps,
+            smoothing_power: o.untangle.smoothing_power,
             threads: u32::try_from(o.threads).unwrap_or(u32::MAX),
             progress: None,
             progress_user: std::ptr::null_mut(),
@@ -395,6 +403,7 @@ impl igaparam_fit_options {
                 sweeps: self.untangle_sweeps,
                 boundary_offset: self.boundary_offset,
                 smoothing_sweeps: self.smoothing_sweeps,
+                smoothing_power: self.smoothing_power,
                 ..crate::spline::FitOptions::default().untangle
             },
             threads: self.threads as usize,

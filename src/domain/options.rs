@@ -265,6 +265,7 @@ pub(super) fn sweep_options(options: &DomainOptions) -> SweepOptions {
             gradient_tolerance: 1e-3,
             max_iterations: 150,
             relaxation: 1.8,
+            power: 1.0,
         },
     }
 }

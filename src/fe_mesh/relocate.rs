@@ -155,6 +155,7 @@ impl RelocateOptions {
                 gradient_tolerance: self.gradient_tolerance,
                 max_iterations: self.max_newton_iterations,
                 relaxation: self.relaxation,
+                power: 1.0,
             },
         }
     }

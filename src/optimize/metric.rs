@@ -90,13 +90,15 @@ pub struct Local<const D: usize> {
     pub hessian: Matrix<D>,
 }
 
-/// `Σ w η*(S(x))` over the terms, with value only (`derivatives = false`) or also gradient and
-/// Hessian. The value is `+∞` when `δ = 0` and some `det S ≤ 0`.
+/// `Σ w η*(S(x))^power` over the terms, with value only (`derivatives = false`) or also gradient
+/// and Hessian. The value is `+∞` when `δ = 0` and some `det S ≤ 0`. `power` 1 is the mean
+/// distortion; a larger one weighs the worst points more (a smoothed maximum).
 pub fn evaluate<const D: usize>(
     terms: &[Term<D>],
     x: &Vector<D>,
     delta: f64,
     derivatives: bool,
+    power: f64,
 ) -> Local<D> {
     let m = 2.0 / D as f64;
     let inv_d = 1.0 / D as f64;
@@ -115,7 +117,17 @@ pub fn evaluate<const D: usize>(
             return out;
         }
         let p = inverse_power::<D>(h);
-        out.value += t.w * inv_d * n * p;
+        // With `power` ≠ 1 the term is `w η^power`: its derivatives are those of `η` times
+        // `power η^(power-1)`, plus `power (power-1) η^(power-2) ∇η ∇ηᵀ` in the Hessian.
+        let eta = inv_d * n * p;
+        let lift = match power == 1.0 {
+            true => 1.0,
+            false => eta.powf(power - 1.0),
+        };
+        out.value += match power == 1.0 {
+            true => t.w * inv_d * n * p,
+            false => t.w * eta * lift,
+        };
         if !derivatives {
             continue;
         }
@@ -125,13 +137,18 @@ pub fn evaluate<const D: usize>(
         let dp = -m * p / h * dh;
         let d2p = m * (m + 1.0) * p / (h * h) * dh * dh - m * p / h * d2h;
         let gg = dot(&t.g, &t.g);
-        let scale = t.w * inv_d;
+        let scale = t.w * inv_d * power * lift;
+        let grad: Vector<D> = std::array::from_fn(|i| grad_n[i] * p + n * dp * c[i]);
+        let curvature = (power - 1.0) * inv_d / eta;
         for i in 0..D {
-            out.gradient[i] += scale * (grad_n[i] * p + n * dp * c[i]);
+            out.gradient[i] += scale * grad[i];
             for j in 0..D {
                 let mut hij = dp * (grad_n[i] * c[j] + c[i] * grad_n[j]) + n * d2p * c[i] * c[j];
                 if i == j {
                     hij += 2.0 * gg * p;
+                }
+                if power != 1.0 {
+                    hij += curvature * grad[i] * grad[j];
                 }
                 out.hessian[i][j] += scale * hij;
             }
@@ -195,8 +212,8 @@ mod tests {
     fn gradient_and_hessian_match_finite_differences() {
         let terms = sample_terms();
         let x = [0.1, -0.2, 0.3];
-        for delta in [0.0, 1e-3, 0.5] {
-            let l = evaluate(&terms, &x, delta, true);
+        for (delta, power) in [(0.0, 1.0), (1e-3, 1.0), (0.5, 1.0), (1e-3, 3.0), (0.5, 6.5)] {
+            let l = evaluate(&terms, &x, delta, true, power);
             if !l.value.is_finite() {
                 continue;
             }
@@ -207,13 +224,13 @@ mod tests {
                 xp[i] += h;
                 xm[i] -= h;
                 let (fp, fm) = (
-                    evaluate(&terms, &xp, delta, true),
-                    evaluate(&terms, &xm, delta, true),
+                    evaluate(&terms, &xp, delta, true, power),
+                    evaluate(&terms, &xm, delta, true, power),
                 );
                 let fd = (fp.value - fm.value) / (2.0 * h);
                 assert!(
                     (fd - l.gradient[i]).abs() < 1e-6 * (1.0 + fd.abs()),
-                    "grad {i}"
+                    "grad {i} (power {power})"
                 );
                 for j in 0..3 {
                     let fdh = (fp.gradient[j] - fm.gradient[j]) / (2.0 * h);

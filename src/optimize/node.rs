@@ -13,9 +13,12 @@ pub struct NodeSolverOptions {
     pub max_iterations: u32,
     /// Over-relaxation factor of the move (1: none).
     pub relaxation: f64,
+    /// Exponent of the distortion in the objective, `Σ w η*^power` (1: the mean distortion; a
+    /// larger one weighs the worst points more).
+    pub power: f64,
 }
 
-/// Minimises `Σ w η*` over the terms starting from `x0`, moving only the components whose bit is
+/// Minimises `Σ w η*^power` over the terms starting from `x0`, moving only the components whose bit is
 /// set in `free`. `weight_sum` normalises the objective, `length` scales the gradient and bounds
 /// the step. Returns the new position, or `None` when the node stays where it is.
 pub fn minimise<const D: usize>(
@@ -36,7 +39,7 @@ pub fn minimise<const D: usize>(
     let delta = choose_delta(terms, &x0);
     let scale = 1.0 / weight_sum;
     let objective = |x: &Vector<D>, derivatives: bool| {
-        let mut l = evaluate(terms, x, delta, derivatives);
+        let mut l = evaluate(terms, x, delta, derivatives, options.power);
         l.value *= scale;
         for (k, &a) in active.iter().enumerate() {
             l.gradient[k] = if a { l.gradient[k] * scale } else { 0.0 };

@@ -164,6 +164,7 @@ impl<const D: usize> SplineMap<D, ThbSpace<D>> {
             &options.validity,
             options.untangle.smoothing_sweeps,
             options.untangle.samples,
+            options.untangle.smoothing_power,
             &mut |d, t| progress(FitStage::Smoothing, d, t),
         );
         laps.split(|s| &mut s.smooth);

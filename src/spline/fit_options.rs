@@ -12,6 +12,10 @@ use crate::error::{Error, Result};
 /// untangling/smoothing objective: `64^3` samples per element already cost seconds per element.
 pub(crate) const MAX_SAMPLES: usize = 64;
 
+/// Largest exponent of the smoothing objective (`UntangleOptions::smoothing_power`): η*^16
+/// of a distortion of 10³ is 10⁴⁸, far from overflow.
+pub(crate) const MAX_SMOOTHING_POWER: f64 = 16.0;
+
 /// Largest number of subdivisions of an element's determinant in a certification.
 pub(crate) const MAX_DEPTH: u32 = 12;
 
@@ -97,6 +101,12 @@ impl FitOptions {
             return Err(Error::invalid(format!(
                 "untangling samples = {} must be in [2, {MAX_SAMPLES}]",
                 u.samples
+            )));
+        }
+        if !(1.0..=MAX_SMOOTHING_POWER).contains(&u.smoothing_power) {
+            return Err(Error::invalid(format!(
+                "smoothing_power = {} must be in [1, {MAX_SMOOTHING_POWER}]",
+                u.smoothing_power
             )));
         }
         if !(u.boundary_offset.is_finite() && u.boundary_offset >= 0.0) {

@@ -1,14 +1,19 @@
 //! Smoothing of a certified spline map: every inner control point (of a function vanishing on
-//! the boundary of \[0,1\]^d, so the map's boundary is kept) moves to the minimum of the
-//! regularised mean-ratio distortion of `J_S` at the sample points of its support, in coloured
-//! Gauss–Seidel sweeps ([`Region::sweep`](super::control::Region)). The distortion grows without
-//! bound as `det J_S → 0`, so its minimisation keeps the map away from folds and raises its worst
-//! mean ratio together with its mean. Coordinates are scaled by one factor for all axes, so the
+//! the boundary of \[0,1\]^d, so the map's boundary is kept) moves to the minimum of the sum of
+//! the regularised mean-ratio distortions of `J_S` at the sample points of its support, each
+//! raised to a power `p`, in coloured Gauss–Seidel sweeps
+//! ([`Region::sweep`](super::control::Region)). The distortion grows without bound as
+//! `det J_S → 0`, so its minimisation keeps the map away from folds; with `p = 1` (the mean
+//! distortion) it raises the mean ratio on the whole, with `p > 1` the worst samples weigh most
+//! and it raises the smallest mean ratio (measured on the G+Smo comparison domains: `p = 4`
+//! lifts the certified min q_S of the rotor from 0.16 to 0.33, the 2D duck's from 0.24 to 0.36,
+//! where `p = 1` left the duck as fitted). Coordinates are scaled by one factor for all axes, so the
 //! objective's mean ratio is the reported `q_S`. The new map is kept only when it is certified
 //! valid and its smallest sampled mean ratio (or, that equal, its mean) is higher.
 
 use std::collections::BTreeSet;
 
+use super::fit_options::{MAX_SAMPLES, MAX_SMOOTHING_POWER};
 use super::map::SplineMap;
 use super::thb::ThbSpace;
 use super::validity::{ValidityOptions, ValidityReport};
@@ -31,20 +36,32 @@ pub struct SmoothReport {
     pub cancelled: bool,
 }
 
+/// The options of one smoothing.
+#[derive(Clone, Copy)]
+struct Stage<'a> {
+    certify: &'a ValidityOptions,
+    sweeps: u32,
+    samples: usize,
+    power: f64,
+}
+
 impl<const D: usize> SplineMap<D, ThbSpace<D>> {
     /// Smooths a certified map (see the module documentation) with at most `sweeps` sweeps
-    /// over its inner control points, `samples` points per direction and element; the sweeps
-    /// stop when one no longer lifts the smallest sampled mean ratio by 0.1% of itself or the
-    /// mean by 0.1%. `validity` is the map's validity with the options `certify`; returns the
-    /// validity of the map kept. A map that is not certified is left as it is.
+    /// over its inner control points on the distortions to the power `power` (in [1, 16]) at
+    /// `samples` points per direction and element (one more when `power > 1`); the sweeps stop
+    /// when one no longer lifts the smallest sampled mean ratio by 0.1% of itself or the mean by
+    /// 0.1%. Where a `power > 1` smoothing keeps nothing, the `power = 1` one runs. `validity`
+    /// is the map's validity with the options `certify`; returns the validity of the map kept.
+    /// A map that is not certified is left as it is.
     pub fn smooth(
         &mut self,
         validity: ValidityReport,
         certify: &ValidityOptions,
         sweeps: u32,
         samples: usize,
+        power: f64,
     ) -> (ValidityReport, SmoothReport) {
-        self.smooth_with(validity, certify, sweeps, samples, &mut |_, _| true)
+        self.smooth_with(validity, certify, sweeps, samples, power, &mut |_, _| true)
     }
 
     /// [`SplineMap::smooth`], calling `progress(done, sweeps)` before each sweep; when it
@@ -56,6 +73,41 @@ impl<const D: usize> SplineMap<D, ThbSpace<D>> {
         certify: &ValidityOptions,
         sweeps: u32,
         samples: usize,
+        power: f64,
+        progress: &mut dyn FnMut(usize, usize) -> bool,
+    ) -> (ValidityReport, SmoothReport) {
+        let power = match power.is_finite() {
+            true => power.clamp(1.0, MAX_SMOOTHING_POWER),
+            false => 1.0,
+        };
+        let stage = Stage {
+            certify,
+            sweeps,
+            samples: (samples + 1).min(MAX_SAMPLES),
+            power,
+        };
+        if power <= 1.0 {
+            return self.smooth_stage(validity, &Stage { samples, ..stage }, progress);
+        }
+        let (kept, report) = self.smooth_stage(validity.clone(), &stage, progress);
+        if report.moved > 0 || report.cancelled {
+            return (kept, report);
+        }
+        let mean = Stage {
+            samples,
+            power: 1.0,
+            ..stage
+        };
+        let (kept, mut second) = self.smooth_stage(validity, &mean, progress);
+        second.sweeps += report.sweeps;
+        (kept, second)
+    }
+
+    /// One smoothing with the options of `stage` (see [`SplineMap::smooth`]).
+    fn smooth_stage(
+        &mut self,
+        validity: ValidityReport,
+        stage: &Stage<'_>,
         progress: &mut dyn FnMut(usize, usize) -> bool,
     ) -> (ValidityReport, SmoothReport) {
         let mut report = SmoothReport {
@@ -63,6 +115,7 @@ impl<const D: usize> SplineMap<D, ThbSpace<D>> {
             min_quality_after: validity.min_quality,
             ..Default::default()
         };
+        let sweeps = stage.sweeps;
         if !validity.certified_positive || sweeps == 0 {
             return (validity, report);
         }
@@ -81,11 +134,12 @@ impl<const D: usize> SplineMap<D, ThbSpace<D>> {
             return (validity, report);
         }
         let support = self.function_elements();
-        let mut region = self.region(&functions, &support, samples, &y);
+        let mut region = self.region(&functions, &support, stage.samples, &y);
         let solver = NodeSolverOptions {
             gradient_tolerance: 1e-4,
             max_iterations: 20,
             relaxation: 1.0,
+            power: stage.power,
         };
         let mut moved = BTreeSet::new();
         let mut best = region.quality();
@@ -108,7 +162,7 @@ impl<const D: usize> SplineMap<D, ThbSpace<D>> {
             }
             best = now;
         }
-        let kept = self.keep_best(states, scale, validity, certify, &mut report);
+        let kept = self.keep_best(states, scale, validity, stage.certify, &mut report);
         (kept, report)
     }
 

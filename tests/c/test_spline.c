@@ -526,7 +526,7 @@ static int cancel(void *user, igaparam_stage stage, size_t done, size_t total) {
   return 1;
 }
 
-/* The adaptive loop on the rotor, whose first (smoothed) spline map has min q_S 0.17 < 0.3. */
+/* The adaptive loop on the rotor, whose first (smoothed) spline map has min q_S 0.34 < 0.4. */
 static void test_adapt(void) {
   igaparam_domain *domain = NULL;
   EXPECT(igaparam_domain_new_from_file(joined(data_dir, "rotor_bdry.xml"), &domain),
@@ -537,7 +537,7 @@ static void test_adapt(void) {
 
   /* Cancelled at the first refinement: the domain is unchanged, no handle written. */
   igaparam_adapt_options options = igaparam_adapt_options_default();
-  options.target_quality = 0.3;
+  options.target_quality = 0.4;
   int calls = 0;
   options.progress = cancel;
   options.progress_user = &calls;
@@ -558,10 +558,10 @@ static void test_adapt(void) {
   memset(&r, 0, sizeof r);
   s = NULL;
   options = igaparam_adapt_options_default();
-  options.target_quality = 0.3;
+  options.target_quality = 0.4;
   EXPECT(igaparam_domain_fit_adaptive(domain, &options, &s, &r), IGAPARAM_STATUS_OK);
   EXPECT(igaparam_domain_cell_count(domain, &after), IGAPARAM_STATUS_OK);
-  CHECK(r.reached == 1 && r.certified_positive == 1 && r.min_quality >= 0.3,
+  CHECK(r.reached == 1 && r.certified_positive == 1 && r.min_quality >= 0.4,
         "adaptation: reached %d, certified %d, min q %g", r.reached, r.certified_positive,
         r.min_quality);
   CHECK(r.rounds >= 1 && r.refined_cells > 0 && after > cells && r.elements == after,
@@ -758,7 +758,7 @@ static thread_run run_rotor(uint32_t threads) {
   if (s) run.fitted = control_points(s, &run.nf);
   igaparam_spline_free(s);
   igaparam_adapt_options a = igaparam_adapt_options_default();
-  a.target_quality = 0.3;
+  a.target_quality = 0.4;
   a.threads = threads;
   s = NULL;
   EXPECT(igaparam_domain_fit_adaptive(domain, &a, &s, &run.adapt), IGAPARAM_STATUS_OK);

@@ -120,7 +120,7 @@ fn adaptive_loop_is_the_same_at_1_2_and_4_threads() {
                 PlanarDomain::build(planar_boundary("rotor_bdry.xml"), &build, &mut |_, _| true)
                     .unwrap();
             let mut options = AdaptOptions {
-                target_quality: 0.3,
+                target_quality: 0.4,
                 ..Default::default()
             };
             options.domain.threads = n;

@@ -18,6 +18,7 @@ mod gismo_xml;
 mod limits;
 mod morph;
 mod partition;
+mod peers;
 mod quality_bound;
 mod relocate;
 mod scale;

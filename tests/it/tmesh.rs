@@ -68,6 +68,7 @@ fn sweep_options() -> SweepOptions {
             gradient_tolerance: 1e-9,
             max_iterations: 50,
             relaxation: 1.0,
+            power: 1.0,
         },
     }
 }

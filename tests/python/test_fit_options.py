@@ -71,7 +71,8 @@ def test_switches(island):
 
 
 def test_options_out_of_range(island):
-    for kwargs in [{"samples": 1}, {"max_depth": 13}, {"threads": 5000}, {"choice": 9}]:
+    for kwargs in [{"samples": 1}, {"max_depth": 13}, {"threads": 5000}, {"choice": 9},
+                   {"smoothing_power": 0.5}, {"smoothing_power": float("nan")}]:
         with pytest.raises((IgaparamError, ValueError)):
             Spline.fit(island, **kwargs)
     for kwargs in [{"untangle_rounds": -1}, {"boundary_offset": float("nan")}, {"boundary_offset": -1}]:
@@ -91,3 +92,12 @@ def test_adaptive_report_carries_the_untangling(island):
             assert report.untangled == plain.fit_report.untangled > 0
             assert report.boundary_offset == plain.fit_report.boundary_offset
             assert np.array_equal(adaptive.control_points, plain.control_points)
+
+
+def test_smoothing_power_lifts_the_worst_quality(island):
+    """The default smoothing (power 4) lifts the smallest q_S of the untangled map above the
+    mean-distortion smoothing's (power 1)."""
+    with Spline.fit(island, smoothing_power=1) as mean, Spline.fit(island) as default:
+        low, high = mean.check_validity(), default.check_validity()
+        assert low.certified_positive and high.certified_positive
+        assert high.min_quality > 1.5 * low.min_quality

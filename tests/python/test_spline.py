@@ -460,8 +460,8 @@ def test_3d_refine_and_round_trip(cube, tmp_path):
 
 
 def test_fit_adaptive_on_rotor():
-    """The adaptive loop refines the rotor's T-mesh until its map is certified with q_S >= 0.3
-    (its first, smoothed map has 0.17); the domain keeps the refined T-mesh. A cancelled loop
+    """The adaptive loop refines the rotor's T-mesh until its map is certified with q_S >= 0.4
+    (its first, smoothed map has 0.34); the domain keeps the refined T-mesh. A cancelled loop
     leaves the domain as it was."""
     with Domain.from_file(BOUNDARY / "rotor_bdry.xml") as domain:
         built = domain.build(threads=2)
@@ -469,14 +469,14 @@ def test_fit_adaptive_on_rotor():
             Spline.fit_adaptive(domain, max_rounds=-1)
         with pytest.raises(IgaparamError) as error:
             Spline.fit_adaptive(
-                domain, target_quality=0.3, threads=2, progress=lambda stage, done, total: False
+                domain, target_quality=0.4, threads=2, progress=lambda stage, done, total: False
             )
         assert error.value.status == Status.CANCELLED
         assert domain.cell_count == built.cells
-        with Spline.fit_adaptive(domain, target_quality=0.3, threads=2) as spline:
+        with Spline.fit_adaptive(domain, target_quality=0.4, threads=2) as spline:
             report = spline.adapt_report
             assert report.rounds >= 1 and report.refined_cells > 0
-            assert report.reached and report.certified_positive and report.min_quality >= 0.3
+            assert report.reached and report.certified_positive and report.min_quality >= 0.4
             assert report.elements == spline.element_count == domain.cell_count > built.cells
             assert report.basis == spline.basis_count
             validity = spline.check_validity()

@@ -215,6 +215,7 @@ class Spline(_Refit, _Handle):
         untangle_sweeps: Optional[int] = None,
         boundary_offset: Optional[float] = None,
         smoothing_sweeps: Optional[int] = None,
+        smoothing_power: Optional[float] = None,
         max_depth: Optional[int] = None,
         samples: Optional[int] = None,
         threads: int = 0,
@@ -235,6 +236,9 @@ class Spline(_Refit, _Handle):
             boundary_offset: largest move of a boundary control point by the untangling,
                 relative to the bounding box (default: the domain's own; 0 keeps the boundary).
             smoothing_sweeps: smoothing sweeps of a certified map (default 8; 0: none).
+            smoothing_power: exponent p of the smoothing's objective, the sum of the
+                distortions to the power p (default 4, in [1, 16]; 1: the mean distortion,
+                larger ones lift the smallest quality most).
             max_depth, samples: the certification's subdivision depth (default 5, at most 12)
                 and samples per direction and element (default 5, 2 to 64).
             threads: worker threads; 0 uses one per core (the result does not depend on it).
@@ -266,6 +270,8 @@ class Spline(_Refit, _Handle):
             if not float(boundary_offset) >= 0.0:
                 raise ValueError("boundary_offset must be a number >= 0")
             options.boundary_offset = float(boundary_offset)
+        if smoothing_power is not None:
+            options.smoothing_power = float(smoothing_power)
         raised, _callback = _attach_progress(options, progress)
         handle = ctypes.c_void_p()
         report = _capi.FitReport()
