@@ -103,9 +103,9 @@ impl FitOptions {
                 u.samples
             )));
         }
-        if !(1.0..=MAX_SMOOTHING_POWER).contains(&u.smoothing_power) {
+        if !(u.smoothing_power == 0.0 || (1.0..=MAX_SMOOTHING_POWER).contains(&u.smoothing_power)) {
             return Err(Error::invalid(format!(
-                "smoothing_power = {} must be in [1, {MAX_SMOOTHING_POWER}]",
+                "smoothing_power = {} must be 0 (automatic) or in [1, {MAX_SMOOTHING_POWER}]",
                 u.smoothing_power
             )));
         }

@@ -49,11 +49,13 @@ pub struct UntangleOptions {
     /// is, in a checked fit; default 8); 0 turns the smoothing off.
     pub smoothing_sweeps: u32,
     /// Exponent `p` of the smoothing's objective, the sum of the distortions `η*^p` at the
-    /// samples (default 4; at least 1, at most 16): above 1 the worst samples weigh most, which
-    /// lifts the smallest q_S where the mean distortion (`p = 1`) would not move it. Such a
-    /// smoothing samples one point more per direction than `samples` (with four, `p = 4` folded
-    /// Gran Canaria's map between samples), and where it cannot lift the map (its smallest
-    /// q_S held by the fixed boundary, as on the 3D duck) the `p = 1` smoothing runs instead.
+    /// samples: 0 (default) chooses 4 for planar maps and 1 for solids; else at least 1, at most
+    /// 16. Above 1 the worst samples weigh most, which lifts the smallest q_S where the mean
+    /// distortion (`p = 1`) would not move it. Such a smoothing samples one point more per
+    /// direction than `samples` (with four, `p = 4` folded Gran Canaria's map between samples),
+    /// and where it cannot lift the map the `p = 1` smoothing runs instead. On the 3D duck it
+    /// lifted nothing (the smallest q_S is held at the boundary) and doubled the smoothing's
+    /// time, hence 1 for solids by default.
     pub smoothing_power: f64,
 }
 
@@ -66,7 +68,7 @@ impl Default for UntangleOptions {
             rings: 1,
             boundary_offset: 1e-2,
             smoothing_sweeps: 8,
-            smoothing_power: 4.0,
+            smoothing_power: 0.0,
         }
     }
 }

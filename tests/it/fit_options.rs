@@ -199,7 +199,7 @@ fn switches_do_what_they_say() {
     }
 }
 
-/// The smoothing's exponent, on the rotor's T-mesh: the default p = 4 lifts the smallest
+/// The smoothing's exponent, on the rotor's T-mesh: the default (p = 4 for a planar map) lifts the smallest
 /// sampled mean ratio of the certified map above that of the mean-distortion smoothing (p = 1),
 /// which lifts it above the map as fitted; all are certified.
 #[test]
@@ -230,9 +230,14 @@ fn a_higher_smoothing_power_lifts_the_worst_quality() {
         assert!(validity.certified_positive);
         (validity.min_quality, report.smoothed)
     };
-    let (fitted, _) = with(0, 4.0);
+    let (fitted, _) = with(0, 0.0);
     let (mean, _) = with(8, 1.0);
-    let (power, moved) = with(8, 4.0);
+    let (power, moved) = with(8, 0.0);
+    assert_eq!(
+        power,
+        with(8, 4.0).0,
+        "the automatic power of a planar map is 4"
+    );
     assert!(moved > 0);
     assert!(
         fitted < mean && 1.5 * mean < power,

@@ -237,8 +237,8 @@ class Spline(_Refit, _Handle):
                 relative to the bounding box (default: the domain's own; 0 keeps the boundary).
             smoothing_sweeps: smoothing sweeps of a certified map (default 8; 0: none).
             smoothing_power: exponent p of the smoothing's objective, the sum of the
-                distortions to the power p (default 4, in [1, 16]; 1: the mean distortion,
-                larger ones lift the smallest quality most).
+                distortions to the power p (default 0: 4 for planar maps, 1 for solids; else
+                in [1, 16]; 1: the mean distortion, larger ones lift the smallest quality most).
             max_depth, samples: the certification's subdivision depth (default 5, at most 12)
                 and samples per direction and element (default 5, 2 to 64).
             threads: worker threads; 0 uses one per core (the result does not depend on it).
