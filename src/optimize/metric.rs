@@ -118,16 +118,18 @@ pub fn evaluate<const D: usize>(
         }
         let p = inverse_power::<D>(h);
         // With `power` ≠ 1 the term is `w η^power`: its derivatives are those of `η` times
-        // `power η^(power-1)`, plus `power (power-1) η^(power-2) ∇η ∇ηᵀ` in the Hessian.
-        let eta = inv_d * n * p;
-        let lift = match power == 1.0 {
-            true => 1.0,
-            false => lift_factor(eta, power),
+        // `power η^(power-1)` (`lift` is `η^(power-1)`), plus `power (power-1) η^(power-2)
+        // ∇η ∇ηᵀ` in the Hessian (`curvature` is `(power-1)/η` times the scale of `∇η`). The
+        // mean distortion (`power` 1, the T-mesh optimizer's hot path) computes none of these.
+        let (value, lift, curvature) = match power == 1.0 {
+            true => (t.w * inv_d * n * p, 1.0, 0.0),
+            false => {
+                let eta = inv_d * n * p;
+                let lift = lift_factor(eta, power);
+                (t.w * eta * lift, lift, (power - 1.0) * inv_d / eta)
+            }
         };
-        out.value += match power == 1.0 {
-            true => t.w * inv_d * n * p,
-            false => t.w * eta * lift,
-        };
+        out.value += value;
         if !derivatives {
             continue;
         }
@@ -139,7 +141,6 @@ pub fn evaluate<const D: usize>(
         let gg = dot(&t.g, &t.g);
         let scale = t.w * inv_d * power * lift;
         let grad: Vector<D> = std::array::from_fn(|i| grad_n[i] * p + n * dp * c[i]);
-        let curvature = (power - 1.0) * inv_d / eta;
         for i in 0..D {
             out.gradient[i] += scale * grad[i];
             for j in 0..D {
@@ -147,7 +148,7 @@ pub fn evaluate<const D: usize>(
                 if i == j {
                     hij += 2.0 * gg * p;
                 }
-                if power != 1.0 {
+                if curvature != 0.0 {
                     hij += curvature * grad[i] * grad[j];
                 }
                 out.hessian[i][j] += scale * hij;

@@ -18,9 +18,9 @@ pub struct NodeSolverOptions {
     pub power: f64,
 }
 
-/// Minimises `Σ w η*^power` over the terms starting from `x0`, moving only the components whose bit is
-/// set in `free`. `weight_sum` normalises the objective, `length` scales the gradient and bounds
-/// the step. Returns the new position, or `None` when the node stays where it is.
+/// Minimises `Σ w η*^power` over the terms starting from `x0`, moving only the components whose
+/// bit is set in `free`. `weight_sum` normalises the objective, `length` scales the gradient and
+/// bounds the step. Returns the new position, or `None` when the node stays where it is.
 pub fn minimise<const D: usize>(
     terms: &[Term<D>],
     x0: Vector<D>,

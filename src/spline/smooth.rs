@@ -7,8 +7,8 @@
 //! distortion) it raises the mean ratio on the whole, with `p > 1` the worst samples weigh most
 //! and it raises the smallest mean ratio (measured on the G+Smo comparison domains: `p = 4`
 //! lifts the certified min q_S of the rotor from 0.16 to 0.33, the 2D duck's from 0.24 to 0.36,
-//! where `p = 1` left the duck as fitted). Coordinates are scaled by one factor for all axes, so the
-//! objective's mean ratio is the reported `q_S`. The new map is kept only when it is certified
+//! where `p = 1` left the duck as fitted). Coordinates are scaled by one factor for all axes, so
+//! the objective's mean ratio is the reported `q_S`. The new map is kept only when it is certified
 //! valid and its smallest sampled mean ratio (or, that equal, its mean) is higher.
 
 use std::collections::BTreeSet;
@@ -52,12 +52,11 @@ struct Stage<'a> {
 impl<const D: usize> SplineMap<D, ThbSpace<D>> {
     /// Smooths a certified map (see the module documentation) with at most `sweeps` sweeps
     /// over its inner control points on the distortions to the power `power` (in [1, 16]; 0: 4
-    /// for planar maps, 1 for solids) at
-    /// `samples` points per direction and element (one more when `power > 1`); the sweeps stop
-    /// when one no longer lifts the smallest sampled mean ratio by 0.1% of itself or the mean by
-    /// 0.1%. Where a `power > 1` smoothing keeps nothing, the `power = 1` one runs. `validity`
-    /// is the map's validity with the options `certify`; returns the validity of the map kept.
-    /// A map that is not certified is left as it is.
+    /// for planar maps, 1 for solids) at `samples` points per direction and element (one more
+    /// when `power > 1`); the sweeps stop when one no longer lifts the smallest sampled mean
+    /// ratio by 0.1% of itself or the mean by 0.1%. Where a `power > 1` smoothing keeps nothing,
+    /// the `power = 1` one runs. `validity` is the map's validity with the options `certify`;
+    /// returns the validity of the map kept. A map that is not certified is left as it is.
     pub fn smooth(
         &mut self,
         validity: ValidityReport,
@@ -88,24 +87,24 @@ impl<const D: usize> SplineMap<D, ThbSpace<D>> {
         } else {
             1.0
         };
-        let stage = Stage {
+        let mean = Stage {
             certify,
             sweeps,
-            samples: (samples + 1).min(MAX_SAMPLES),
-            power,
+            samples,
+            power: 1.0,
         };
         if power <= 1.0 {
-            return self.smooth_stage(validity, &Stage { samples, ..stage }, progress);
+            return self.smooth_stage(validity, &mean, progress);
         }
-        let (kept, report) = self.smooth_stage(validity.clone(), &stage, progress);
+        let weighted = Stage {
+            samples: (samples + 1).min(MAX_SAMPLES),
+            power,
+            ..mean
+        };
+        let (kept, report) = self.smooth_stage(validity.clone(), &weighted, progress);
         if report.moved > 0 || report.cancelled {
             return (kept, report);
         }
-        let mean = Stage {
-            samples,
-            power: 1.0,
-            ..stage
-        };
         let (kept, mut second) = self.smooth_stage(validity, &mean, progress);
         second.sweeps += report.sweeps;
         (kept, second)
