@@ -67,6 +67,11 @@
 
 
 /**
+ * The largest `max_depth` accepted.
+ */
+#define IGAPARAM_QUALITY_BOUND_MAX_DEPTH 8
+
+/**
  * The depth a solid's bound is subdivided to at most, whatever `max_depth` says.
  */
 #define IGAPARAM_QUALITY_BOUND_MAX_SOLID_DEPTH 3
@@ -832,6 +837,13 @@ typedef struct {
    * rises); 0 when the map was kept as it was.
    */
   size_t smoothed;
+  /**
+   * Largest distance from the map's boundary to the domain's boundary, in coordinates that map
+   * the domain's bounding box onto the unit box, sampled on every boundary facet of the elements
+   * (`SplineMap::boundary_distance`; an upper bound at the samples); 0 for a fit without a
+   * domain (`SplineMap::fit_checked` of a function).
+   */
+  double boundary_distance;
 } igaparam_fit_report;
 
 /**
@@ -922,6 +934,11 @@ typedef struct {
    * box (as `igaparam_fit_report.boundary_offset`); 0 when the boundary was kept.
    */
   double boundary_offset;
+  /**
+   * Largest distance from the boundary of the map returned to the domain's boundary,
+   * relative to the bounding box (as `igaparam_fit_report.boundary_distance`).
+   */
+  double boundary_distance;
 } igaparam_adapt_report;
 
 /**
@@ -1024,9 +1041,9 @@ typedef struct {
 typedef struct {
   /**
    * Largest number of subdivisions of an element where the bound is loose (each halves every
-   * direction; default 5, at most 6: 4^6 pieces of an element in 2D); solids use at most
-   * `IGAPARAM_QUALITY_BOUND_MAX_SOLID_DEPTH` (3: 8^3 pieces per element), which bounds the work
-   * on any map.
+   * direction; default 6, at most `IGAPARAM_QUALITY_BOUND_MAX_DEPTH` = 8: 4^8 pieces of an
+   * element in 2D); solids use at most `IGAPARAM_QUALITY_BOUND_MAX_SOLID_DEPTH` (3: 8^3 pieces
+   * per element), which bounds the work on any map.
    */
   uint32_t max_depth;
   /**

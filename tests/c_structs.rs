@@ -56,7 +56,7 @@ fn a_new_core_field_reaches_the_c_struct() {
         ("quality_bound", "gap: f64", options_field),
         ("fit_options", "threads: usize", fit_field),
         ("untangle", "smoothing_power: f64", untangle_field),
-        ("fit", "stages: FitStages", report_field),
+        ("fit", "boundary_distance: f64", report_field),
     ];
     for (file, last, field) in edits {
         let source = copy.join(format!("src/spline/{file}.rs"));

@@ -293,9 +293,9 @@ impl igaparam_validity_options {
 #[derive(Clone, Copy, Debug)]
 pub struct igaparam_quality_bound_options {
     /// Largest number of subdivisions of an element where the bound is loose (each halves every
-    /// direction; default 5, at most 6: 4^6 pieces of an element in 2D); solids use at most
-    /// `IGAPARAM_QUALITY_BOUND_MAX_SOLID_DEPTH` (3: 8^3 pieces per element), which bounds the work
-    /// on any map.
+    /// direction; default 6, at most `IGAPARAM_QUALITY_BOUND_MAX_DEPTH` = 8: 4^8 pieces of an
+    /// element in 2D); solids use at most `IGAPARAM_QUALITY_BOUND_MAX_SOLID_DEPTH` (3: 8^3 pieces
+    /// per element), which bounds the work on any map.
     pub max_depth: u32,
     /// Sample points per direction and element for the sampled minimum (default 5, from 2 to 64).
     pub samples: u32,

@@ -234,6 +234,11 @@ pub struct igaparam_fit_report {
     /// mean ratio, kept only when the map stays certified and its smallest sampled mean ratio
     /// rises); 0 when the map was kept as it was.
     pub smoothed: usize,
+    /// Largest distance from the map's boundary to the domain's boundary, in coordinates that map
+    /// the domain's bounding box onto the unit box, sampled on every boundary facet of the elements
+    /// (`SplineMap::boundary_distance`; an upper bound at the samples); 0 for a fit without a
+    /// domain (`SplineMap::fit_checked` of a function).
+    pub boundary_distance: f64,
 }
 
 impl From<&crate::spline::FitReport> for igaparam_fit_report {
@@ -248,6 +253,7 @@ impl From<&crate::spline::FitReport> for igaparam_fit_report {
             boundary_offset: o.boundary_offset,
             seconds: o.seconds,
             smoothed: o.smoothed,
+            boundary_distance: o.boundary_distance,
         }
     }
 }

@@ -186,6 +186,17 @@ impl<const D: usize, B: CubeMap<D>> Domain<D, B> {
         &self.boundary
     }
 
+    /// The physical point of the boundary at `p`, a point of the boundary of \[0,1\]^d in the
+    /// T-mesh's parametric coordinates (the boundary's own, or with the first two swapped when
+    /// the report says `swapped`).
+    pub fn boundary_point(&self, p: [f64; D]) -> [f64; D] {
+        Framed {
+            frame: None,
+            ..self.framed_boundary()
+        }
+        .boundary_point(p)
+    }
+
     /// The T-mesh (parametric).
     pub fn mesh(&self) -> &TMesh<D> {
         &self.mesh

@@ -5,6 +5,7 @@
 use std::time::Instant;
 
 use super::fit::FitReport;
+use super::fit_options::FitOptions;
 use super::map::SplineMap;
 use super::untangle::UntangleOptions;
 use super::validity::{ValidityOptions, ValidityReport};
@@ -152,7 +153,7 @@ fn marked<const D: usize>(
 /// `options.max_rounds` rounds. The domain keeps its last T-mesh; the map returned is the fit of
 /// that T-mesh. `progress(round, max_rounds)` is called before each refinement; returning false
 /// cancels (`Error` of kind `Cancelled`), the domain keeping the T-mesh of the round reached.
-pub fn adapt<const D: usize, B: CubeMap<D>>(
+pub fn adapt<const D: usize, B: CubeMap<D> + Sync>(
     domain: &mut Domain<D, B>,
     options: &AdaptOptions,
     progress: &mut dyn FnMut(usize, usize) -> bool,
@@ -162,15 +163,15 @@ pub fn adapt<const D: usize, B: CubeMap<D>>(
     let mut report = AdaptReport::default();
     let mut round = 0u32;
     loop {
-        let (map, fit, validity) = SplineMap::fit_tmesh_checked(
-            domain.mesh(),
-            domain.positions(),
+        let fit_options = FitOptions::of(
             &options.validity,
             &UntangleOptions {
                 boundary_offset: domain.options().boundary_offset,
                 ..Default::default()
             },
-        )?;
+        );
+        let (map, fit, validity) =
+            SplineMap::fit_domain_with(domain, &fit_options, &mut |_, _, _| true)?;
         let reached = validity.certified_positive && validity.min_quality >= options.target_quality;
         let cells = if reached || round == options.max_rounds {
             Vec::new()

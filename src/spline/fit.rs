@@ -63,6 +63,11 @@ pub struct FitReport {
     pub smoothed: usize,
     /// Wall-clock seconds of the stages of [`SplineMap::fit_checked`].
     pub stages: FitStages,
+    /// Largest distance from the map's boundary to the domain's boundary, in coordinates that
+    /// map the domain's bounding box onto the unit box, sampled on every boundary facet of the
+    /// elements ([`SplineMap::boundary_distance`]; an upper bound at the samples); 0 for a fit
+    /// without a domain ([`SplineMap::fit_checked`] of a function).
+    pub boundary_distance: f64,
 }
 
 /// Wall-clock seconds of the stages of a checked fit ([`SplineMap::fit_checked`]).

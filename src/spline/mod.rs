@@ -10,6 +10,7 @@
 
 mod adapt;
 pub mod bernstein;
+mod boundary_distance;
 mod checked;
 mod control;
 mod fit;
@@ -35,7 +36,7 @@ pub use fit::{FitReport, FitStages};
 pub use fit_options::{FitChoice, FitOptions, FitProgress, FitStage};
 pub use gismo::{read_gismo_thb, write_gismo_thb};
 pub use map::{InverseMap, SplineMap};
-pub use quality_bound::{QualityBound, QualityBoundOptions, MAX_SOLID_DEPTH};
+pub use quality_bound::{QualityBound, QualityBoundOptions, MAX_BOUND_DEPTH, MAX_SOLID_DEPTH};
 pub use refit::{FitRecord, FitRule};
 pub use smooth::SmoothReport;
 pub use space::{BasisValues, SplineSpace};

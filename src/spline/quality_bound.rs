@@ -23,8 +23,9 @@ use crate::error::{Error, Result};
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct QualityBoundOptions {
     /// Largest number of subdivisions of an element where the bound is loose (each halves
-    /// every direction; default 5, at most 6: 4^6 pieces of an element in 2D); solids use at
-    /// most [`MAX_SOLID_DEPTH`] (3: 8^3 pieces per element), which bounds the work on any map.
+    /// every direction; default 6, at most [`MAX_BOUND_DEPTH`] = 8: 4^8 pieces of an element
+    /// in 2D); solids use at most [`MAX_SOLID_DEPTH`] (3: 8^3 pieces per element), which
+    /// bounds the work on any map.
     pub max_depth: u32,
     /// Sample points per direction and element for the sampled minimum (default 5, from 2
     /// to 64).
@@ -34,13 +35,18 @@ pub struct QualityBoundOptions {
     pub gap: f64,
 }
 
+/// The largest `max_depth` accepted.
+pub const MAX_BOUND_DEPTH: u32 = 8;
+
 /// The depth a solid's bound is subdivided to at most, whatever `max_depth` says.
 pub const MAX_SOLID_DEPTH: u32 = 3;
 
 impl Default for QualityBoundOptions {
     fn default() -> Self {
         QualityBoundOptions {
-            max_depth: 5,
+            // Depth 6 certifies the coastlines' maps above 0.1 (Gran Canaria: 0.095 at depth
+            // 5, 0.104 at 6, 11 ms).
+            max_depth: 6,
             samples: 5,
             gap: 0.05,
         }
@@ -50,9 +56,9 @@ impl Default for QualityBoundOptions {
 impl QualityBoundOptions {
     /// Checks the ranges of every field.
     pub fn validate(&self) -> Result<()> {
-        if self.max_depth > 6 {
+        if self.max_depth > MAX_BOUND_DEPTH {
             return Err(Error::invalid(format!(
-                "max_depth = {} must be at most 6",
+                "max_depth = {} must be at most {MAX_BOUND_DEPTH}",
                 self.max_depth
             )));
         }

@@ -108,6 +108,16 @@ pub fn boundary_data(name: &str) -> std::path::PathBuf {
         .join(name)
 }
 
+/// The bundled planar boundaries: the four G+Smo comparison domains and two coastlines.
+pub const PLANAR_DOMAINS: [&str; 6] = [
+    "puzzle3_bdry.xml",
+    "rotor_bdry.xml",
+    "male_bdry.xml",
+    "duck2d_BRep.xml",
+    "tenerife.txt",
+    "gran_canaria.txt",
+];
+
 /// The planar boundary of a bundled file: a coastline (`.txt`) or a G+Smo B-rep.
 pub fn planar_boundary(name: &str) -> igaparam::boundary::BoundaryLoop2 {
     use igaparam::boundary::{BoundaryLoop2, Coastline};

@@ -8,6 +8,7 @@ mod common;
 mod morph_cases;
 
 mod boundary;
+mod boundary_distance;
 mod boundary_image;
 mod boundary_sensitivity;
 mod c_api;
@@ -20,6 +21,7 @@ mod morph;
 mod partition;
 mod peers;
 mod quality_bound;
+mod quality_bound_domains;
 mod relocate;
 mod scale;
 mod sensitivity;

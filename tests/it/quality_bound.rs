@@ -13,7 +13,7 @@ fn uniform_space<const D: usize>(level: u8) -> ThbSpace<D> {
 }
 
 /// `d·det(J)^{2/d}/‖J‖²` computed here (independently of the library), 0 where `det J ≤ 0`.
-fn mean_ratio<const D: usize>(j: &[[f64; D]; D]) -> f64 {
+pub fn mean_ratio<const D: usize>(j: &[[f64; D]; D]) -> f64 {
     let d = match D {
         2 => j[0][0] * j[1][1] - j[0][1] * j[1][0],
         _ => {
@@ -157,7 +157,7 @@ fn bad_options_are_refused() {
     let (map, _) = SplineMap::fit(uniform_space::<2>(1), bulged_annulus).unwrap();
     for options in [
         QualityBoundOptions {
-            max_depth: 7,
+            max_depth: igaparam::spline::MAX_BOUND_DEPTH + 1,
             ..Default::default()
         },
         QualityBoundOptions {

@@ -109,17 +109,10 @@ fn shared_domains_give_certified_spline_maps() {
     // puzzle3 and tenerife fold at a few elements next to sharp boundary features until the
     // spline space is refined there or the map untangled; Gran Canaria's dense, kinked coastline
     // makes the C2 fit fold next to the coast until its inner control points are untangled.
-    let failed: Vec<&str> = [
-        "puzzle3_bdry.xml",
-        "rotor_bdry.xml",
-        "male_bdry.xml",
-        "duck2d_BRep.xml",
-        "tenerife.txt",
-        "gran_canaria.txt",
-    ]
-    .into_iter()
-    .filter(|name| !fit_domain(name, 3))
-    .collect();
+    let failed: Vec<&str> = crate::common::PLANAR_DOMAINS
+        .into_iter()
+        .filter(|name| !fit_domain(name, 3))
+        .collect();
     assert!(failed.is_empty(), "not certified positive: {failed:?}");
 }
 

@@ -42,4 +42,4 @@ def test_bound_brackets_the_dense_minimum(name):
                 spline.quality_bound(gap=1.5)
             assert error.value.status == Status.INVALID_ARGUMENT and "gap" in error.value.message
             with pytest.raises(IgaparamError):
-                spline.quality_bound(max_depth=7)
+                spline.quality_bound(max_depth=9)

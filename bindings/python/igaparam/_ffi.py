@@ -12,7 +12,7 @@ import enum
 
 # The fingerprint of the header's declarations (see ``igaparam_abi_fingerprint``): the loader
 # refuses a library built from other declarations instead of calling it with wrong layouts.
-ABI_FINGERPRINT = 0x59e967103a4a475d
+ABI_FINGERPRINT = 0xd03185e8e07d7b25
 
 # Major version of the library this header belongs to.
 VERSION_MAJOR = 0
@@ -39,6 +39,9 @@ DEFAULT_MAX_TOTAL_SWEEPS = 5000
 
 # Where the Newton method stops when no stationarity tolerance is asked for.
 DEFAULT_NEWTON_TOLERANCE = 1e-8
+
+# The largest `max_depth` accepted.
+QUALITY_BOUND_MAX_DEPTH = 8
 
 # The depth a solid's bound is subdivided to at most, whatever `max_depth` says.
 QUALITY_BOUND_MAX_SOLID_DEPTH = 3
@@ -715,6 +718,11 @@ class FitReport(ctypes.Structure):
         Inner control points moved by the smoothing stage (`SplineMap::smooth`: on the map's own
         mean ratio, kept only when the map stays certified and its smallest sampled mean ratio
         rises); 0 when the map was kept as it was.
+    boundary_distance:
+        Largest distance from the map's boundary to the domain's boundary, in coordinates that map
+        the domain's bounding box onto the unit box, sampled on every boundary facet of the elements
+        (`SplineMap::boundary_distance`; an upper bound at the samples); 0 for a fit without a
+        domain (`SplineMap::fit_checked` of a function).
     """
 
     _fields_ = [
@@ -727,6 +735,7 @@ class FitReport(ctypes.Structure):
         ("boundary_offset", ctypes.c_double),
         ("seconds", ctypes.c_double),
         ("smoothed", ctypes.c_size_t),
+        ("boundary_distance", ctypes.c_double),
     ]
 
 
@@ -799,6 +808,9 @@ class AdaptReport(ctypes.Structure):
     boundary_offset:
         Largest move of a boundary control point by that untangling, relative to the bounding
         box (as `igaparam_fit_report.boundary_offset`); 0 when the boundary was kept.
+    boundary_distance:
+        Largest distance from the boundary of the map returned to the domain's boundary,
+        relative to the bounding box (as `igaparam_fit_report.boundary_distance`).
     """
 
     _fields_ = [
@@ -813,6 +825,7 @@ class AdaptReport(ctypes.Structure):
         ("seconds", ctypes.c_double),
         ("untangled", ctypes.c_size_t),
         ("boundary_offset", ctypes.c_double),
+        ("boundary_distance", ctypes.c_double),
     ]
 
 
@@ -920,9 +933,9 @@ class QualityBoundOptions(ctypes.Structure):
 
     max_depth:
         Largest number of subdivisions of an element where the bound is loose (each halves every
-        direction; default 5, at most 6: 4^6 pieces of an element in 2D); solids use at most
-        `IGAPARAM_QUALITY_BOUND_MAX_SOLID_DEPTH` (3: 8^3 pieces per element), which bounds the work
-        on any map.
+        direction; default 6, at most `IGAPARAM_QUALITY_BOUND_MAX_DEPTH` = 8: 4^8 pieces of an
+        element in 2D); solids use at most `IGAPARAM_QUALITY_BOUND_MAX_SOLID_DEPTH` (3: 8^3 pieces
+        per element), which bounds the work on any map.
     samples:
         Sample points per direction and element for the sampled minimum (default 5, from 2 to 64).
     gap:

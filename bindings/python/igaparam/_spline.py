@@ -65,6 +65,10 @@ class FitReport(_StructReport):
         seconds: wall-clock seconds of the call.
         smoothed: inner control points moved by the smoothing stage (kept only when the map
             stays certified and its smallest sampled mean ratio rises); 0 when the map was kept.
+        boundary_distance: largest distance from the spline's boundary to the domain's
+            boundary, relative to the bounding box (each axis scaled to 1), sampled on every
+            boundary facet of the elements (an upper bound at the samples); 0 for a
+            refinement.
     """
 
     basis_count: int
@@ -76,6 +80,7 @@ class FitReport(_StructReport):
     boundary_offset: float
     seconds: float
     smoothed: int
+    boundary_distance: float
 
 
 
@@ -98,6 +103,9 @@ class AdaptReport(_StructReport):
             :attr:`FitReport.untangled`); 0 when that fit was kept.
         boundary_offset: largest move of a boundary control point by that untangling,
             relative to the bounding box; 0 when the boundary was kept.
+        boundary_distance: largest distance from the boundary of the map returned to the
+            domain's boundary, relative to the bounding box (as
+            :attr:`FitReport.boundary_distance`).
     """
 
     rounds: int
@@ -111,6 +119,7 @@ class AdaptReport(_StructReport):
     seconds: float
     untangled: int
     boundary_offset: float
+    boundary_distance: float
 
 
 
@@ -664,7 +673,7 @@ class Spline(_Refit, _Handle):
         """A certified lower bound of the map's mean ratio, with the sampled minimum it is
         refined towards (``igaparam_spline_quality_bound``): on each element the Bernstein
         coefficients of det J and ‖J‖² bound the mean ratio from below; pieces are subdivided
-        (up to ``max_depth`` times, default 5, at most 6; 3 for a solid) while their bound is more
+        (up to ``max_depth`` times, default 6, at most 8; 3 for a solid) while their bound is more
         than ``gap`` (default 0.05) below the minimum at ``samples^d`` points per element
         (default 5).
 

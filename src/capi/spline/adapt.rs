@@ -38,6 +38,9 @@ pub struct igaparam_adapt_report {
     /// Largest move of a boundary control point by that untangling, relative to the bounding
     /// box (as `igaparam_fit_report.boundary_offset`); 0 when the boundary was kept.
     pub boundary_offset: f64,
+    /// Largest distance from the boundary of the map returned to the domain's boundary,
+    /// relative to the bounding box (as `igaparam_fit_report.boundary_distance`).
+    pub boundary_distance: f64,
 }
 
 /// The default adaptation options.
@@ -47,7 +50,7 @@ pub extern "C" fn igaparam_adapt_options_default() -> igaparam_adapt_options {
 }
 
 /// The adaptive loop on a copy of `domain`, which takes the refined T-mesh on success only.
-fn adapt_copy<const D: usize, B: CubeMap<D>>(
+fn adapt_copy<const D: usize, B: CubeMap<D> + Sync>(
     domain: &mut Domain<D, B>,
     options: &AdaptOptions,
     progress: &mut dyn FnMut(usize, usize) -> bool,
@@ -133,6 +136,7 @@ pub extern "C" fn igaparam_domain_fit_adaptive(
                 seconds: r.seconds,
                 untangled: r.fit.untangled,
                 boundary_offset: r.fit.boundary_offset,
+                boundary_distance: r.fit.boundary_distance,
             },
         );
         let validity = std::mem::take(&mut r.validity);

@@ -35,7 +35,7 @@ fn fit_options(raw: &igaparam_fit_options, boundary_offset: f64) -> Result<FitOp
 }
 
 /// The fit of a built domain with `raw`, and its record.
-fn fit<const D: usize, B: CubeMap<D>>(
+fn fit<const D: usize, B: CubeMap<D> + Sync>(
     domain: &Domain<D, B>,
     raw: &igaparam_fit_options,
     progress: &mut FitProgress,
@@ -47,8 +47,7 @@ fn fit<const D: usize, B: CubeMap<D>>(
     FitRecord,
 )> {
     let options = fit_options(raw, domain.options().boundary_offset)?;
-    let (map, report, validity) =
-        SplineMap::fit_tmesh_with(domain.mesh(), domain.positions(), &options, progress)?;
+    let (map, report, validity) = SplineMap::fit_domain_with(domain, &options, progress)?;
     let record = map.fit_record(domain.mesh(), domain.positions(), &report)?;
     Ok((map, report, validity, options, record))
 }
