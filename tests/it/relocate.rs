@@ -294,3 +294,34 @@ fn sweeps_stop_when_only_fixed_nodes_fold_a_cell() {
         assert!(report.sweeps < 100, "{placement:?}: {report:?}");
     }
 }
+
+/// Tangled grids' Newton stage from the few sweeps that untangle them: the first Hessian is
+/// indefinite (its factor modified), and the later, definite ones must take their own Newton
+/// steps, not the stale modified factor's (with which these took 100 iterations without
+/// converging, a slow fixed-metric gradient descent, or 56 on the last one; now 7–11).
+#[test]
+fn newton_converges_after_an_indefinite_first_hessian() {
+    let n = 14;
+    let (reference, conn) = grid(CellType::Quad4, n);
+    for (seed, sweeps) in [(1, 2), (5, 2), (7, 2), (5, 3)] {
+        let mut xyz = reference.clone();
+        perturb_interior(&mut xyz, 2, 0.9 / n as f64, seed);
+        let mut mesh = Mesh::new(CellType::Quad4, &reference, &conn).unwrap();
+        mesh.set_fixed(&boundary_mask(&reference, 2)).unwrap();
+        mesh.move_nodes(None, &xyz).unwrap();
+        let options = RelocateOptions {
+            placement: Placement::Current,
+            max_sweeps: sweeps,
+            stationarity_tolerance: 1e-6,
+            ..Default::default()
+        };
+        let report = relocate(&mut mesh, &options);
+        assert!(
+            report.invalid_before > 0 && report.invalid_after == 0,
+            "{report:?}"
+        );
+        // (`converged` stays false: the sweeps stopped at their limit, not on their rule.)
+        assert!(report.gradient_norm <= 1e-6, "seed {seed}: {report:?}");
+        assert!(report.newton_iterations <= 15, "seed {seed}: {report:?}");
+    }
+}
