@@ -4,13 +4,14 @@
 //! `cargo bench --bench small` builds the unit grid, moves every interior node by a fixed
 //! pseudo-random offset of up to 0.9 cell sizes (which folds about half the cells), fixes the
 //! boundary and relocates with `Placement::Current` (the tangled positions are the start), 1 and
-//! 2 threads, 50 repetitions each (median and minimum). It also times the pieces every call pays:
-//! making the thread pool, the first call on a new mesh (problem, colouring, solver setup) and
-//! a repeated call on the same mesh.
+//! 2 threads, 50 repetitions each (median and minimum), by the default method (`Auto`: 3 sweeps
+//! untangle, Newton's method converges) and by the sweeps alone (`Sweeps`, the method before).
+//! It also times the pieces every call pays: making the thread pool, the first call on a new
+//! mesh (problem, colouring, solver setup) and a repeated call on the same mesh.
 
 use std::time::Instant;
 
-use igaparam::{CellType, Mesh, Placement, RelocateOptions};
+use igaparam::{CellType, Mesh, Method, Placement, RelocateOptions};
 
 const NX: usize = 10;
 const NY: usize = 20;
@@ -68,12 +69,18 @@ fn main() {
         mesh.move_nodes(None, &tangled).expect("tangle");
         mesh
     };
-    println!("| threads | invalid before | after | min q | sweeps | newton | first call ms (median / min) | repeated call ms | pool ms |");
-    println!("|---|---|---|---|---|---|---|---|---|");
-    for threads in [1, 2] {
+    println!("| method | threads | invalid before | after | min q | sweeps | newton | first call ms (median / min) | repeated call ms | pool ms |");
+    println!("|---|---|---|---|---|---|---|---|---|---|");
+    for (method, threads) in [
+        (Method::Auto, 1),
+        (Method::Sweeps, 1),
+        (Method::Auto, 2),
+        (Method::Sweeps, 2),
+    ] {
         let options = RelocateOptions {
             threads,
             placement: Placement::Current,
+            method,
             ..Default::default()
         };
         let (mut first, mut again, mut pool) = (Vec::new(), Vec::new(), Vec::new());
@@ -98,7 +105,7 @@ fn main() {
         let r = last.expect("runs");
         let ((f, fmin), (a, _), (p, _)) = (median_min(first), median_min(again), median_min(pool));
         println!(
-            "| {threads} | {} | {} | {:.3} | {} | {} | {:.2} / {:.2} | {:.2} | {:.2} |",
+            "| {method:?} | {threads} | {} | {} | {:.3} | {} | {} | {:.2} / {:.2} | {:.2} | {:.2} |",
             r.invalid_before,
             r.invalid_after,
             r.min_quality,

@@ -1265,7 +1265,9 @@ typedef struct {
 /**
  * Path following of the optimum of the global objective: each step predicted by the tangent of
  * the optimum (the linearised response of the mesh to the motion) and corrected by Newton's
- * method; the sweeps are the fallback where a step cannot be made (e.g. a tangled start).
+ * method; the sweeps are the fallback where a step cannot be made (e.g. a tangled start). With
+ * `IGAPARAM_PLACEMENT_CURRENT` (untangling in place): 3 sweeps (more while cells stay invalid),
+ * then Newton's method to the stationarity tolerance (1e-8 when none is asked for).
  */
 #define IGAPARAM_METHOD_NEWTON 2
 

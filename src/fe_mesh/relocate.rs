@@ -49,7 +49,10 @@ pub enum Method {
     Sweeps,
     /// Path following of the optimum of the global objective: each step predicted by the tangent
     /// of the optimum (the linearised response of the mesh) and corrected by Newton's method;
-    /// the sweeps are the fallback where a step cannot be made (e.g. a tangled start).
+    /// the sweeps are the fallback where a step cannot be made (e.g. a tangled start). With
+    /// [`Placement::Current`] (untangling in place): 3 sweeps (more while cells stay invalid),
+    /// then Newton's method to the stationarity tolerance
+    /// ([`DEFAULT_NEWTON_TOLERANCE`] when none is asked for).
     Newton,
 }
 
@@ -241,18 +244,20 @@ impl Mesh {
             ..Default::default()
         };
         let newton = options.optimize
-            && options.placement != Placement::Current
             && match options.method {
                 Method::Sweeps => false,
                 Method::Newton => true,
                 Method::Auto => self.setup_for(problem)?.is_direct(),
             };
-        let followed = match newton {
+        let followed = match newton && options.placement != Placement::Current {
             true => self.follow_path(pool, problem, &goal, options, &mut report, progress)?,
             false => None,
         };
         let (x, solver, sensitivity) = match followed {
             Some(relocated) => relocated,
+            None if newton && options.placement == Placement::Current => {
+                self.untangle_then_newton(pool, problem, &goal, options, &mut report, progress)?
+            }
             None => {
                 let mut x =
                     self.place_and_sweep(pool, problem, &goal, options, &mut report, progress)?;
@@ -279,7 +284,7 @@ impl Mesh {
     }
 
     /// The first placement and the sweeps (following the motion in steps where it is large).
-    fn place_and_sweep<const D: usize>(
+    pub(super) fn place_and_sweep<const D: usize>(
         &self,
         pool: &rayon::ThreadPool,
         problem: &Problem<D>,
