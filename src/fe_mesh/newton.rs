@@ -6,18 +6,15 @@ use std::sync::Arc;
 
 use rayon::ThreadPool;
 
-use super::relocate::{sweep_motion, Placement, RelocateOptions, RelocateReport, Stage};
+use super::relocate::{Placement, RelocateOptions, RelocateReport, Stage};
 use super::{lift, project, Mesh, Solver, State};
 use crate::error::Result;
 use crate::optimize::blocks::BlockLayout;
 use crate::optimize::global::GlobalObjective;
-use crate::optimize::laplace::MeshGraph;
-use crate::optimize::motion::Ends;
 use crate::optimize::path::{self, PathStart};
 use crate::optimize::small_matrix::Vector;
 use crate::optimize::solver::{HessianSolver, SolverSetup};
 use crate::optimize::stationary::{self, StationaryOptions};
-use crate::optimize::team::Alone;
 use crate::optimize::{invalid_cells, Problem};
 
 /// Largest number of iterations of the Newton stage after the sweeps.
@@ -25,10 +22,6 @@ const MAX_NEWTON_ITERATIONS: u32 = 100;
 
 /// Tolerance of the correction of a start state that is not yet stationary.
 const START_TOLERANCE: f64 = 1e-6;
-
-/// Sweeps that untangle a start in place before the Newton method takes over
-/// ([`Mesh::untangle_then_newton`]).
-const UNTANGLING_SWEEPS: u32 = 3;
 
 /// A relocated state with its solver, and whether its sensitivities are valid (else why not).
 pub(super) type Relocated<const D: usize> = (
@@ -177,49 +170,6 @@ impl Mesh {
         Ok(Some(PathStart { x, solver }))
     }
 
-    /// Relocation in place (`Placement::Current`) where the Newton method applies: a few sweeps
-    /// untangle the start (more, up to `max_sweeps`, while cells stay invalid), then the Newton
-    /// stage goes to the stationarity tolerance (the default Newton tolerance when none is
-    /// asked for). A tangled 200-cell Q4 grid (`cargo bench --bench small`): 3 sweeps and 7
-    /// Newton iterations, 8–10 ms on one thread, where the sweeps alone took 29 sweeps, 17 ms.
-    pub(super) fn untangle_then_newton<const D: usize>(
-        &mut self,
-        pool: &ThreadPool,
-        problem: &Problem<D>,
-        goal: &[Vector<D>],
-        options: &RelocateOptions,
-        report: &mut RelocateReport,
-        progress: &mut dyn FnMut(Stage, usize, usize) -> bool,
-    ) -> Result<Relocated<D>> {
-        let first = RelocateOptions {
-            max_sweeps: options.max_sweeps.min(UNTANGLING_SWEEPS),
-            ..*options
-        };
-        let mut x = self.place_and_sweep(pool, problem, goal, &first, report, progress)?;
-        if options.max_sweeps > first.max_sweeps && !invalid_cells(pool, problem, &x).is_empty() {
-            let done = report.sweeps;
-            let rest = RelocateOptions {
-                max_sweeps: options.max_sweeps - first.max_sweeps,
-                ..*options
-            };
-            let graph = MeshGraph::new(problem);
-            let ends = Ends { start: goal, goal };
-            sweep_motion(
-                &mut Alone, pool, problem, &graph, ends, &mut x, &rest, report, progress,
-            )?;
-            report.sweeps += done;
-        }
-        let newton = RelocateOptions {
-            stationarity_tolerance: newton_tolerance(options),
-            ..*options
-        };
-        // Converged when the Newton stage is, on a valid mesh (the sweeps stopped early).
-        report.converged = invalid_cells(pool, problem, &x).is_empty();
-        let (solver, sensitivity) =
-            self.stationary_stage(pool, problem, &mut x, &newton, report, progress)?;
-        Ok((x, solver, sensitivity))
-    }
-
     /// After the sweeps: the Newton stage when asked for (else the gradient norm only), on a
     /// valid state `x`. Returns the solver at the end and whether sensitivities are valid.
     pub(super) fn stationary_stage<const D: usize>(
@@ -283,7 +233,7 @@ const NOT_ASKED: &str =
     "the last relocation did not ask for a stationary point (stationarity_tolerance = 0)";
 
 /// The Newton method's tolerance: the one asked for, or the default.
-fn newton_tolerance(options: &RelocateOptions) -> f64 {
+pub(super) fn newton_tolerance(options: &RelocateOptions) -> f64 {
     match options.stationarity_tolerance > 0.0 {
         true => options.stationarity_tolerance,
         false => super::relocate::DEFAULT_NEWTON_TOLERANCE,
