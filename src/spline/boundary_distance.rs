@@ -66,7 +66,7 @@ impl<const D: usize, S: SplineSpace<D> + Sync> SplineMap<D, S> {
     /// points per facet in 2D, 5 × 5 in 3D) and measured in the coordinates that map the
     /// domain's bounding box onto the unit box. An upper bound of the distance at the samples:
     /// each is projected onto the boundary face it parameterizes, and a closer point on another
-    /// face (past a corner) is not sought.
+    /// face (past a corner) is not sought. Infinite where the boundary is not finite.
     pub fn boundary_distance<B: CubeMap<D> + Sync>(&self, domain: &Domain<D, B>) -> f64 {
         let frame = domain.frame();
         (0..self.element_count())
@@ -152,7 +152,12 @@ fn distance<const D: usize>(
             break;
         }
     }
-    best.sqrt()
+    // A non-finite distance (a boundary or a map not defined there) must not vanish in the
+    // maximum, where NaN would be dropped.
+    match best.is_nan() {
+        true => f64::INFINITY,
+        false => best.sqrt(),
+    }
 }
 
 /// The Gauss–Newton step in the free parameters of `q` (one or two) towards `x`, from the
@@ -191,4 +196,44 @@ fn gauss_newton_step<const D: usize>(
         }
     };
     step.iter().all(|s| s.is_finite()).then_some(step)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn unit_frame() -> Frame<2> {
+        Frame {
+            centre: [0.5; 2],
+            extent: [1.0; 2],
+        }
+    }
+
+    #[test]
+    fn a_point_projects_onto_a_curved_face() {
+        // The side v = 0 mapped onto the parabola y = x² − 1, x = 2u − 1: the point 0.3 from
+        // (0.5, −0.75) along the normal there (less than the radius of curvature, √8 / 2) is
+        // nearest that point, at u = 0.75; the search starts from u = 0.5.
+        let parabola = |q: [f64; 2]| [2.0 * q[0] - 1.0, (2.0 * q[0] - 1.0).powi(2) - 1.0];
+        let s = 0.3 / 2f64.sqrt();
+        let from = FacetPoint {
+            at: [0.5, 0.0],
+            fixed: 1,
+        };
+        let d = distance(&parabola, &unit_frame(), [0.5 + s, -0.75 - s], from);
+        assert!((d - 0.3).abs() < 1e-9, "{d}");
+    }
+
+    #[test]
+    fn a_boundary_that_is_not_finite_gives_an_infinite_distance() {
+        let broken = |_: [f64; 2]| [f64::NAN, 0.0];
+        let from = FacetPoint {
+            at: [0.5, 0.0],
+            fixed: 1,
+        };
+        assert_eq!(
+            distance(&broken, &unit_frame(), [0.0, 0.0], from),
+            f64::INFINITY
+        );
+    }
 }
