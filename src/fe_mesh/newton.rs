@@ -76,7 +76,7 @@ impl Mesh {
             &setup,
             start,
             goal,
-            newton_tolerance(options),
+            options.newton_tolerance(),
             &mut |i| progress(Stage::Stationarity, done + i, 0),
         )?;
         report.newton_iterations += outcome.newton_iterations;
@@ -137,7 +137,7 @@ impl Mesh {
                     return Ok(None);
                 }
                 let start_options = StationaryOptions {
-                    tolerance: START_TOLERANCE.min(newton_tolerance(options)),
+                    tolerance: START_TOLERANCE.min(options.newton_tolerance()),
                     max_iterations: MAX_NEWTON_ITERATIONS,
                 };
                 let (stats, solver) = stationary::minimise(
@@ -231,11 +231,3 @@ impl Mesh {
 /// Why a relocation without a stationarity tolerance has no sensitivities.
 const NOT_ASKED: &str =
     "the last relocation did not ask for a stationary point (stationarity_tolerance = 0)";
-
-/// The Newton method's tolerance: the one asked for, or the default.
-pub(super) fn newton_tolerance(options: &RelocateOptions) -> f64 {
-    match options.stationarity_tolerance > 0.0 {
-        true => options.stationarity_tolerance,
-        false => super::relocate::DEFAULT_NEWTON_TOLERANCE,
-    }
-}

@@ -150,6 +150,14 @@ impl RelocateOptions {
 
 impl RelocateOptions {
     /// The stopping rules of the sweeps.
+    /// The Newton method's tolerance: the one asked for, or the default.
+    pub(crate) fn newton_tolerance(&self) -> f64 {
+        match self.stationarity_tolerance > 0.0 {
+            true => self.stationarity_tolerance,
+            false => DEFAULT_NEWTON_TOLERANCE,
+        }
+    }
+
     pub(crate) fn sweep_options(&self) -> SweepOptions {
         SweepOptions {
             max_sweeps: self.max_sweeps,
@@ -268,7 +276,7 @@ impl Mesh {
                 }
                 (report.sweeps, report.invalid_after_placement) = (sweeps, placed);
                 let newton = RelocateOptions {
-                    stationarity_tolerance: super::newton::newton_tolerance(options),
+                    stationarity_tolerance: options.newton_tolerance(),
                     ..*options
                 };
                 let (solver, sensitivity) =
