@@ -118,10 +118,6 @@ impl<const D: usize, B: CubeMap<D>> Domain<D, B> {
     pub(super) fn set_framed(&mut self, x: Vec<[f64; D]>) {
         debug_assert_eq!(x.len(), self.mesh.vertex_count());
         let framed = self.framed_boundary();
-        let physical = Framed {
-            frame: None,
-            ..framed
-        };
         let parametric = self.mesh.parametric();
         self.positions = x
             .iter()
@@ -129,7 +125,7 @@ impl<const D: usize, B: CubeMap<D>> Domain<D, B> {
             .enumerate()
             .map(|(v, (&y, p))| {
                 if self.mesh.on_boundary(v) && on_grid_point(y, framed.boundary_point(p)) {
-                    physical.boundary_point(p)
+                    self.boundary_point(p)
                 } else {
                     self.frame.to_physical(y)
                 }

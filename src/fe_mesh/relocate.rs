@@ -268,13 +268,16 @@ impl Mesh {
                 // starting where the last ended), then Newton's method converges.
                 let mut x = goal.clone();
                 let (mut allowed, mut sweeps, placed) = (0, 0, report.invalid_before);
-                while allowed < options.max_sweeps && (allowed == 0 || !report.converged) {
+                let mut valid = false;
+                while allowed < options.max_sweeps && (allowed == 0 || !valid) {
                     let pass = untangling_pass(options, allowed);
                     x = self.place_and_sweep(pool, problem, &x, &pass, &mut report, progress)?;
                     (allowed, sweeps) = (allowed + pass.max_sweeps, sweeps + report.sweeps);
-                    report.converged = invalid_cells(pool, problem, &x).is_empty();
+                    valid = invalid_cells(pool, problem, &x).is_empty();
                 }
                 (report.sweeps, report.invalid_after_placement) = (sweeps, placed);
+                // Converged when the Newton stage below is, on a valid mesh.
+                report.converged = valid;
                 let newton = RelocateOptions {
                     stationarity_tolerance: options.newton_tolerance(),
                     ..*options
