@@ -1,8 +1,9 @@
 //! Benchmark of mesh relocation on the bundled cases: wall time and quality per thread count.
 //!
 //! `cargo bench --bench relocate` runs the airfoil (5 repetitions, the median is reported) and
-//! the wing (one run) with 1 and 2 threads. `cargo bench --bench relocate -- airfoil` runs the
-//! airfoil only.
+//! the wing (one run) with 1 and 2 threads, each with the default method (`Auto`) and with the
+//! sweeps (the method before), one after the other. `cargo bench --bench relocate -- airfoil`
+//! runs the airfoil only.
 //!
 //! Where `python3` (or the interpreter `IGAPARAM_PYTHON` names) imports PyMFEM (`mfem`), MFEM
 //! TMOP relocates the airfoil from the same harmonic placement in the same run
@@ -14,12 +15,13 @@ use std::path::Path;
 use std::process::Command;
 
 use igaparam::io::vtu::{self, DataArray, Format};
-use igaparam::{Mesh, RelocateOptions, RelocateReport};
+use igaparam::{Mesh, Method, RelocateOptions, RelocateReport};
 
-fn run(grid: &vtu::UnstructuredGrid, threads: usize) -> RelocateReport {
+fn run(grid: &vtu::UnstructuredGrid, threads: usize, method: Method) -> RelocateReport {
     let mut mesh = Mesh::from_grid_with_motion(grid).expect("mesh");
     let options = RelocateOptions {
         threads,
+        method,
         ..Default::default()
     };
     mesh.relocate(&options, &mut |_, _, _| true)
@@ -31,9 +33,9 @@ fn main() {
     let cores = std::thread::available_parallelism().map_or(1, |n| n.get());
     println!("machine: {cores} cores");
     println!(
-        "| case | cells | threads | seconds (median) | invalid before | after Laplacian | after | min q | mean q | sweeps | steps |"
+        "| case | cells | method | threads | seconds (median) | invalid before | after Laplacian | after | min q | mean q | sweeps | newton | steps |"
     );
-    println!("|---|---|---|---|---|---|---|---|---|---|---|");
+    println!("|---|---|---|---|---|---|---|---|---|---|---|---|---|");
     for (name, file, repetitions) in [
         ("airfoil Q9", "airfoil_0012_q9.vtu", 5),
         ("wing H27", "wing_0012_h27.vtu", 1),
@@ -46,14 +48,21 @@ fn main() {
             .join(file);
         let grid = vtu::read(&path).expect("bundled mesh");
         let mut fastest = f64::INFINITY;
-        for threads in [1, 2] {
-            let mut reports: Vec<RelocateReport> =
-                (0..repetitions).map(|_| run(&grid, threads)).collect();
+        // The default method beside the sweeps (the method before), one after the other.
+        for (threads, method) in [1, 2]
+            .into_iter()
+            .flat_map(|t| [(t, Method::Auto), (t, Method::Sweeps)])
+        {
+            let mut reports: Vec<RelocateReport> = (0..repetitions)
+                .map(|_| run(&grid, threads, method))
+                .collect();
             reports.sort_by(|a, b| a.seconds.total_cmp(&b.seconds));
             let r = reports[reports.len() / 2];
-            fastest = fastest.min(r.seconds);
+            if method == Method::Auto {
+                fastest = fastest.min(r.seconds);
+            }
             println!(
-                "| {name} | {} | {threads} | {:.3} | {} | {} | {} | {:.3} | {:.3} | {} | {} |",
+                "| {name} | {} | {method:?} | {threads} | {:.3} | {} | {} | {} | {:.3} | {:.3} | {} | {} | {} |",
                 r.cells,
                 r.seconds,
                 r.invalid_before,
@@ -62,6 +71,7 @@ fn main() {
                 r.min_quality,
                 r.mean_quality,
                 r.sweeps,
+                r.newton_iterations,
                 r.steps
             );
         }

@@ -42,7 +42,9 @@ pub enum Stage {
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Method {
     /// `Newton` where the Hessian's Cholesky factor is small (2D meshes, 3D ones up to about
-    /// 20,000 nodes), else `Sweeps`.
+    /// 20,000 nodes) or, beyond, where the Hessian has at most 10⁸ values (about 170,000 H27
+    /// nodes; multigrid-preconditioned steps, about 30 bytes per value at the peak), else
+    /// `Sweeps`.
     Auto,
     /// The per-node optimizer's coloured Gauss–Seidel sweeps, large motions in steps placed
     /// harmonically; with `stationarity_tolerance > 0`, followed by the Newton stage.
@@ -255,7 +257,7 @@ impl Mesh {
             && match options.method {
                 Method::Sweeps => false,
                 Method::Newton => true,
-                Method::Auto => self.setup_for(problem)?.is_direct(),
+                Method::Auto => self.setup_for(problem)?.newton_by_default(),
             };
         let followed = match newton && options.placement != Placement::Current {
             true => self.follow_path(pool, problem, &goal, options, &mut report, progress)?,

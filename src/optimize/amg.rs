@@ -18,6 +18,7 @@
 //! Hand-written: no maintained Rust crate provides aggregation with a rigid-motion near-null
 //! space; faer's sparse Cholesky factorises the coarsest level.
 
+use rayon::prelude::*;
 use rayon::ThreadPool;
 
 use super::aggregation::{aggregate, node_grouping, tentative_prolongator, Grouping};
@@ -119,7 +120,7 @@ impl Amg {
         free: &[u8],
         x: &[Vector<D>],
     ) -> Option<Amg> {
-        let (dof, a) = fine_level(layout, hessian, free);
+        let (dof, a) = fine_level(pool, layout, hessian, free);
         let modes = D * (D + 1) / 2;
         let mut levels = Vec::new();
         let (mut a, mut grouping, mut null_space) = match corner_prolongator(problem, &dof, x) {
@@ -229,37 +230,56 @@ impl Amg {
 }
 
 /// The fine level: the numbering of the free coordinates (node by node) and `H_ff` in
-/// compressed rows over them.
+/// compressed rows over them. The rows are filled in parallel and concatenated in order (on the
+/// wing, 315,000 rows of 190 values each, row by row in one thread took 0.65 s).
 fn fine_level<const D: usize>(
+    pool: &ThreadPool,
     layout: &BlockLayout,
     hessian: &BlockMatrix<D>,
     free: &[u8],
 ) -> (Vec<u32>, Csr) {
     let mut dof = vec![u32::MAX; free.len() * D];
-    let mut count = 0u32;
+    let mut rows = Vec::new();
     for (v, &mask) in free.iter().enumerate() {
         for k in (0..D).filter(|k| mask & (1 << k) != 0) {
-            dof[v * D + k] = count;
-            count += 1;
+            dof[v * D + k] = rows.len() as u32;
+            rows.push((v, k));
         }
     }
-    let mut rows = Vec::with_capacity(count as usize);
-    for (v, &mask) in free.iter().enumerate() {
+    // Row (v, k): the free coordinates of v's neighbours, in column order, with their values.
+    let entries = |&(v, k): &(usize, usize)| {
         let (blocks, neighbours) = layout.row(v);
-        for k in (0..D).filter(|k| mask & (1 << k) != 0) {
-            let mut row = Vec::new();
-            for (b, &w) in blocks.clone().zip(neighbours) {
-                for l in 0..D {
-                    let d = dof[w as usize * D + l];
-                    if d != u32::MAX {
-                        row.push((d, hessian.blocks[b][k][l]));
-                    }
-                }
-            }
-            rows.push(row);
-        }
+        let dof = &dof;
+        blocks.zip(neighbours).flat_map(move |(b, &w)| {
+            (0..D).filter_map(move |l| {
+                let d = dof[w as usize * D + l];
+                (d != u32::MAX).then(|| (d, hessian.blocks[b][k][l]))
+            })
+        })
+    };
+    let (lengths, column, value): (Vec<usize>, Vec<u32>, Vec<f64>) = pool.install(|| {
+        (
+            rows.par_iter().map(|r| entries(r).count()).collect(),
+            rows.par_iter()
+                .flat_map_iter(|r| entries(r).map(|(d, _)| d))
+                .collect(),
+            rows.par_iter()
+                .flat_map_iter(|r| entries(r).map(|(_, h)| h))
+                .collect(),
+        )
+    });
+    let mut start = Vec::with_capacity(rows.len() + 1);
+    start.push(0);
+    for length in lengths {
+        start.push(start[start.len() - 1] + length);
     }
-    (dof, Csr::from_rows(count as usize, rows))
+    let matrix = Csr {
+        columns: rows.len(),
+        start,
+        column,
+        value,
+    };
+    (dof, matrix)
 }
 
 /// The p-coarsening of quadratic cells: the corners of the cells carry the coarse unknowns (their

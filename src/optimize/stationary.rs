@@ -65,11 +65,6 @@ pub fn scaled_gradient_norm<const D: usize>(
 /// there where a cell would fold).
 const NODE_STEP: f64 = 4.0;
 
-/// CG iterations a preconditioner from an earlier state gets before a fresh one is made (a
-/// fresh factor of the bundled airfoil costs about 15 solves with it); CG gives up sooner where
-/// its rate shows the inner tolerance out of reach within them.
-const LAGGED_ITERATIONS: usize = 8;
-
 /// Minimises `F` over the free coordinates of `x` (a valid state). `preconditioner`, when given,
 /// comes from a nearby state and is used while it pays. Returns the stats and the solver of the
 /// Hessian at the final `x` (when one could be made): the sensitivities' operator where the
@@ -192,8 +187,11 @@ impl<const D: usize> Newton<'_, D> {
             inner = inner.min(0.1 * self.tolerance / gradient_norm);
         }
         let inner = inner.clamp(1e-14, 0.1);
-        let (mut step, mut solved) =
-            solver.solve_with(self.pool, &minus_g, inner, LAGGED_ITERATIONS);
+        // A preconditioner from an earlier state gets its own budget of iterations
+        // ([`Preconditioner::lagged_iterations`]); CG gives up sooner where its rate shows the
+        // inner tolerance out of reach within them.
+        let budget = solver.preconditioner().lagged_iterations();
+        let (mut step, mut solved) = solver.solve_with(self.pool, &minus_g, inner, budget);
         let mut stale = lagged;
         if lagged && (solved.residual > inner || solved.negative_curvature) {
             // The earlier preconditioner stopped paying: make one from this Hessian.

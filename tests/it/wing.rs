@@ -14,5 +14,13 @@ fn the_twisted_wing_is_untangled() {
         .unwrap();
     assert_eq!(report.invalid_before, 982);
     assert_eq!(report.invalid_after, 0, "{report:?}");
-    assert!(report.min_quality > 0.5, "{report:?}");
+    // The default method on this mesh (60 million Hessian values) is Newton's, with
+    // multigrid-preconditioned steps: the result is a stationary point of the summed distortion,
+    // of min quality 0.974 (the sweeps stop at 0.954).
+    assert_eq!(report.sweeps, 0, "{report:?}");
+    assert!(
+        report.converged && report.gradient_norm <= 1e-8,
+        "{report:?}"
+    );
+    assert!(report.min_quality > 0.97, "{report:?}");
 }
