@@ -159,6 +159,23 @@ fn the_newton_stage_gives_the_same_result_for_one_and_two_threads() {
     assert_eq!(one.tangent(1, &v).unwrap(), two.tangent(2, &v).unwrap());
 }
 
+/// The same past the direct solver's limit, where the default method follows the optimum with
+/// multigrid-preconditioned solves (the hierarchy's fine level filled in parallel).
+#[test]
+fn the_multigrid_newton_method_gives_the_same_result_for_one_and_two_threads() {
+    let mut one = bumped(CellType::Hex27, 15);
+    let mut two = one.clone();
+    let default = |threads| RelocateOptions {
+        threads,
+        ..Default::default()
+    };
+    let a = one.relocate(&default(1), &mut |_, _, _| true).unwrap();
+    let b = two.relocate(&default(2), &mut |_, _, _| true).unwrap();
+    assert!(a.newton_iterations > 0 && a.sweeps == 0, "{a:?}");
+    assert_eq!(a.newton_iterations, b.newton_iterations);
+    assert_eq!(one.positions(), two.positions());
+}
+
 #[test]
 fn sensitivities_are_refused_without_a_stationary_point() {
     let mut mesh = bumped(CellType::Quad9, 4);
