@@ -100,7 +100,7 @@ impl SolverSetup {
     }
 
     /// Whether the Newton method is the default ([`Method::Auto`](crate::Method::Auto)): where
-    /// solves are direct, or where the Hessian is at most [`MULTIGRID_NEWTON_VALUES`] values
+    /// solves are direct, or where the Hessian is at most 10⁸ values
     /// (multigrid-preconditioned CG). On the wing (105,060 H27 nodes, 2 threads) Newton's method
     /// relocates in 9.2 s to min quality 0.974, the sweeps in 14.4 s to 0.954 (same run).
     pub fn newton_by_default(&self) -> bool {
