@@ -25,8 +25,8 @@ const DIRECT_3D_COORDINATES: usize = 60_000;
 
 /// Largest Hessian (stored values) of a 3D mesh too large to factor for which the Newton method
 /// is the default: its multigrid-preconditioned steps keep the Hessian, a compressed copy and
-/// the hierarchy, about 30 bytes per value at the peak (the wing's 60 million values: 1.7 GB,
-/// where its sweeps take 0.17 GB). 10⁸ values are about 170,000 H27 nodes.
+/// the hierarchy, about 30 bytes per value at the peak (the wing's 60 million values: 1.5 GB,
+/// where its sweeps take 0.16 GB). 10⁸ values are about 170,000 H27 nodes.
 const MULTIGRID_NEWTON_VALUES: usize = 100_000_000;
 
 /// How a solve went.
