@@ -2,7 +2,7 @@
 # Builds everything, then relocates the bundled meshes into out/:
 #   out/airfoil_relocated.vtu   Q9 airfoil mesh, airfoil rotated by 60 degrees
 #   out/airfoil_laplacian.vtu   the same, harmonic placement only (no optimization)
-#   out/wing_relocated.vtu      H27 wing mesh, twisted wing (takes about half a minute)
+#   out/wing_relocated.vtu      H27 wing mesh, twisted wing (about ten seconds)
 #   out/wing_laplacian.vtu      the same, harmonic placement only
 # parameterizes bundled domains with igaparam_param (T-mesh, spline map, G+Smo XML):
 #   out/gran_canaria_{tmesh,spline}.vtu, out/gran_canaria.xml   coastline of Gran Canaria
