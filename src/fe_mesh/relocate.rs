@@ -152,7 +152,6 @@ impl RelocateOptions {
 }
 
 impl RelocateOptions {
-    /// The stopping rules of the sweeps.
     /// The Newton method's tolerance: the one asked for, or the default.
     pub(crate) fn newton_tolerance(&self) -> f64 {
         match self.stationarity_tolerance > 0.0 {
@@ -161,6 +160,7 @@ impl RelocateOptions {
         }
     }
 
+    /// The stopping rules of the sweeps.
     pub(crate) fn sweep_options(&self) -> SweepOptions {
         SweepOptions {
             max_sweeps: self.max_sweeps,

@@ -27,6 +27,19 @@ fn perturb_interior(xyz: &mut [f64], d: usize, amplitude: f64, seed: u64) {
     }
 }
 
+/// A unit grid of `n` cells per side whose interior nodes moved as [`perturb_interior`] moves
+/// them (the reference is the unperturbed grid), its boundary fixed.
+fn tangled(cell_type: CellType, n: usize, amplitude: f64, seed: u64) -> Mesh {
+    let d = cell_type.dimension();
+    let (reference, conn) = grid(cell_type, n);
+    let mut xyz = reference.clone();
+    perturb_interior(&mut xyz, d, amplitude, seed);
+    let mut mesh = Mesh::new(cell_type, &reference, &conn).unwrap();
+    mesh.set_fixed(&boundary_mask(&reference, d)).unwrap();
+    mesh.move_nodes(None, &xyz).unwrap();
+    mesh
+}
+
 #[test]
 fn a_mesh_at_its_target_does_not_move() {
     // With the initial shape as target every mesh is a fixed point, even a distorted one.
@@ -142,14 +155,7 @@ fn randomly_tangled_grids_are_untangled() {
         (CellType::Hex20, 3, 0.1),
         (CellType::Hex27, 3, 0.1),
     ] {
-        let d = cell_type.dimension();
-        let (mut xyz, conn) = grid(cell_type, n);
-        let mask = boundary_mask(&xyz, d);
-        let reference = xyz.clone();
-        perturb_interior(&mut xyz, d, amplitude, 42);
-        let mut mesh = Mesh::new(cell_type, &reference, &conn).unwrap();
-        mesh.set_fixed(&mask).unwrap();
-        mesh.move_nodes(None, &xyz).unwrap();
+        let mut mesh = tangled(cell_type, n, amplitude, 42);
         let options = RelocateOptions {
             placement: Placement::Current,
             ..Default::default()
@@ -301,14 +307,8 @@ fn sweeps_stop_when_only_fixed_nodes_fold_a_cell() {
 /// converging, a slow fixed-metric gradient descent, or 56 on the last one; now 7–11).
 #[test]
 fn newton_converges_after_an_indefinite_first_hessian() {
-    let n = 14;
-    let (reference, conn) = grid(CellType::Quad4, n);
     for (seed, sweeps) in [(1, 2), (5, 2), (7, 2), (5, 3)] {
-        let mut xyz = reference.clone();
-        perturb_interior(&mut xyz, 2, 0.9 / n as f64, seed);
-        let mut mesh = Mesh::new(CellType::Quad4, &reference, &conn).unwrap();
-        mesh.set_fixed(&boundary_mask(&reference, 2)).unwrap();
-        mesh.move_nodes(None, &xyz).unwrap();
+        let mut mesh = tangled(CellType::Quad4, 14, 0.9 / 14.0, seed);
         let options = RelocateOptions {
             placement: Placement::Current,
             max_sweeps: sweeps,
@@ -331,14 +331,8 @@ fn newton_converges_after_an_indefinite_first_hessian() {
 /// scaled gradient around 1e-3); the sweeps-only method still gives a valid mesh.
 #[test]
 fn untangling_in_place_ends_at_a_stationary_point() {
-    let n = 14;
-    let (reference, conn) = grid(CellType::Quad4, n);
-    let mut xyz = reference.clone();
-    perturb_interior(&mut xyz, 2, 0.9 / n as f64, 3);
     for method in [Method::Auto, Method::Sweeps] {
-        let mut mesh = Mesh::new(CellType::Quad4, &reference, &conn).unwrap();
-        mesh.set_fixed(&boundary_mask(&reference, 2)).unwrap();
-        mesh.move_nodes(None, &xyz).unwrap();
+        let mut mesh = tangled(CellType::Quad4, 14, 0.9 / 14.0, 3);
         let options = RelocateOptions {
             placement: Placement::Current,
             method,
