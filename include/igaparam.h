@@ -1009,10 +1009,11 @@ typedef struct {
    * Exponent `p` of the smoothing's objective, the sum of the distortions `η*^p` at the samples:
    * 0 (default) chooses 4 for planar maps and 1 for solids; else at least 1, at most 16. Above 1
    * the worst samples weigh most, which lifts the smallest q_S where the mean distortion (`p =
-   * 1`) would not move it. Such a smoothing samples one point more per direction than `samples`
-   * (with four, `p = 4` folded Gran Canaria's map between samples), and where it cannot lift the
-   * map the `p = 1` smoothing runs instead. On the 3D duck it lifted nothing (the smallest q_S
-   * is held at the boundary) and doubled the smoothing's time, hence 1 for solids by default.
+   * 1`) would not move it. Such a smoothing samples two points more per direction than `samples`
+   * (with four, `p = 4` folded Gran Canaria's map between samples; with five, its certified
+   * bound fell while the sampled minimum rose), and where it cannot lift the map the `p = 1`
+   * smoothing runs instead. On the 3D duck it lifted nothing (the smallest q_S is held at the
+   * boundary) and doubled the smoothing's time, hence 1 for solids by default.
    */
   double smoothing_power;
   /**

@@ -102,6 +102,7 @@ pub fn evaluate<const D: usize>(
 ) -> Local<D> {
     let m = 2.0 / D as f64;
     let inv_d = 1.0 / D as f64;
+    let lift = Lift::new(power);
     let mut out = Local {
         value: 0.0,
         gradient: [0.0; D],
@@ -125,7 +126,7 @@ pub fn evaluate<const D: usize>(
             true => (t.w * inv_d * n * p, 1.0, 0.0),
             false => {
                 let eta = inv_d * n * p;
-                let lift = lift_factor(eta, power);
+                let lift = lift.of(eta);
                 (t.w * eta * lift, lift, (power - 1.0) * inv_d / eta)
             }
         };
@@ -158,12 +159,42 @@ pub fn evaluate<const D: usize>(
     out
 }
 
-/// `eta^(power − 1)`: by multiplications for an integer power (the default 4 of the spline
-/// smoothing, where `powf` was most of the cost of a term).
-fn lift_factor(eta: f64, power: f64) -> f64 {
-    match power.fract() == 0.0 && power <= 64.0 {
-        true => eta.powi(power as i32 - 1),
-        false => eta.powf(power - 1.0),
+/// How `η^(power − 1)` is computed, chosen once per evaluation: by multiplications for an
+/// integer power (the default 4 of the spline smoothing, where `powf` was most of the cost of a
+/// term, and a per-term test of the power's kind and `powi`'s library call a fifth of it).
+#[derive(Clone, Copy)]
+enum Lift {
+    /// `η^k` for an integer `k` from 0 to 63.
+    Integer(u32),
+    /// `η^e` for any other exponent `e`.
+    Real(f64),
+}
+
+impl Lift {
+    fn new(power: f64) -> Self {
+        match power.fract() == 0.0 && (1.0..=64.0).contains(&power) {
+            true => Lift::Integer(power as u32 - 1),
+            false => Lift::Real(power - 1.0),
+        }
+    }
+
+    /// `eta^(power − 1)`.
+    fn of(self, eta: f64) -> f64 {
+        match self {
+            Lift::Integer(k) => {
+                // Square and multiply over the bits of k.
+                let (mut result, mut base, mut k) = (1.0, eta, k);
+                while k > 0 {
+                    if k & 1 == 1 {
+                        result *= base;
+                    }
+                    base *= base;
+                    k >>= 1;
+                }
+                result
+            }
+            Lift::Real(e) => eta.powf(e),
+        }
     }
 }
 

@@ -187,12 +187,18 @@ impl<const D: usize> Bernstein<D> {
         let mut out = Bernstein::zero(degree);
         let os = out.strides();
         let layout = |b: &Self| -> (Vec<f64>, Vec<usize>) {
+            // The binomials of each direction's degree, once (not per coefficient).
+            let binomials: [Vec<f64>; D] = std::array::from_fn(|k| {
+                (0..=b.degree[k])
+                    .map(|i| binomial(b.degree[k], i))
+                    .collect()
+            });
             b.coef
                 .iter()
                 .enumerate()
                 .map(|(f, &c)| {
                     let i = b.multi_index(f);
-                    let scaled = (0..D).fold(c, |acc, k| acc * binomial(b.degree[k], i[k]));
+                    let scaled = (0..D).fold(c, |acc, k| acc * binomials[k][i[k]]);
                     (scaled, (0..D).map(|k| i[k] * os[k]).sum::<usize>())
                 })
                 .unzip()

@@ -21,8 +21,24 @@ use crate::optimize::node::minimise;
 use crate::optimize::small_matrix::{add_outer, det, Matrix, Vector};
 use crate::optimize::NodeSolverOptions;
 
-/// One element of a [`Region`]: its functions and, per sample, their gradients.
-type SampledElement<const D: usize> = (Vec<usize>, Vec<Vec<[f64; D]>>);
+/// One element of a [`Region`]: its functions and their gradients at its samples, sample by
+/// sample (`gradients[s * functions.len() + i]` for function `i` at sample `s`).
+struct SampledElement<const D: usize> {
+    functions: Vec<usize>,
+    gradients: Vec<[f64; D]>,
+}
+
+impl<const D: usize> SampledElement<D> {
+    /// Per sample, the gradients of the element's functions.
+    fn samples(&self) -> std::slice::ChunksExact<'_, [f64; D]> {
+        self.gradients.chunks_exact(self.functions.len().max(1))
+    }
+
+    /// The number of samples.
+    fn sample_count(&self) -> usize {
+        self.gradients.len() / self.functions.len().max(1)
+    }
+}
 
 /// The elements and samples the objective of some free control points looks at.
 pub(super) struct Region<const D: usize> {
@@ -41,51 +57,69 @@ pub(super) struct Region<const D: usize> {
     colours: Vec<Vec<usize>>,
 }
 
-/// The gradients of the cubic `coef` (tensor Bernstein coefficients on the box `[lo, hi]`,
-/// `4^d`, direction 0 fastest) at the `n^d` points of the box's uniform grid, its corners
-/// included, by sum factorisation.
-pub(super) fn grid_gradients<const D: usize>(
-    coef: &[f64],
-    lo: [f64; D],
-    hi: [f64; D],
+/// Values and slopes of the four cubic Bernstein polynomials at the `n` uniform points of
+/// \[0, 1\], its ends included: what the gradients of a cubic at the points of a box's uniform
+/// grid are made of (the same for every box; the slopes scale with the box's sides).
+pub(super) struct GridTables {
     n: usize,
-) -> Vec<[f64; D]> {
-    let n = n.max(2);
-    // Per direction: the four Bernstein values and slopes at each grid point.
-    type Table = (Vec<[f64; 4]>, Vec<[f64; 4]>);
-    let tables: [Table; D] = std::array::from_fn(|k| {
-        let h = hi[k] - lo[k];
-        (0..n)
-            .map(|i| {
-                let (v, d) = bernstein3(i as f64 / (n - 1) as f64);
-                (v, d.map(|s| s / h))
-            })
-            .unzip()
-    });
-    let derivative: [Vec<f64>; D] = std::array::from_fn(|c| {
-        let mut cur = coef.to_vec();
-        for (k, (values, slopes)) in tables.iter().enumerate() {
-            let table = if k == c { slopes } else { values };
-            // Directions before k are already on the grid (n points), k and after are not.
-            let before = n.pow(k as u32);
-            let after = 4usize.pow((D - k - 1) as u32);
-            let mut next = vec![0.0; before * n * after];
-            for outer in 0..after {
-                for (i, row) in table.iter().enumerate() {
-                    for inner in 0..before {
-                        next[inner + before * (i + n * outer)] = (0..4)
-                            .map(|b| row[b] * cur[inner + before * (b + 4 * outer)])
-                            .sum();
+    values: Vec<[f64; 4]>,
+    slopes: Vec<[f64; 4]>,
+}
+
+impl GridTables {
+    /// The tables of `n` points per direction (at least 2).
+    pub(super) fn new(n: usize) -> Self {
+        let n = n.max(2);
+        let (values, slopes) = (0..n)
+            .map(|i| bernstein3(i as f64 / (n - 1) as f64))
+            .unzip();
+        GridTables { n, values, slopes }
+    }
+
+    /// The number of points per direction.
+    pub(super) fn points(&self) -> usize {
+        self.n
+    }
+
+    /// Writes the gradients of the cubic `coef` (tensor Bernstein coefficients on a box of
+    /// sides `h`, `4^d`, direction 0 fastest) at the `n^d` grid points of the box to
+    /// `out[s * stride + at]`, by sum factorisation (`scratch`: two buffers it may reuse).
+    pub(super) fn gradients<const D: usize>(
+        &self,
+        coef: &[f64],
+        h: [f64; D],
+        scratch: &mut [Vec<f64>; 2],
+        out: &mut [[f64; D]],
+        (stride, at): (usize, usize),
+    ) {
+        let n = self.n;
+        for c in 0..D {
+            let [cur, next] = scratch;
+            cur.clear();
+            cur.extend_from_slice(coef);
+            for k in 0..D {
+                let table = if k == c { &self.slopes } else { &self.values };
+                // Directions before k are already on the grid (n points), k and after are not.
+                let before = n.pow(k as u32);
+                let after = 4usize.pow((D - k - 1) as u32);
+                next.clear();
+                next.resize(before * n * after, 0.0);
+                for outer in 0..after {
+                    for (i, row) in table.iter().enumerate() {
+                        for inner in 0..before {
+                            next[inner + before * (i + n * outer)] = (0..4)
+                                .map(|b| row[b] * cur[inner + before * (b + 4 * outer)])
+                                .sum();
+                        }
                     }
                 }
+                std::mem::swap(cur, next);
             }
-            cur = next;
+            for (s, v) in cur.iter().enumerate() {
+                out[s * stride + at][c] = v / h[c];
+            }
         }
-        cur
-    });
-    (0..n.pow(D as u32))
-        .map(|s| std::array::from_fn(|c| derivative[c][s]))
-        .collect()
+    }
 }
 
 impl<const D: usize> SplineMap<D, ThbSpace<D>> {
@@ -125,7 +159,7 @@ impl<const D: usize> SplineMap<D, ThbSpace<D>> {
                 .map(|e| {
                     let r = position[e];
                     let at = elements[r]
-                        .0
+                        .functions
                         .binary_search(&f)
                         .expect("a function of its support's elements");
                     (r, at)
@@ -158,21 +192,27 @@ impl<const D: usize> SplineMap<D, ThbSpace<D>> {
     /// the functions' gradients.
     fn sampled_elements(&self, elements: &[usize], samples: usize) -> Vec<SampledElement<D>> {
         let local = 4usize.pow(D as u32);
+        let tables = GridTables::new(samples);
+        let count = tables.points().pow(D as u32);
         elements
             .par_iter()
-            .map(|&e| {
-                let (lo, hi) = self.space.element_bounds(e);
-                let (functions, c) = self.space.extraction(e);
-                let per_function: Vec<Vec<[f64; D]>> = c
-                    .chunks_exact(local)
-                    .map(|row| grid_gradients(row, lo, hi, samples))
-                    .collect();
-                let count = per_function.first().map_or(0, Vec::len);
-                let per_sample = (0..count)
-                    .map(|s| per_function.iter().map(|g| g[s]).collect())
-                    .collect();
-                (functions.to_vec(), per_sample)
-            })
+            .map_init(
+                || [Vec::new(), Vec::new()],
+                |scratch, &e| {
+                    let (lo, hi) = self.space.element_bounds(e);
+                    let h = std::array::from_fn(|k| hi[k] - lo[k]);
+                    let (functions, c) = self.space.extraction(e);
+                    let stride = functions.len();
+                    let mut gradients = vec![[0.0; D]; count * stride];
+                    for (at, row) in c.chunks_exact(local).enumerate() {
+                        tables.gradients(row, h, scratch, &mut gradients, (stride, at));
+                    }
+                    SampledElement {
+                        functions: functions.to_vec(),
+                        gradients,
+                    }
+                },
+            )
             .collect()
     }
 }
@@ -184,12 +224,12 @@ fn sample_jacobians<const D: usize>(
 ) -> Vec<Vec<Matrix<D>>> {
     elements
         .par_iter()
-        .map(|(functions, samples)| {
-            samples
-                .iter()
+        .map(|element| {
+            element
+                .samples()
                 .map(|gradients| {
                     let mut j = [[0.0; D]; D];
-                    for (&h, g) in functions.iter().zip(gradients) {
+                    for (&h, g) in element.functions.iter().zip(gradients) {
                         j = add_outer(&j, &y[h], g);
                     }
                     j
@@ -256,7 +296,7 @@ impl<const D: usize> Region<D> {
     /// Updates the Jacobians after free function `i` (of `touches`) moved by `delta`.
     fn shift(&mut self, i: usize, delta: Vector<D>) {
         for &(r, at) in &self.touches[i].1 {
-            let (_, samples) = &self.elements[r];
+            let samples = self.elements[r].samples();
             for (j, gradients) in self.jacobians[r].iter_mut().zip(samples) {
                 *j = add_outer(j, &delta, &gradients[at]);
             }
@@ -268,11 +308,15 @@ impl<const D: usize> Region<D> {
     fn terms(&self, i: usize, y: &[Vector<D>]) -> Vec<Term<D>> {
         let (f, touches) = &self.touches[i];
         let minus: Vector<D> = y[*f].map(|v| -v);
-        let mut out = Vec::new();
+        let count = touches
+            .iter()
+            .map(|&(r, _)| self.elements[r].sample_count())
+            .sum();
+        let mut out = Vec::with_capacity(count);
         for &(r, at) in touches {
-            let samples = &self.elements[r].1;
-            let w = 1.0 / samples.len() as f64;
-            for (gradients, j) in samples.iter().zip(&self.jacobians[r]) {
+            let element = &self.elements[r];
+            let w = 1.0 / element.sample_count() as f64;
+            for (gradients, j) in element.samples().zip(&self.jacobians[r]) {
                 let g = gradients[at];
                 if g.iter().all(|&v| v == 0.0) {
                     continue;
@@ -346,9 +390,11 @@ mod tests {
             degree: [3; 3],
             coef: coef.clone(),
         };
-        let (lo, hi) = ([0.25, 0.5, 0.0], [0.5, 0.75, 0.5]);
+        let (lo, hi): ([f64; 3], [f64; 3]) = ([0.25, 0.5, 0.0], [0.5, 0.75, 0.5]);
         let n = 3;
-        let g = grid_gradients(&coef, lo, hi, n);
+        let mut g = vec![[0.0; 3]; 27];
+        let h = std::array::from_fn(|k| hi[k] - lo[k]);
+        GridTables::new(n).gradients(&coef, h, &mut [Vec::new(), Vec::new()], &mut g, (1, 0));
         for (s, gs) in g.iter().enumerate() {
             let t: [f64; 3] = std::array::from_fn(|k| (s / n.pow(k as u32) % n) as f64 / 2.0);
             for c in 0..3 {

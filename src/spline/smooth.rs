@@ -52,9 +52,9 @@ struct Stage<'a> {
 impl<const D: usize> SplineMap<D, ThbSpace<D>> {
     /// Smooths a certified map (see the module documentation) with at most `sweeps` sweeps
     /// over its inner control points on the distortions to the power `power` (in [1, 16]; 0: 4
-    /// for planar maps, 1 for solids) at `samples` points per direction and element (one more
+    /// for planar maps, 1 for solids) at `samples` points per direction and element (two more
     /// when `power > 1`); the sweeps stop when one no longer lifts the smallest sampled mean
-    /// ratio by 0.1% of itself or the mean by 0.1%. Where a `power > 1` smoothing keeps nothing,
+    /// ratio by 1% of itself or the mean by 1%. Where a `power > 1` smoothing keeps nothing,
     /// the `power = 1` one runs. `validity` is the map's validity with the options `certify`;
     /// returns the validity of the map kept. A map that is not certified is left as it is.
     pub fn smooth(
@@ -97,7 +97,7 @@ impl<const D: usize> SplineMap<D, ThbSpace<D>> {
             return self.smooth_stage(validity, &mean, progress);
         }
         let weighted = Stage {
-            samples: (samples + 1).min(MAX_SAMPLES),
+            samples: (samples + 2).min(MAX_SAMPLES),
             power,
             ..mean
         };
@@ -167,7 +167,7 @@ impl<const D: usize> SplineMap<D, ThbSpace<D>> {
             if now.0 > start.0 || (now.0 >= start.0 && now.1 > start.1) {
                 states.push((y.clone(), moved.clone()));
             }
-            let better = now.0 > best.0 * 1.001 || (now.0 >= best.0 && now.1 > best.1 * 1.001);
+            let better = now.0 > best.0 * 1.01 || (now.0 >= best.0 && now.1 > best.1 * 1.01);
             if !better {
                 break;
             }

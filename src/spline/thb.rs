@@ -10,6 +10,8 @@
 
 use std::collections::HashMap;
 
+use rayon::prelude::*;
+
 use super::bernstein::{extraction, function_count, greville, support_spans, two_scale, Matrix4};
 use super::space::SplineSpace;
 use crate::error::{Error, Result};
@@ -134,11 +136,18 @@ fn leaf_extraction<const D: usize>(
         if k > 0 {
             let parent = ancestor(k - 1);
             let m: [Matrix4; D] = std::array::from_fn(|d| two_scale(k - 1, parent[d], a[d]));
+            // The level-k functions on the ancestor whose support lies in Ω_k, looked up once
+            // for all rows.
+            let truncated: Vec<bool> = (0..local)
+                .map(|q| {
+                    let f = std::array::from_fn(|d| (a[d] + (q >> (2 * d) & 3)) as u32);
+                    inside(counts, k, &f)
+                })
+                .collect();
             for (_, coef) in rows.iter_mut() {
                 *coef = tensor_apply(&m, coef);
-                for (q, v) in coef.iter_mut().enumerate() {
-                    let f = std::array::from_fn(|d| (a[d] + (q >> (2 * d) & 3)) as u32);
-                    if inside(counts, k, &f) {
+                for (v, &cut) in coef.iter_mut().zip(&truncated) {
+                    if cut {
                         *v = 0.0;
                     }
                 }
@@ -179,13 +188,11 @@ impl<const D: usize> ThbSpace<D> {
         for (e, &c) in leaves.iter().enumerate() {
             leaf_of_cell[c] = e;
         }
-        let mut element_functions = Vec::with_capacity(leaves.len());
-        let mut element_matrices = Vec::with_capacity(leaves.len());
-        for &c in &leaves {
-            let (functions, matrix) = leaf_extraction(&cells[c], &counts, &index);
-            element_functions.push(functions);
-            element_matrices.push(matrix);
-        }
+        // Each leaf's operator is its own: built in parallel, collected in leaf order.
+        let (element_functions, element_matrices) = leaves
+            .par_iter()
+            .map(|&c| leaf_extraction(&cells[c], &counts, &index))
+            .unzip();
         Ok(ThbSpace {
             tree,
             leaves,

@@ -51,9 +51,10 @@ pub struct UntangleOptions {
     /// Exponent `p` of the smoothing's objective, the sum of the distortions `η*^p` at the
     /// samples: 0 (default) chooses 4 for planar maps and 1 for solids; else at least 1, at most
     /// 16. Above 1 the worst samples weigh most, which lifts the smallest q_S where the mean
-    /// distortion (`p = 1`) would not move it. Such a smoothing samples one point more per
-    /// direction than `samples` (with four, `p = 4` folded Gran Canaria's map between samples),
-    /// and where it cannot lift the map the `p = 1` smoothing runs instead. On the 3D duck it
+    /// distortion (`p = 1`) would not move it. Such a smoothing samples two points more per
+    /// direction than `samples` (with four, `p = 4` folded Gran Canaria's map between samples;
+    /// with five, its certified bound fell while the sampled minimum rose), and where it cannot
+    /// lift the map the `p = 1` smoothing runs instead. On the 3D duck it
     /// lifted nothing (the smallest q_S is held at the boundary) and doubled the smoothing's
     /// time, hence 1 for solids by default.
     pub smoothing_power: f64,
@@ -322,6 +323,7 @@ impl<const D: usize> SplineMap<D, ThbSpace<D>> {
         let (y, moved) = (&mut stage.y, &mut stage.moved);
         let mut best = progress(region, y, moved);
         for _ in 0..options.sweeps {
+            let previous = (y.to_vec(), moved.clone());
             let largest = region.sweep(y, &solver, &constrain, moved);
             let now = progress(region, y, moved);
             // While samples fold or the round's elements are not certified, a sweep must
@@ -333,7 +335,13 @@ impl<const D: usize> SplineMap<D, ThbSpace<D>> {
             } else {
                 now.0 < best.0 || (now.0 == best.0 && now.1 > best.1)
             };
-            if !improved || largest < 1e-3 {
+            if !improved {
+                // The sweep made the round's measure worse: its state goes back to the
+                // last that improved it (the duck B-rep's last sweep halved min q_S so).
+                (*y, *moved) = previous;
+                break;
+            }
+            if largest < 1e-3 {
                 break;
             }
             best = now;

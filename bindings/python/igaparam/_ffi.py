@@ -892,10 +892,11 @@ class FitOptions(ctypes.Structure):
         Exponent `p` of the smoothing's objective, the sum of the distortions `η*^p` at the samples:
         0 (default) chooses 4 for planar maps and 1 for solids; else at least 1, at most 16. Above 1
         the worst samples weigh most, which lifts the smallest q_S where the mean distortion (`p =
-        1`) would not move it. Such a smoothing samples one point more per direction than `samples`
-        (with four, `p = 4` folded Gran Canaria's map between samples), and where it cannot lift the
-        map the `p = 1` smoothing runs instead. On the 3D duck it lifted nothing (the smallest q_S
-        is held at the boundary) and doubled the smoothing's time, hence 1 for solids by default.
+        1`) would not move it. Such a smoothing samples two points more per direction than `samples`
+        (with four, `p = 4` folded Gran Canaria's map between samples; with five, its certified
+        bound fell while the sampled minimum rose), and where it cannot lift the map the `p = 1`
+        smoothing runs instead. On the 3D duck it lifted nothing (the smallest q_S is held at the
+        boundary) and doubled the smoothing's time, hence 1 for solids by default.
     threads:
         Worker threads, at most 4096, capped to the machine's cores; 0 (default) runs on the
         caller's thread pool: one thread per core, unless a Rust caller installed another. The
