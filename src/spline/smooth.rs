@@ -40,6 +40,20 @@ pub struct SmoothReport {
 /// solids: on the 3D duck the power 4 lifted nothing and doubled the smoothing's time.
 const AUTOMATIC_POWER: [f64; 2] = [4.0, 1.0];
 
+/// The least relative lift of the smallest sampled mean ratio (or, that not lower, of the mean)
+/// that a smoothing sweep must bring for the sweeps to go on.
+const MIN_LIFT: f64 = 0.01;
+
+/// The relative lift from `before` to `now` (smallest and mean sampled mean ratio): that of the
+/// smallest, or when it is not lower the larger of that and the mean's.
+fn lift(now: (f64, f64), before: (f64, f64)) -> f64 {
+    let smallest = now.0 / before.0 - 1.0;
+    match now.0 >= before.0 {
+        true => smallest.max(now.1 / before.1 - 1.0),
+        false => smallest,
+    }
+}
+
 /// The options of one smoothing.
 #[derive(Clone, Copy)]
 struct Stage<'a> {
@@ -54,7 +68,8 @@ impl<const D: usize> SplineMap<D, ThbSpace<D>> {
     /// over its inner control points on the distortions to the power `power` (in [1, 16]; 0: 4
     /// for planar maps, 1 for solids) at `samples` points per direction and element (two more
     /// when `power > 1`); the sweeps stop when one no longer lifts the smallest sampled mean
-    /// ratio by 1% of itself or the mean by 1%. Where a `power > 1` smoothing keeps nothing,
+    /// ratio by 1% of itself or the mean by 1%, or when the next lift, extrapolated
+    /// geometrically from the last two, would be under 1%. Where a `power > 1` smoothing keeps nothing,
     /// the `power = 1` one runs. `validity` is the map's validity with the options `certify`;
     /// returns the validity of the map kept. A map that is not certified is left as it is.
     pub fn smooth(
@@ -151,6 +166,7 @@ impl<const D: usize> SplineMap<D, ThbSpace<D>> {
         let mut moved = BTreeSet::new();
         let start = region.quality();
         let mut best = start;
+        let mut last_lift: Option<f64> = None;
         let mut states: Vec<(Vec<Vector<D>>, BTreeSet<usize>)> = Vec::new();
         for done in 0..sweeps as usize {
             if !progress(done, sweeps as usize) {
@@ -167,11 +183,17 @@ impl<const D: usize> SplineMap<D, ThbSpace<D>> {
             if now.0 > start.0 || (now.0 >= start.0 && now.1 > start.1) {
                 states.push((y.clone(), moved.clone()));
             }
-            let better = now.0 > best.0 * 1.01 || (now.0 >= best.0 && now.1 > best.1 * 1.01);
-            if !better {
+            let lifted = lift(now, best);
+            if lifted <= MIN_LIFT {
                 break;
             }
             best = now;
+            // The lifts of the sweeps fall about geometrically: the next one is not made when,
+            // extrapolated from the last two, it would be under the least lift.
+            if last_lift.is_some_and(|previous| lifted * lifted / previous <= MIN_LIFT) {
+                break;
+            }
+            last_lift = Some(lifted);
         }
         let kept = self.keep_best(states, scale, validity, stage.certify, &mut report);
         (kept, report)
