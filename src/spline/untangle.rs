@@ -337,8 +337,8 @@ impl<const D: usize> SplineMap<D, ThbSpace<D>> {
                 now.0 < best.0 || (now.0 == best.0 && now.1 > best.1)
             };
             if !improved {
-                // The sweep made the round's measure worse: its state goes back to the
-                // last that improved it (the duck B-rep's last sweep halved min q_S so).
+                // The sweep made the round's measure worse: the state goes back to the one
+                // before it (the duck B-rep's last sweep lowered its min q_S from 0.16 to 0.11).
                 (*y, *moved) = previous;
                 break;
             }
