@@ -327,6 +327,73 @@ impl<const D: usize> Bernstein<D> {
     }
 }
 
+/// Values and slopes of the four cubic Bernstein polynomials at the `n` uniform points of
+/// \[0, 1\], its ends included: what the gradients of a cubic at the points of a box's uniform
+/// grid are made of (the same for every box; the slopes scale with the box's sides).
+pub(super) struct GridTables {
+    n: usize,
+    /// Per point, the four values.
+    pub(super) values: Vec<[f64; 4]>,
+    /// Per point, the four slopes (on \[0, 1\]).
+    pub(super) slopes: Vec<[f64; 4]>,
+}
+
+impl GridTables {
+    /// The tables of `n` points per direction (at least 2).
+    pub(super) fn new(n: usize) -> Self {
+        let n = n.max(2);
+        let (values, slopes) = (0..n)
+            .map(|i| bernstein3(i as f64 / (n - 1) as f64))
+            .unzip();
+        GridTables { n, values, slopes }
+    }
+
+    /// The number of points per direction.
+    pub(super) fn points(&self) -> usize {
+        self.n
+    }
+
+    /// Writes the gradients of the cubic `coef` (tensor Bernstein coefficients on a box of
+    /// sides `h`, `4^d`, direction 0 fastest) at the `n^d` grid points of the box to
+    /// `out[s * stride + at]`, by sum factorisation (`scratch`: two buffers it may reuse).
+    pub(super) fn gradients<const D: usize>(
+        &self,
+        coef: &[f64],
+        h: [f64; D],
+        scratch: &mut [Vec<f64>; 2],
+        out: &mut [[f64; D]],
+        (stride, at): (usize, usize),
+    ) {
+        let n = self.n;
+        for c in 0..D {
+            let [cur, next] = scratch;
+            cur.clear();
+            cur.extend_from_slice(coef);
+            for k in 0..D {
+                let table = if k == c { &self.slopes } else { &self.values };
+                // Directions before k are already on the grid (n points), k and after are not.
+                let before = n.pow(k as u32);
+                let after = 4usize.pow((D - k - 1) as u32);
+                next.clear();
+                next.resize(before * n * after, 0.0);
+                for outer in 0..after {
+                    for (i, row) in table.iter().enumerate() {
+                        for inner in 0..before {
+                            next[inner + before * (i + n * outer)] = (0..4)
+                                .map(|b| row[b] * cur[inner + before * (b + 4 * outer)])
+                                .sum();
+                        }
+                    }
+                }
+                std::mem::swap(cur, next);
+            }
+            for (s, v) in cur.iter().enumerate() {
+                out[s * stride + at][c] = v / h[c];
+            }
+        }
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -436,5 +503,30 @@ mod tests {
         let h = 1e-6;
         let fd = (a.eval([0.3 + h, 0.4]) - a.eval([0.3 - h, 0.4])) / (2.0 * h);
         assert!((da.eval([0.3, 0.4]) - fd).abs() < 1e-7);
+    }
+
+    #[test]
+    fn grid_gradients_match_the_bernstein_derivatives() {
+        let coef: Vec<f64> = (0..64).map(|i| (i as f64 * 0.37).sin()).collect();
+        let p = Bernstein::<3> {
+            degree: [3; 3],
+            coef: coef.clone(),
+        };
+        let (lo, hi): ([f64; 3], [f64; 3]) = ([0.25, 0.5, 0.0], [0.5, 0.75, 0.5]);
+        let n = 3;
+        let mut g = vec![[0.0; 3]; 27];
+        let h = std::array::from_fn(|k| hi[k] - lo[k]);
+        GridTables::new(n).gradients(&coef, h, &mut [Vec::new(), Vec::new()], &mut g, (1, 0));
+        for (s, gs) in g.iter().enumerate() {
+            let t: [f64; 3] = std::array::from_fn(|k| (s / n.pow(k as u32) % n) as f64 / 2.0);
+            for c in 0..3 {
+                let expected = p.derivative(c).eval(t) / (hi[c] - lo[c]);
+                assert!(
+                    (gs[c] - expected).abs() < 1e-12,
+                    "{s} {c}: {} {expected}",
+                    gs[c]
+                );
+            }
+        }
     }
 }

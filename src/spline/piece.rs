@@ -3,7 +3,7 @@
 //! quality evaluate (one set of `4^d` Bézier points per element instead of the basis at every
 //! point).
 
-use super::bernstein::{bernstein3, bernstein_blossom, knot, Bernstein};
+use super::bernstein::{bernstein_blossom, knot, Bernstein, GridTables};
 use super::jacobian::jacobian_determinant;
 use super::map::SplineMap;
 use super::space::SplineSpace;
@@ -55,15 +55,15 @@ impl<const D: usize> Piece<D> {
     /// The Jacobians (`J[a][b] = ∂S_a/∂x_b`, parametric coordinates) at the `n^d` points of the
     /// box's uniform grid, its corners included (`n ≥ 2`), direction 0 fastest.
     pub(super) fn grid_jacobians(&self, n: usize) -> Vec<Matrix<D>> {
-        let n = n.max(2);
-        // Per direction and grid line: the four Bernstein values and slopes.
+        let grid = GridTables::new(n);
+        let n = grid.points();
+        // Per direction and grid line: the four Bernstein values and slopes on the box.
         let tables: [Vec<([f64; 4], [f64; 4])>; D] = std::array::from_fn(|k| {
             let h = self.hi[k] - self.lo[k];
-            (0..n)
-                .map(|i| {
-                    let (v, d) = bernstein3(i as f64 / (n - 1) as f64);
-                    (v, d.map(|s| s / h))
-                })
+            grid.values
+                .iter()
+                .zip(&grid.slopes)
+                .map(|(v, d)| (*v, d.map(|s| s / h)))
                 .collect()
         });
         (0..n.pow(D as u32))

@@ -70,8 +70,9 @@ impl<const D: usize> SplineMap<D, ThbSpace<D>> {
     /// when `power > 1`); the sweeps stop when one no longer lifts the smallest sampled mean
     /// ratio by 1% of itself or the mean by 1%, or when the next lift, extrapolated
     /// geometrically from the last two, would be under 1%. Where a `power > 1` smoothing keeps
-    /// nothing, the `power = 1` one runs. `validity` is the map's validity with the options `certify`;
-    /// returns the validity of the map kept. A map that is not certified is left as it is.
+    /// nothing, the `power = 1` one runs. `validity` is the map's validity with the options
+    /// `certify`; returns the validity of the map kept. A map that is not certified is left as
+    /// it is.
     pub fn smooth(
         &mut self,
         validity: ValidityReport,

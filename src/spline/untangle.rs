@@ -42,8 +42,8 @@ pub struct UntangleOptions {
     /// Largest move of a control point of a function non-zero on the boundary of \[0,1\]^d, in
     /// coordinates that map the control points' bounding box onto a unit box; 0 keeps the
     /// boundary of the map. The boundary moves only when moving the inner control points alone
-    /// leaves elements uncertified. Default 1e-2,
-    /// as [`DomainOptions::boundary_offset`](crate::domain::DomainOptions::boundary_offset).
+    /// leaves elements uncertified. Default 1e-2, as
+    /// [`DomainOptions::boundary_offset`](crate::domain::DomainOptions::boundary_offset).
     pub boundary_offset: f64,
     /// Largest number of smoothing sweeps over the inner control points of a certified map
     /// ([`SplineMap::smooth`], the stage that follows the untangling, or a fit certified as it
