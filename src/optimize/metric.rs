@@ -90,6 +90,126 @@ pub struct Local<const D: usize> {
     pub hessian: Matrix<D>,
 }
 
+/// The terms of one node's objective, whatever their representation: what the per-node solver
+/// (`node.rs`) asks of them.
+pub trait NodeTerms<const D: usize>: Sync {
+    /// Whether there is no term.
+    fn is_empty(&self) -> bool;
+    /// `det S` of every term at the node position `x`.
+    fn dets(&self, x: &Vector<D>) -> impl Iterator<Item = f64>;
+    /// `Σ w η*(S(x))^power`, with its gradient and Hessian if `derivatives` (see [`evaluate`]).
+    fn evaluate(&self, x: &Vector<D>, delta: f64, derivatives: bool, power: f64) -> Local<D>;
+}
+
+impl<const D: usize> NodeTerms<D> for [Term<D>] {
+    fn is_empty(&self) -> bool {
+        <[Term<D>]>::is_empty(self)
+    }
+
+    fn dets(&self, x: &Vector<D>) -> impl Iterator<Item = f64> {
+        self.iter().map(move |t| det(&t.jacobian(x)))
+    }
+
+    fn evaluate(&self, x: &Vector<D>, delta: f64, derivatives: bool, power: f64) -> Local<D> {
+        evaluate(self, x, delta, derivatives, power)
+    }
+}
+
+/// What the sum of the terms' `w η*^power` needs besides each term's invariants: the
+/// regularisation, the power and how to raise to it, and whether derivatives are wanted.
+pub(super) struct Accumulator<const D: usize> {
+    delta: f64,
+    power: f64,
+    lift: Lift,
+    derivatives: bool,
+    /// The sum so far.
+    pub(super) out: Local<D>,
+}
+
+/// A term's Jacobian's derivatives with respect to the node: `∇N = 2 S g` (`N = ‖S‖²`),
+/// `∇σ = cof(S) g` (`σ = det S`) and `|g|²` (`∇²N = 2|g|² I`, `∇²σ = 0`).
+pub(super) struct TermSlopes<const D: usize> {
+    pub(super) grad_n: Vector<D>,
+    pub(super) grad_sigma: Vector<D>,
+    pub(super) gg: f64,
+}
+
+impl<const D: usize> Accumulator<D> {
+    /// An empty sum.
+    pub(super) fn new(delta: f64, derivatives: bool, power: f64) -> Self {
+        Accumulator {
+            delta,
+            power,
+            lift: Lift::new(power),
+            derivatives,
+            out: Local {
+                value: 0.0,
+                gradient: [0.0; D],
+                hessian: [[0.0; D]; D],
+            },
+        }
+    }
+
+    /// Adds the term of weight `w` whose Jacobian has determinant `sigma` and squared norm `n`
+    /// (its `slopes` computed only when derivatives are wanted). Returns `false`, with the
+    /// value made `+∞`, where `h(σ) ≤ 0`: the sum is then infinite and the caller stops.
+    #[inline]
+    pub(super) fn add(
+        &mut self,
+        w: f64,
+        sigma: f64,
+        n: f64,
+        slopes: impl FnOnce() -> TermSlopes<D>,
+    ) -> bool {
+        let (m, inv_d, power) = (2.0 / D as f64, 1.0 / D as f64, self.power);
+        let (h, dh, d2h) = regularised_det(sigma, self.delta);
+        if h <= 0.0 {
+            self.out.value = f64::INFINITY;
+            return false;
+        }
+        let p = inverse_power::<D>(h);
+        // With `power` ≠ 1 the term is `w η^power`: its derivatives are those of `η` times
+        // `power η^(power-1)` (`lift` is `η^(power-1)`), plus `power (power-1) η^(power-2)
+        // ∇η ∇ηᵀ` in the Hessian (`curvature` is `(power-1)/η` times the scale of `∇η`). The
+        // mean distortion (`power` 1, the T-mesh optimizer's hot path) computes none of these.
+        let (value, lift, curvature) = match power == 1.0 {
+            true => (w * inv_d * n * p, 1.0, 0.0),
+            false => {
+                let eta = inv_d * n * p;
+                let lift = self.lift.of(eta);
+                (w * eta * lift, lift, (power - 1.0) * inv_d / eta)
+            }
+        };
+        self.out.value += value;
+        if !self.derivatives {
+            return true;
+        }
+        let TermSlopes {
+            grad_n,
+            grad_sigma: c,
+            gg,
+        } = slopes();
+        let dp = -m * p / h * dh;
+        let d2p = m * (m + 1.0) * p / (h * h) * dh * dh - m * p / h * d2h;
+        let scale = w * inv_d * power * lift;
+        let grad: Vector<D> = std::array::from_fn(|i| grad_n[i] * p + n * dp * c[i]);
+        for i in 0..D {
+            self.out.gradient[i] += scale * grad[i];
+            for j in 0..D {
+                let mut hij = dp * (grad_n[i] * c[j] + c[i] * grad_n[j]) + n * d2p * c[i] * c[j];
+                if i == j {
+                    hij += 2.0 * gg * p;
+                }
+                if curvature != 0.0 {
+                    hij += curvature * grad[i] * grad[j];
+                }
+                self.out.hessian[i][j] += scale * hij;
+            }
+        }
+        true
+    }
+}
+
 /// `Σ w η*(S(x))^power` over the terms, with value only (`derivatives = false`) or also gradient
 /// and Hessian. The value is `+∞` when `δ = 0` and some `det S ≤ 0`. `power` 1 is the mean
 /// distortion; a larger one weighs the worst points more (a smoothed maximum).
@@ -100,63 +220,19 @@ pub fn evaluate<const D: usize>(
     derivatives: bool,
     power: f64,
 ) -> Local<D> {
-    let m = 2.0 / D as f64;
-    let inv_d = 1.0 / D as f64;
-    let lift = Lift::new(power);
-    let mut out = Local {
-        value: 0.0,
-        gradient: [0.0; D],
-        hessian: [[0.0; D]; D],
-    };
+    let mut sum = Accumulator::new(delta, derivatives, power);
     for t in terms {
         let s = t.jacobian(x);
-        let sigma = det(&s);
-        let n = frobenius2(&s);
-        let (h, dh, d2h) = regularised_det(sigma, delta);
-        if h <= 0.0 {
-            out.value = f64::INFINITY;
-            return out;
-        }
-        let p = inverse_power::<D>(h);
-        // With `power` ≠ 1 the term is `w η^power`: its derivatives are those of `η` times
-        // `power η^(power-1)` (`lift` is `η^(power-1)`), plus `power (power-1) η^(power-2)
-        // ∇η ∇ηᵀ` in the Hessian (`curvature` is `(power-1)/η` times the scale of `∇η`). The
-        // mean distortion (`power` 1, the T-mesh optimizer's hot path) computes none of these.
-        let (value, lift, curvature) = match power == 1.0 {
-            true => (t.w * inv_d * n * p, 1.0, 0.0),
-            false => {
-                let eta = inv_d * n * p;
-                let lift = lift.of(eta);
-                (t.w * eta * lift, lift, (power - 1.0) * inv_d / eta)
-            }
+        let slopes = || TermSlopes {
+            grad_n: mul_vec(&s, &t.g).map(|v| 2.0 * v),
+            grad_sigma: mul_vec(&cofactor(&s), &t.g),
+            gg: dot(&t.g, &t.g),
         };
-        out.value += value;
-        if !derivatives {
-            continue;
-        }
-        // ∇N = 2 S g, ∇σ = cof(S) g, ∇²N = 2|g|² I, ∇²σ = 0.
-        let grad_n = mul_vec(&s, &t.g).map(|v| 2.0 * v);
-        let c = mul_vec(&cofactor(&s), &t.g);
-        let dp = -m * p / h * dh;
-        let d2p = m * (m + 1.0) * p / (h * h) * dh * dh - m * p / h * d2h;
-        let gg = dot(&t.g, &t.g);
-        let scale = t.w * inv_d * power * lift;
-        let grad: Vector<D> = std::array::from_fn(|i| grad_n[i] * p + n * dp * c[i]);
-        for i in 0..D {
-            out.gradient[i] += scale * grad[i];
-            for j in 0..D {
-                let mut hij = dp * (grad_n[i] * c[j] + c[i] * grad_n[j]) + n * d2p * c[i] * c[j];
-                if i == j {
-                    hij += 2.0 * gg * p;
-                }
-                if curvature != 0.0 {
-                    hij += curvature * grad[i] * grad[j];
-                }
-                out.hessian[i][j] += scale * hij;
-            }
+        if !sum.add(t.w, det(&s), frobenius2(&s), slopes) {
+            break;
         }
     }
-    out
+    sum.out
 }
 
 /// How `η^(power − 1)` is computed, chosen once per evaluation: by multiplications for an
@@ -200,18 +276,17 @@ impl Lift {
 
 /// The per-node δ: with `σ_min` and the mean `|σ|` over the node's terms,
 /// `δ₀ = √(ε(ε − σ_min))` if `σ_min < ε` (else 0) and `δ = max(δ₀, 10⁻⁴·mean|σ|)`.
-pub fn choose_delta<const D: usize>(terms: &[Term<D>], x: &Vector<D>) -> f64 {
+pub fn choose_delta<const D: usize, T: NodeTerms<D> + ?Sized>(terms: &T, x: &Vector<D>) -> f64 {
     if terms.is_empty() {
         return 0.0;
     }
-    let mut sigma_min = f64::INFINITY;
-    let mut mean_abs = 0.0;
-    for t in terms {
-        let sigma = det(&t.jacobian(x));
+    let (mut sigma_min, mut mean_abs, mut count) = (f64::INFINITY, 0.0, 0usize);
+    for sigma in terms.dets(x) {
         sigma_min = sigma_min.min(sigma);
         mean_abs += sigma.abs();
+        count += 1;
     }
-    mean_abs /= terms.len() as f64;
+    mean_abs /= count as f64;
     let eps = DELTA_EPSILON;
     let delta0 = if sigma_min < eps {
         (eps * (eps - sigma_min)).sqrt()
@@ -291,7 +366,7 @@ mod tests {
             g: [0.0, 0.0],
             w: 1.0,
         }];
-        let d = choose_delta(&ideal, &[0.0, 0.0]);
+        let d = choose_delta(&ideal[..], &[0.0, 0.0]);
         assert!((d - 1e-4).abs() < 1e-18);
         let tangled = [Term {
             a: [[1.0, 0.0], [0.0, -1.0]],
@@ -299,7 +374,8 @@ mod tests {
             w: 1.0,
         }];
         assert!(
-            choose_delta(&tangled, &[0.0, 0.0]) >= (DELTA_EPSILON * (DELTA_EPSILON + 1.0)).sqrt()
+            choose_delta(&tangled[..], &[0.0, 0.0])
+                >= (DELTA_EPSILON * (DELTA_EPSILON + 1.0)).sqrt()
         );
     }
 }

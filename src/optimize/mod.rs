@@ -4,6 +4,7 @@
 //!
 //! Written once for d = 2 and 3 through const generics.
 
+pub mod affine;
 mod aggregation;
 pub mod amg;
 pub mod blocks;

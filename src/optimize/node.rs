@@ -1,8 +1,8 @@
 //! Minimisation of one node's objective: Newton with the analytic Hessian made positive definite
 //! (modified Cholesky) and a backtracking line search that never accepts an increase.
 
-use super::metric::{choose_delta, evaluate, Local, Term};
-use super::small_matrix::{det, dot, solve_spd_modified, Vector};
+use super::metric::{choose_delta, Local, NodeTerms};
+use super::small_matrix::{dot, solve_spd_modified, Vector};
 
 /// Stopping rules of the per-node solver.
 #[derive(Clone, Copy, Debug)]
@@ -21,8 +21,8 @@ pub struct NodeSolverOptions {
 /// Minimises `Σ w η*^power` over the terms starting from `x0`, moving only the components whose
 /// bit is set in `free`. `weight_sum` normalises the objective, `length` scales the gradient and
 /// bounds the step. Returns the new position, or `None` when the node stays where it is.
-pub fn minimise<const D: usize>(
-    terms: &[Term<D>],
+pub fn minimise<const D: usize, T: NodeTerms<D> + ?Sized>(
+    terms: &T,
     x0: Vector<D>,
     free: u8,
     weight_sum: f64,
@@ -39,7 +39,7 @@ pub fn minimise<const D: usize>(
     let delta = choose_delta(terms, &x0);
     let scale = 1.0 / weight_sum;
     let objective = |x: &Vector<D>, derivatives: bool| {
-        let mut l = evaluate(terms, x, delta, derivatives, options.power);
+        let mut l = terms.evaluate(x, delta, derivatives, options.power);
         l.value *= scale;
         for (k, &a) in active.iter().enumerate() {
             l.gradient[k] = if a { l.gradient[k] * scale } else { 0.0 };
@@ -124,9 +124,13 @@ fn line_search<const D: usize>(
 
 /// Whether moving the node from `x` to `over` inverts none of the points of `terms` that are
 /// not inverted at `x`.
-fn keeps_signs<const D: usize>(terms: &[Term<D>], x: &Vector<D>, over: &Vector<D>) -> bool {
-    terms.iter().all(|t| {
-        let before = det(&t.jacobian(x));
-        before <= 0.0 || det(&t.jacobian(over)) > 0.0
-    })
+fn keeps_signs<const D: usize, T: NodeTerms<D> + ?Sized>(
+    terms: &T,
+    x: &Vector<D>,
+    over: &Vector<D>,
+) -> bool {
+    terms
+        .dets(x)
+        .zip(terms.dets(over))
+        .all(|(before, after)| before <= 0.0 || after > 0.0)
 }

@@ -144,7 +144,14 @@ fn sweep_once<const D: usize, T: Team>(
         let solve = |terms: &mut Vec<_>, &v: &usize| {
             let (weight_sum, length) = problem.node_terms(v, snapshot, terms);
             let free = problem.free_mask(v);
-            let x = minimise(terms, snapshot[v], free, weight_sum, length, &options.node);
+            let x = minimise(
+                &terms[..],
+                snapshot[v],
+                free,
+                weight_sum,
+                length,
+                &options.node,
+            );
             (v, x, length)
         };
         let results: Vec<(usize, Option<Vector<D>>, f64)> =

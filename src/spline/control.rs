@@ -3,8 +3,10 @@
 //! T-mesh optimizer's per-node Newton solver over the free control points.
 //!
 //! `J_S` at a point is affine in each control point (`J_S = A + P_i ∇N_iᵀ`), exactly the form of
-//! a T-mesh node's terms ([`Term`]), so the kernel's objective (the regularised mean-ratio
-//! distortion), its δ rule and its solver apply unchanged. Control points whose supports share
+//! a T-mesh node's terms, so the kernel's objective (the regularised mean-ratio distortion), its
+//! δ rule and its solver apply unchanged; the terms are stored by their invariants
+//! ([`AffineTerms`]), a control point's objective looking at a thousand samples or more.
+//! Control points whose supports share
 //! no element do not interact: they are coloured so, each colour is solved in parallel and its
 //! moves applied in order, so the result does not depend on the number of threads.
 
@@ -16,7 +18,8 @@ use super::bernstein::GridTables;
 use super::map::SplineMap;
 use super::space::SplineSpace;
 use super::thb::ThbSpace;
-use crate::optimize::metric::{mean_ratio, Term};
+use crate::optimize::affine::AffineTerms;
+use crate::optimize::metric::mean_ratio;
 use crate::optimize::node::minimise;
 use crate::optimize::small_matrix::{add_outer, det, Matrix, Vector};
 use crate::optimize::NodeSolverOptions;
@@ -240,14 +243,13 @@ impl<const D: usize> Region<D> {
 
     /// The objective terms of free function `i` (of `touches`), its control point at `y[f]`:
     /// one per sample of each element it touches, weighted equally per element.
-    fn terms(&self, i: usize, y: &[Vector<D>]) -> Vec<Term<D>> {
+    fn terms(&self, i: usize, y: &[Vector<D>]) -> AffineTerms<D> {
         let (f, touches) = &self.touches[i];
-        let minus: Vector<D> = y[*f].map(|v| -v);
         let count = touches
             .iter()
             .map(|&(r, _)| self.elements[r].sample_count())
             .sum();
-        let mut out = Vec::with_capacity(count);
+        let mut out = AffineTerms::new(y[*f], count);
         for &(r, at) in touches {
             let element = &self.elements[r];
             let w = 1.0 / element.sample_count() as f64;
@@ -256,11 +258,7 @@ impl<const D: usize> Region<D> {
                 if g.iter().all(|&v| v == 0.0) {
                     continue;
                 }
-                out.push(Term {
-                    a: add_outer(j, &minus, &g),
-                    g,
-                    w,
-                });
+                out.push(j, g, w);
             }
         }
         out
@@ -286,7 +284,7 @@ impl<const D: usize> Region<D> {
                 .filter_map(|&i| {
                     let f = this.touches[i].0;
                     let terms = this.terms(i, y_now);
-                    let weight_sum: f64 = terms.iter().map(|t| t.w).sum();
+                    let weight_sum = terms.weight_sum();
                     let next = minimise(
                         &terms,
                         y_now[f],
