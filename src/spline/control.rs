@@ -6,9 +6,9 @@
 //! a T-mesh node's terms, so the kernel's objective (the regularised mean-ratio distortion), its
 //! δ rule and its solver apply unchanged; the terms are stored by their invariants
 //! ([`AffineTerms`]), a control point's objective looking at a thousand samples or more.
-//! Control points whose supports share
-//! no element do not interact: they are coloured so, each colour is solved in parallel and its
-//! moves applied in order, so the result does not depend on the number of threads.
+//! Control points whose supports share no element do not interact: they are coloured so, each
+//! colour is solved in parallel and its moves applied in order, so the result does not depend
+//! on the number of threads.
 
 use std::collections::{BTreeSet, HashMap};
 
