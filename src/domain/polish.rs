@@ -56,6 +56,8 @@ impl<const D: usize, B: CubeMap<D>> Domain<D, B> {
         let newton = StationaryOptions {
             tolerance: options.stationarity_tolerance,
             max_iterations: MAX_POLISH_ITERATIONS,
+            // The solver is not kept.
+            exact_solver: false,
         };
         let (stats, _) =
             stationary::minimise(pool, &problem, &setup, &mut x, &newton, None, progress)?;

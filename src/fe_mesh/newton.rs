@@ -75,8 +75,11 @@ impl Mesh {
             problem,
             &setup,
             start,
-            goal,
-            options.newton_tolerance(),
+            path::Goal {
+                positions: goal,
+                tolerance: options.newton_tolerance(),
+                exact_solver: options.stationarity_tolerance > 0.0,
+            },
             &mut |i| progress(Stage::Stationarity, done + i, 0),
         )?;
         report.newton_iterations += outcome.newton_iterations;
@@ -139,6 +142,8 @@ impl Mesh {
                 let start_options = StationaryOptions {
                     tolerance: START_TOLERANCE.min(options.newton_tolerance()),
                     max_iterations: MAX_NEWTON_ITERATIONS,
+                    // The start's solver predicts the first step: it need not be exact.
+                    exact_solver: false,
                 };
                 let (stats, solver) = stationary::minimise(
                     pool,
@@ -202,6 +207,7 @@ impl Mesh {
         let stationary_options = StationaryOptions {
             tolerance: options.stationarity_tolerance,
             max_iterations: MAX_NEWTON_ITERATIONS,
+            exact_solver: true,
         };
         let done = report.newton_iterations as usize;
         let (stats, solver) = stationary::minimise(

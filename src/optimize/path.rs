@@ -61,15 +61,26 @@ pub struct PathStart<const D: usize> {
     pub solver: Arc<HessianSolver<D>>,
 }
 
-/// Follows the optimum from `start` to the prescribed values of `goal` (its free components are
-/// ignored), meeting `tolerance` at the goal. `progress(newton_iterations)` may cancel.
+/// Where path following ends, and how.
+#[derive(Clone, Copy)]
+pub struct Goal<'a, const D: usize> {
+    /// The positions whose prescribed coordinates are the goal (the free ones are ignored).
+    pub positions: &'a [Vector<D>],
+    /// The scaled-gradient tolerance met there.
+    pub tolerance: f64,
+    /// Whether the solver returned must be that of the Hessian at the final state
+    /// ([`StationaryOptions::exact_solver`]): the sensitivities are asked for.
+    pub exact_solver: bool,
+}
+
+/// Follows the optimum from `start` to the prescribed values of `goal`, meeting its tolerance
+/// there. `progress(newton_iterations)` may cancel.
 pub fn follow<const D: usize>(
     pool: &ThreadPool,
     problem: &Problem<D>,
     setup: &Arc<SolverSetup>,
     start: PathStart<D>,
-    goal: &[Vector<D>],
-    tolerance: f64,
+    goal: Goal<'_, D>,
     progress: &mut dyn FnMut(usize) -> bool,
 ) -> Result<PathOutcome<D>> {
     let prescribed = start.solver.prescribed();
@@ -88,10 +99,10 @@ pub fn follow<const D: usize>(
     while let Some(t) = schedule.next() {
         let last = t >= 1.0;
         // The prescribed coordinates at t, and their motion over this step.
-        let target: Vec<Vector<D>> = (0..goal.len())
+        let target: Vec<Vector<D>> = (0..goal.positions.len())
             .map(|v| {
                 std::array::from_fn(|k| match prescribed[v] & (1 << k) != 0 {
-                    true => prescribed_at(&origin[v], &goal[v], k, t),
+                    true => prescribed_at(&origin[v], &goal.positions[v], k, t),
                     false => outcome.x[v][k],
                 })
             })
@@ -106,8 +117,9 @@ pub fn follow<const D: usize>(
         let corrected = match predicted {
             Some(mut x) if invalid == 0 => {
                 let options = StationaryOptions {
-                    tolerance: if last { tolerance } else { STEP_TOLERANCE },
+                    tolerance: if last { goal.tolerance } else { STEP_TOLERANCE },
                     max_iterations: CORRECTOR_ITERATIONS,
+                    exact_solver: last && goal.exact_solver,
                 };
                 let done = outcome.newton_iterations as usize;
                 let (stats, solver) = minimise(

@@ -26,6 +26,12 @@ pub struct StationaryOptions {
     pub tolerance: f64,
     /// Largest number of Newton iterations.
     pub max_iterations: u32,
+    /// Whether the solver returned must be that of the Hessian at the final state (the
+    /// sensitivities' operator). Else, where a step is expected to end the minimisation, its
+    /// state is evaluated without the Hessian first and, the tolerance met, the solver returned
+    /// is that of the state before it: a predictor's operator, off by the last step (a
+    /// relative change of about the tolerance), for a fraction of an evaluation's cost.
+    pub exact_solver: bool,
 }
 
 /// What the Newton stage did.
@@ -67,8 +73,9 @@ const NODE_STEP: f64 = 4.0;
 
 /// Minimises `F` over the free coordinates of `x` (a valid state). `preconditioner`, when given,
 /// comes from a nearby state and is used while it pays. Returns the stats and the solver of the
-/// Hessian at the final `x` (when one could be made): the sensitivities' operator where the
-/// tolerance was met, the predictor of path following. `progress(iterations)` may cancel.
+/// Hessian at the final `x` (when one could be made; see [`StationaryOptions::exact_solver`]):
+/// the sensitivities' operator where the tolerance was met, the predictor of path following.
+/// `progress(iterations)` may cancel.
 pub fn minimise<const D: usize>(
     pool: &ThreadPool,
     problem: &Problem<D>,
@@ -128,18 +135,19 @@ pub fn minimise<const D: usize>(
                 stats.iterations, stats.gradient_norm, eval.value, solved
             );
         }
-        match line_search(
-            pool,
-            &objective,
-            &free,
-            x,
-            &eval,
-            &step,
-            stats.gradient_norm,
-        ) {
+        let search = Search::after(options, stats.gradient_norm, &solved);
+        match line_search(pool, &objective, &free, x, &eval, &step, search) {
             Some((next, next_eval)) => {
                 x.copy_from_slice(&next);
                 eval = next_eval;
+                if eval.hessian.is_none() {
+                    let norm = scaled_gradient_norm(&objective, &free, &eval.gradient);
+                    if norm <= options.tolerance {
+                        (stats.gradient_norm, stats.converged) = (norm, true);
+                        return Ok((stats, Some(solver)));
+                    }
+                    eval = objective.evaluate(pool, x, true);
+                }
                 preconditioner = Some(solver.preconditioner().clone());
             }
             None => return Ok((stats, Some(solver))),
@@ -221,6 +229,31 @@ impl<const D: usize> Newton<'_, D> {
     }
 }
 
+/// What a line search starts from besides the state: the scaled gradient norm there, and
+/// whether the full step's state is evaluated with its Hessian (else without, when the step is
+/// expected to be the last).
+#[derive(Clone, Copy)]
+struct Search {
+    gradient_norm: f64,
+    hessian: bool,
+}
+
+impl Search {
+    /// The search after a step from a state of scaled gradient norm `gradient_norm`, solved
+    /// as `solved`: the full step's state is evaluated without its Hessian where the solver
+    /// returned need not be exact and the step is expected to end the minimisation (the
+    /// linear model's residual within the tolerance, its quadratic term negligible).
+    fn after(options: &StationaryOptions, gradient_norm: f64, solved: &SolveStats) -> Self {
+        let tolerance = options.tolerance;
+        let last = gradient_norm * gradient_norm <= tolerance
+            && solved.residual * gradient_norm <= tolerance;
+        Search {
+            gradient_norm,
+            hessian: options.exact_solver || !last,
+        }
+    }
+}
+
 /// Backtracks along `step` from `x` until `F` decreases enough (Armijo), or — where the decrease
 /// is below `F`'s round-off — until the scaled gradient decreases. The step is first cut so that
 /// no node moves more than a few local lengths.
@@ -231,8 +264,9 @@ fn line_search<const D: usize>(
     x: &[Vector<D>],
     eval: &Evaluation<D>,
     step: &[Vector<D>],
-    gradient_norm: f64,
+    search: Search,
 ) -> Option<(Vec<Vector<D>>, Evaluation<D>)> {
+    let gradient_norm = search.gradient_norm;
     let step = mask(free, step);
     let slope: f64 = eval
         .gradient
@@ -261,7 +295,7 @@ fn line_search<const D: usize>(
             .collect();
         // The first trial, which a Newton step near the optimum passes, is evaluated with its
         // derivatives at once; the backtracking ones by value only, their derivatives when kept.
-        let mut full = (tries == 0).then(|| objective.evaluate(pool, &trial, true));
+        let mut full = (tries == 0).then(|| objective.evaluate(pool, &trial, search.hessian));
         let value = match &full {
             Some(e) => e.value,
             None => objective.value(pool, &trial),
