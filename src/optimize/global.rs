@@ -103,7 +103,7 @@ impl<'p, const D: usize> GlobalObjective<'p, D> {
                     .map(|&c| self.cell(c, x, hessian))
                     .collect()
             });
-            for (&c, local) in chunk.iter().zip(locals) {
+            for (&c, local) in chunk.iter().zip(&locals) {
                 out.value += local.value;
                 let nodes = self.problem.cell_nodes(c);
                 for (&v, g) in nodes.iter().zip(&local.gradient) {
@@ -111,17 +111,65 @@ impl<'p, const D: usize> GlobalObjective<'p, D> {
                         *o += gk;
                     }
                 }
-                if let Some(h) = out.hessian.as_mut() {
-                    let map = self.layout.cell_blocks(c);
-                    for (&b, block) in map.iter().zip(&local.hessian) {
-                        if b != NONE {
-                            add_to(&mut h.blocks[b as usize], block);
-                        }
-                    }
-                }
+            }
+            if let Some(h) = out.hessian.as_mut() {
+                self.assemble(pool, chunk, &locals, h);
             }
         }
         out
+    }
+
+    /// Adds the Hessian blocks of the `chunk`'s cells (`locals`, in the chunk's order) to `h`,
+    /// rows in parallel. Each block receives the cells' contributions in cell order, as one
+    /// pass over the cells would add them: the sums are the same to the last bit, for any
+    /// thread count. (Adding them in one pass took more time than computing them on the wing:
+    /// 0.28 s against 0.19 s per evaluation.)
+    fn assemble(
+        &self,
+        pool: &ThreadPool,
+        chunk: &[usize],
+        locals: &[Local<D>],
+        h: &mut BlockMatrix<D>,
+    ) {
+        // (node, position of the cell in the chunk, node's place in the cell), by node then cell.
+        let mut touches: Vec<(u32, u32, u32)> = Vec::new();
+        for (i, &c) in chunk.iter().enumerate() {
+            let nodes = self.problem.cell_nodes(c);
+            touches.extend(
+                nodes
+                    .iter()
+                    .enumerate()
+                    .map(|(r, &v)| (v, i as u32, r as u32)),
+            );
+        }
+        touches.sort_unstable();
+        // The rows touched, each with its slice of the blocks (rows are contiguous, ascending).
+        let mut rows = Vec::new();
+        let (mut rest, mut offset) = (&mut h.blocks[..], 0usize);
+        for group in touches.chunk_by(|a, b| a.0 == b.0) {
+            let range = self.layout.row(group[0].0 as usize).0;
+            let tail = std::mem::take(&mut rest)
+                .split_at_mut(range.start - offset)
+                .1;
+            let (row, tail) = tail.split_at_mut(range.len());
+            (rest, offset) = (tail, range.end);
+            rows.push((group, range.start, row));
+        }
+        pool.install(|| {
+            rows.into_par_iter().for_each(|(group, first, row)| {
+                for &(_, i, r) in group {
+                    let (c, local) = (chunk[i as usize], &locals[i as usize]);
+                    let count = self.problem.cell_nodes(c).len();
+                    let at = r as usize * count..(r as usize + 1) * count;
+                    let map = &self.layout.cell_blocks(c)[at.clone()];
+                    for (&b, block) in map.iter().zip(&local.hessian[at]) {
+                        if b != NONE {
+                            add_to(&mut row[b as usize - first], block);
+                        }
+                    }
+                }
+            })
+        });
     }
 
     /// Value of `F` at `x` only (`+∞` when some Jacobian folds at δ = 0).
