@@ -25,7 +25,7 @@ const DIRECT_3D_COORDINATES: usize = 60_000;
 
 /// Largest Hessian (stored values) of a 3D mesh too large to factor for which the Newton method
 /// is the default: its multigrid-preconditioned steps keep the Hessian, a compressed copy and
-/// the hierarchy, about 30 bytes per value at the peak (the wing's 60 million values: 1.5 GB,
+/// the hierarchy, about 22 bytes per value at the peak (the wing's 60 million values: 1.3 GB,
 /// where its sweeps take 0.16 GB). 10⁸ values are about 170,000 H27 nodes.
 const MULTIGRID_NEWTON_VALUES: usize = 100_000_000;
 
@@ -102,7 +102,7 @@ impl SolverSetup {
     /// Whether the Newton method is the default ([`Method::Auto`](crate::Method::Auto)): where
     /// solves are direct, or where the Hessian is at most 10⁸ values
     /// (multigrid-preconditioned CG). On the wing (105,060 H27 nodes, 2 threads) Newton's method
-    /// relocates in 9.2 s to min quality 0.974, the sweeps in 14.4 s to 0.954 (same run).
+    /// relocates in 8.9 s to min quality 0.974, the sweeps in 20.5 s to 0.954 (same run).
     pub fn newton_by_default(&self) -> bool {
         self.is_direct() || self.hessian_values <= MULTIGRID_NEWTON_VALUES
     }
