@@ -25,7 +25,7 @@ use rayon::ThreadPool;
 
 use super::aggregation::{aggregate, node_grouping, tentative_prolongator, Grouping};
 use super::blocks::{BlockLayout, BlockMatrix};
-use super::csr::{Csr, SingleCsr};
+use super::csr::Csr;
 use super::lattice;
 use super::problem::Problem;
 use super::small_matrix::Vector;
@@ -47,7 +47,7 @@ const CHEBYSHEV_RATIO: f64 = 30.0;
 /// One level of the hierarchy.
 struct Level {
     /// The operator (in single precision: the smoother's products).
-    a: SingleCsr,
+    a: Csr<f32>,
     /// `1/diag(A)`.
     inverse_diagonal: Vec<f64>,
     /// Estimate of the largest eigenvalue of `D⁻¹A`.
@@ -79,7 +79,7 @@ impl Level {
         let r = p.transpose();
         let coarse = r.product(pool, &a.product(pool, &p));
         let level = Level {
-            a: SingleCsr::new(a),
+            a: a.single(),
             inverse_diagonal,
             lambda,
             p,

@@ -7,9 +7,11 @@
 use rayon::prelude::*;
 use rayon::ThreadPool;
 
-/// A sparse matrix in compressed rows.
+/// A sparse matrix in compressed rows, its values in double precision (`T = f64`, every
+/// operation) or single (`T = f32`, products only: the operator of a multigrid level's
+/// smoother, see [`Csr::single`]).
 #[derive(Clone, Debug, Default)]
-pub struct Csr {
+pub struct Csr<T = f64> {
     /// Number of columns.
     pub columns: usize,
     /// Row `i` holds `start[i]..start[i + 1]` of `column` and `value`.
@@ -17,54 +19,10 @@ pub struct Csr {
     /// Column of each stored value, ascending within a row.
     pub column: Vec<u32>,
     /// Stored values.
-    pub value: Vec<f64>,
+    pub value: Vec<T>,
 }
 
-/// A matrix in compressed rows with its values in single precision: the operator of a multigrid
-/// level's smoother. Its products are bound by memory traffic, 12 bytes per stored value in
-/// double precision and 8 here (the wing's finest level holds 60 million values, and its
-/// products were 45% of the wing's relocation); vectors stay in double precision and every row
-/// sums in double precision, so the smoother is a fixed linear map as before, within rounding
-/// of the values at 6·10⁻⁸.
-#[derive(Clone, Debug, Default)]
-pub struct SingleCsr {
-    start: Vec<usize>,
-    column: Vec<u32>,
-    value: Vec<f32>,
-}
-
-impl SingleCsr {
-    /// The matrix `a` with its values rounded to single precision.
-    pub fn new(a: Csr) -> Self {
-        SingleCsr {
-            value: a.value.iter().map(|&v| v as f32).collect(),
-            start: a.start,
-            column: a.column,
-        }
-    }
-
-    /// Number of rows.
-    pub fn rows(&self) -> usize {
-        self.start.len() - 1
-    }
-
-    /// `y = A x` (rows in parallel, each summed in column order).
-    pub fn apply(&self, pool: &ThreadPool, x: &[f64], y: &mut [f64]) {
-        pool.install(|| {
-            y.par_iter_mut().enumerate().for_each(|(i, yi)| {
-                let range = self.start[i]..self.start[i + 1];
-                let (cols, vals) = (&self.column[range.clone()], &self.value[range]);
-                *yi = cols
-                    .iter()
-                    .zip(vals)
-                    .map(|(&c, &v)| f64::from(v) * x[c as usize])
-                    .sum();
-            })
-        });
-    }
-}
-
-impl Csr {
+impl<T: Copy + Into<f64> + Send + Sync> Csr<T> {
     /// Number of rows.
     pub fn rows(&self) -> usize {
         self.start.len() - 1
@@ -76,9 +34,40 @@ impl Csr {
     }
 
     /// The columns and values of row `i`.
-    pub fn row(&self, i: usize) -> (&[u32], &[f64]) {
+    pub fn row(&self, i: usize) -> (&[u32], &[T]) {
         let range = self.start[i]..self.start[i + 1];
         (&self.column[range.clone()], &self.value[range])
+    }
+
+    /// `y = A x`, each row summed in double precision.
+    pub fn apply(&self, pool: &ThreadPool, x: &[f64], y: &mut [f64]) {
+        pool.install(|| {
+            y.par_iter_mut().enumerate().for_each(|(i, yi)| {
+                let (cols, vals) = self.row(i);
+                *yi = cols
+                    .iter()
+                    .zip(vals)
+                    .map(|(&c, &v)| v.into() * x[c as usize])
+                    .sum();
+            })
+        });
+    }
+}
+
+impl Csr {
+    /// The matrix with its values rounded to single precision, for products only. Products
+    /// are bound by memory traffic, 12 bytes per stored value in double precision and 8 in
+    /// single (the wing's finest multigrid level holds 60 million values, and its products
+    /// were 45% of the wing's relocation); the vectors and the rows' sums stay in double
+    /// precision, so the product is a fixed linear map, within rounding of the values at
+    /// 6·10⁻⁸.
+    pub fn single(self) -> Csr<f32> {
+        Csr {
+            columns: self.columns,
+            value: self.value.iter().map(|&v| v as f32).collect(),
+            start: self.start,
+            column: self.column,
+        }
     }
 
     /// Builds a matrix from rows given as `(column, value)` lists (sorted, no repeats).
@@ -97,16 +86,6 @@ impl Csr {
             m.start.push(m.column.len());
         }
         m
-    }
-
-    /// `y = A x`.
-    pub fn apply(&self, pool: &ThreadPool, x: &[f64], y: &mut [f64]) {
-        pool.install(|| {
-            y.par_iter_mut().enumerate().for_each(|(i, yi)| {
-                let (cols, vals) = self.row(i);
-                *yi = cols.iter().zip(vals).map(|(&c, v)| v * x[c as usize]).sum();
-            })
-        });
     }
 
     /// The diagonal (0 where not stored).

@@ -55,9 +55,9 @@ pub struct UntangleOptions {
     /// distortion (`p = 1`) would not move it. Such a smoothing samples two points more per
     /// direction than `samples` (with four, `p = 4` folded Gran Canaria's map between samples;
     /// with five, its certified bound fell while the sampled minimum rose), and where it cannot
-    /// lift the map the `p = 1` smoothing runs instead. On the 3D duck it
-    /// lifted nothing (the smallest q_S is held at the boundary) and doubled the smoothing's
-    /// time, hence 1 for solids by default.
+    /// lift the map the `p = 1` smoothing runs instead. On the 3D duck it lifted nothing (the
+    /// smallest q_S is held at the boundary) and doubled the smoothing's time, hence 1 for
+    /// solids by default.
     pub smoothing_power: f64,
 }
 
