@@ -239,7 +239,7 @@ pub fn evaluate<const D: usize>(
 /// integer power (the default 4 of the spline smoothing, where `powf` was most of the cost of a
 /// term, and a per-term test of the power's kind and `powi`'s library call a fifth of it).
 #[derive(Clone, Copy)]
-enum Lift {
+pub(super) enum Lift {
     /// `η^k` for an integer `k` from 0 to 63.
     Integer(u32),
     /// `η^e` for any other exponent `e`.
@@ -247,7 +247,8 @@ enum Lift {
 }
 
 impl Lift {
-    fn new(power: f64) -> Self {
+    /// The lift of the distortion raised to `power`.
+    pub(super) fn new(power: f64) -> Self {
         match power.fract() == 0.0 && (1.0..=64.0).contains(&power) {
             true => Lift::Integer(power as u32 - 1),
             false => Lift::Real(power - 1.0),

@@ -231,14 +231,23 @@ impl<const D: usize> Region<D> {
         (smallest, sum / count.max(1) as f64)
     }
 
-    /// Updates the Jacobians after free function `i` (of `touches`) moved by `delta`.
-    fn shift(&mut self, i: usize, delta: Vector<D>) {
-        for &(r, at) in &self.touches[i].1 {
-            let samples = self.elements[r].samples();
-            for (j, gradients) in self.jacobians[r].iter_mut().zip(samples) {
-                *j = add_outer(j, &delta, &gradients[at]);
-            }
-        }
+    /// Updates the Jacobians of the elements with a `pending` move (of the function at that
+    /// position in the element's functions), elements in parallel, and clears them. A colour's
+    /// functions share no element, so each element has one move at most: the same sums as one
+    /// function after the other.
+    fn shift(&mut self, pending: &mut [Option<(usize, Vector<D>)>]) {
+        let elements = &self.elements;
+        self.jacobians
+            .par_iter_mut()
+            .zip(pending.par_iter_mut())
+            .enumerate()
+            .for_each(|(r, (jacobians, pending))| {
+                if let Some((at, delta)) = pending.take() {
+                    for (j, gradients) in jacobians.iter_mut().zip(elements[r].samples()) {
+                        *j = add_outer(j, &delta, &gradients[at]);
+                    }
+                }
+            });
     }
 
     /// The objective terms of free function `i` (of `touches`), its control point at `y[f]`:
@@ -276,6 +285,7 @@ impl<const D: usize> Region<D> {
         moved: &mut BTreeSet<usize>,
     ) -> f64 {
         let mut largest = 0.0f64;
+        let mut pending = vec![None; self.elements.len()];
         for c in 0..self.colours.len() {
             let this = &*self;
             let y_now = &*y;
@@ -302,11 +312,14 @@ impl<const D: usize> Region<D> {
                 let step = delta.iter().map(|v| v * v).sum::<f64>().sqrt();
                 largest = largest.max(step / self.lengths[i]);
                 if step > 0.0 {
-                    self.shift(i, delta);
+                    for &(r, at) in &self.touches[i].1 {
+                        pending[r] = Some((at, delta));
+                    }
                     y[f] = next;
                     moved.insert(f);
                 }
             }
+            self.shift(&mut pending);
         }
         largest
     }
