@@ -24,6 +24,7 @@ use rayon::prelude::*;
 use rayon::ThreadPool;
 
 use super::aggregation::{aggregate, node_grouping, tentative_prolongator, Grouping};
+use super::block_rows::BlockRows;
 use super::blocks::{BlockLayout, BlockMatrix};
 use super::csr::Csr;
 use super::lattice;
@@ -44,10 +45,41 @@ const CHEBYSHEV_DEGREE: usize = 3;
 /// The smoother damps the upper part `[λ_max/30, 1.1 λ_max]` of the Jacobi-scaled spectrum.
 const CHEBYSHEV_RATIO: f64 = 30.0;
 
+/// A level's operator in single precision, for the smoother's products.
+enum Operator {
+    /// In compressed rows.
+    Rows(Csr<f32>),
+    /// By node blocks (the finest level of quadratic cells: half the memory traffic).
+    Blocks(BlockRows),
+}
+
+impl Operator {
+    /// The operator in compressed rows, its values rounded to single precision.
+    fn rows(a: Csr) -> Self {
+        Operator::Rows(a.single())
+    }
+
+    /// `y = A x`.
+    fn apply(&self, pool: &ThreadPool, x: &[f64], y: &mut [f64]) {
+        match self {
+            Operator::Rows(a) => a.apply(pool, x, y),
+            Operator::Blocks(a) => a.apply(pool, x, y),
+        }
+    }
+
+    /// Number of rows.
+    fn size(&self) -> usize {
+        match self {
+            Operator::Rows(a) => a.rows(),
+            Operator::Blocks(a) => a.rows(),
+        }
+    }
+}
+
 /// One level of the hierarchy.
 struct Level {
     /// The operator (in single precision: the smoother's products).
-    a: Csr<f32>,
+    a: Operator,
     /// `1/diag(A)`.
     inverse_diagonal: Vec<f64>,
     /// Estimate of the largest eigenvalue of `D⁻¹A`.
@@ -68,18 +100,19 @@ pub struct Amg {
 
 impl Level {
     /// The level of operator `a` with the prolongator `p` from the next one (and the smoother's
-    /// `inverse_diagonal` and `lambda`), and the next level's operator `PᵀAP`.
+    /// `inverse_diagonal` and `lambda`), and the next level's operator `PᵀAP`; `smoother` makes
+    /// the smoother's operator of `a` once the product is made.
     fn new(
         pool: &ThreadPool,
         a: Csr,
         p: Csr,
-        inverse_diagonal: Vec<f64>,
-        lambda: f64,
+        (inverse_diagonal, lambda): (Vec<f64>, f64),
+        smoother: impl FnOnce(Csr) -> Operator,
     ) -> (Level, Csr) {
         let r = p.transpose();
         let coarse = r.product(pool, &a.product(pool, &p));
         let level = Level {
-            a: a.single(),
+            a: smoother(a),
             inverse_diagonal,
             lambda,
             p,
@@ -130,9 +163,14 @@ impl Amg {
                 // The corner prolongator is not smoothed: the largest eigenvalue is estimated
                 // after, with the level's single-precision operator (a third less traffic).
                 let inverse_diagonal = inverse_diagonal(&a);
-                let (mut level, coarse) = Level::new(pool, a, p, inverse_diagonal, 0.0);
+                // The compressed rows are dropped before the node blocks are made.
+                let blocks = |a: Csr| {
+                    drop(a);
+                    Operator::Blocks(BlockRows::new(pool, layout, hessian, free))
+                };
+                let (mut level, coarse) = Level::new(pool, a, p, (inverse_diagonal, 0.0), blocks);
                 let apply = |x: &[f64], y: &mut [f64]| level.a.apply(pool, x, y);
-                level.lambda = spectral_radius(level.a.rows(), apply, &level.inverse_diagonal);
+                level.lambda = spectral_radius(level.a.size(), apply, &level.inverse_diagonal);
                 levels.push(level);
                 (coarse, grouping, null_space)
             }
@@ -167,7 +205,8 @@ impl Amg {
                 true => smooth_prolongator(pool, &a, &inverse_diagonal, lambda, &tentative),
                 false => tentative,
             };
-            let (level, coarse) = Level::new(pool, a, p, inverse_diagonal, lambda);
+            let (level, coarse) =
+                Level::new(pool, a, p, (inverse_diagonal, lambda), Operator::rows);
             levels.push(level);
             a = coarse;
             grouping = coarse_grouping;
@@ -191,7 +230,7 @@ impl Amg {
         let n = self
             .levels
             .first()
-            .map_or(self.coarsest_size, |l| l.a.rows());
+            .map_or(self.coarsest_size, |l| l.a.size());
         let mut b = vec![0.0; n];
         for (i, &d) in self.dof.iter().enumerate() {
             if d != u32::MAX {

@@ -161,15 +161,23 @@ impl<const D: usize> BlockMatrix<D> {
                     return;
                 }
                 let (blocks, neighbours) = layout.row(v);
+                let full = (1u8 << D) - 1;
                 for (block, &w) in self.blocks[blocks].iter().zip(neighbours) {
                     let (w, mask) = (w as usize, columns[w as usize]);
                     if mask == 0 {
                         continue;
                     }
-                    let xw: Vector<D> =
-                        std::array::from_fn(|l| if mask & (1 << l) != 0 { x[w][l] } else { 0.0 });
-                    for (k, yk) in yv.iter_mut().enumerate() {
-                        *yk += (0..D).map(|l| block[k][l] * xw[l]).sum::<f64>();
+                    // Plain loops: an array built by a closure per block was not inlined.
+                    let mut xw = x[w];
+                    if mask != full {
+                        for (l, xl) in xw.iter_mut().enumerate() {
+                            if mask & (1 << l) == 0 {
+                                *xl = 0.0;
+                            }
+                        }
+                    }
+                    for (yk, row) in yv.iter_mut().zip(block) {
+                        *yk += row.iter().zip(&xw).map(|(b, x)| b * x).sum::<f64>();
                     }
                 }
                 for (k, yk) in yv.iter_mut().enumerate() {

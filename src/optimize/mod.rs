@@ -7,6 +7,7 @@
 pub mod affine;
 mod aggregation;
 pub mod amg;
+pub mod block_rows;
 pub mod blocks;
 pub mod colour;
 pub mod csr;
