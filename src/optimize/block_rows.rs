@@ -125,7 +125,7 @@ impl BlockRows {
     }
 
     /// `y = A x`, each row summed in double precision in the order of its columns. Nodes run
-    /// in parallel by runs of [`RUN`], each node's rows together (one pass over its blocks).
+    /// in parallel by runs of `RUN` (256), each node's rows together (one pass over its blocks).
     pub fn apply(&self, pool: &ThreadPool, x: &[f64], y: &mut [f64]) {
         let nodes = self.first.len();
         let mut runs = Vec::with_capacity(nodes.div_ceil(RUN));
