@@ -5,7 +5,8 @@
 //! times as recorded in that folder's README — G+Smo does not run here), fits ours by the default
 //! checked fit of the default T-mesh, and prints for both the smallest mean ratio
 //! `2 det J/‖J‖²_F` and scaled Jacobian `det J/(|J e₁||J e₂|)` sampled on 200 × 200 and
-//! 801 × 801 grids of the parameter square, with our certified lower bound and our fit's time (the median of five).
+//! 801 × 801 grids of the parameter square, with our certified lower bound and our fit's time
+//! (the median of five).
 
 use std::path::Path;
 use std::time::Instant;

@@ -10,8 +10,8 @@
 //! keeps `u` as small as the node's move: no cancellation for data far from the origin.
 //!
 //! The terms are stored by blocks of four (`LANES`), each invariant of a block in one array,
-//! and a block is evaluated lane by lane into per-lane sums that are added in lane order at the end:
-//! the same arithmetic whatever the thread, and straight-line code the compiler turns into
+//! and a block is evaluated lane by lane into per-lane sums that are added in lane order at the
+//! end: the same arithmetic whatever the thread, and straight-line code the compiler turns into
 //! vector instructions (the evaluation was 45% of the planar spline fit with one term at a
 //! time). Written by hand because it is this hot path; the T-mesh optimizer's terms keep the
 //! one-term [`Accumulator`](super::metric) of `metric.rs`.
