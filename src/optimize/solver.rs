@@ -243,6 +243,11 @@ impl<const D: usize> HessianSolver<D> {
         &self.hessian
     }
 
+    /// The Hessian's storage, the solver done with (for the next evaluation to write into).
+    pub fn into_hessian(self) -> BlockMatrix<D> {
+        self.hessian
+    }
+
     /// The layout of the Hessian.
     pub fn layout(&self) -> &BlockLayout {
         &self.setup.layout

@@ -102,22 +102,17 @@ pub fn minimise<const D: usize>(
         return Ok((stats, None));
     }
     let mut preconditioner = preconditioner;
+    // The storage of the last solver's Hessian, for the next evaluation to write into.
+    let mut spare: Option<BlockMatrix<D>> = None;
     loop {
         stats.gradient_norm = scaled_gradient_norm(&objective, &free, &eval.gradient);
         let hessian = eval.hessian.take().expect("Hessian evaluated");
         let lagged = preconditioner.is_some();
-        let mut solver = match preconditioner.take() {
-            Some(p) => HessianSolver::new(setup.clone(), hessian, p),
-            None => match newton.fresh_solver(x, hessian)? {
-                Some(solver) => solver,
-                None => return Ok((stats, None)),
-            },
+        let Some(mut solver) = newton.solver_for(x, hessian, preconditioner.take())? else {
+            return Ok((stats, None));
         };
-        if stats.gradient_norm <= options.tolerance {
-            stats.converged = true;
-            return Ok((stats, Some(solver)));
-        }
-        if stats.iterations >= options.max_iterations {
+        stats.converged = stats.gradient_norm <= options.tolerance;
+        if stats.converged || stats.iterations >= options.max_iterations {
             return Ok((stats, Some(solver)));
         }
         if !progress(stats.iterations as usize) {
@@ -129,14 +124,18 @@ pub fn minimise<const D: usize>(
         else {
             return Ok((stats, Some(solver)));
         };
-        if std::env::var_os("IGAPARAM_DEBUG").is_some() {
-            eprintln!(
-                "newton {} g {:e} F {} solve {:?} lagged {lagged}",
-                stats.iterations, stats.gradient_norm, eval.value, solved
-            );
-        }
+        trace(&stats, eval.value, &solved, lagged);
         let search = Search::after(options, stats.gradient_norm, &solved);
-        match line_search(pool, &objective, &free, x, &eval, &step, search) {
+        let found = line_search(
+            pool,
+            &objective,
+            &free,
+            x,
+            (&eval, &mut spare),
+            &step,
+            search,
+        );
+        match found {
             Some((next, next_eval)) => {
                 x.copy_from_slice(&next);
                 eval = next_eval;
@@ -146,12 +145,23 @@ pub fn minimise<const D: usize>(
                         (stats.gradient_norm, stats.converged) = (norm, true);
                         return Ok((stats, Some(solver)));
                     }
-                    eval = objective.evaluate(pool, x, true);
+                    eval = objective.evaluate_into(pool, x, true, spare.take());
                 }
                 preconditioner = Some(solver.preconditioner().clone());
+                spare = Some(solver.into_hessian());
             }
             None => return Ok((stats, Some(solver))),
         }
+    }
+}
+
+/// With `IGAPARAM_DEBUG` set, a line per Newton iteration on standard error.
+fn trace(stats: &StationaryStats, value: f64, solved: &SolveStats, lagged: bool) {
+    if std::env::var_os("IGAPARAM_DEBUG").is_some() {
+        eprintln!(
+            "newton {} g {:e} F {value} solve {solved:?} lagged {lagged}",
+            stats.iterations, stats.gradient_norm
+        );
     }
 }
 
@@ -173,6 +183,20 @@ impl<const D: usize> Newton<'_, D> {
         hessian: BlockMatrix<D>,
     ) -> Result<Option<HessianSolver<D>>> {
         HessianSolver::fresh(self.pool, self.problem, self.setup, hessian, x)
+    }
+
+    /// The solver of `hessian` (at `x`) with `preconditioner` from an earlier state, or with
+    /// one made from it when none is given; `None` where none can be made.
+    fn solver_for(
+        &self,
+        x: &[Vector<D>],
+        hessian: BlockMatrix<D>,
+        preconditioner: Option<Arc<Preconditioner<D>>>,
+    ) -> Result<Option<HessianSolver<D>>> {
+        match preconditioner {
+            Some(p) => Ok(Some(HessianSolver::new(self.setup.clone(), hessian, p))),
+            None => self.fresh_solver(x, hessian),
+        }
     }
 
     /// The Newton step at `x` for the `gradient` (scaled max-norm `gradient_norm`), and the
@@ -262,7 +286,7 @@ fn line_search<const D: usize>(
     objective: &GlobalObjective<'_, D>,
     free: &[u8],
     x: &[Vector<D>],
-    eval: &Evaluation<D>,
+    (eval, spare): (&Evaluation<D>, &mut Option<BlockMatrix<D>>),
     step: &[Vector<D>],
     search: Search,
 ) -> Option<(Vec<Vector<D>>, Evaluation<D>)> {
@@ -295,7 +319,8 @@ fn line_search<const D: usize>(
             .collect();
         // The first trial, which a Newton step near the optimum passes, is evaluated with its
         // derivatives at once; the backtracking ones by value only, their derivatives when kept.
-        let mut full = (tries == 0).then(|| objective.evaluate(pool, &trial, search.hessian));
+        let mut full = (tries == 0)
+            .then(|| objective.evaluate_into(pool, &trial, search.hessian, spare.take()));
         let value = match &full {
             Some(e) => e.value,
             None => objective.value(pool, &trial),
@@ -309,7 +334,7 @@ fn line_search<const D: usize>(
         if value.is_finite() {
             let mut derivatives = || {
                 full.take()
-                    .unwrap_or_else(|| objective.evaluate(pool, &trial, true))
+                    .unwrap_or_else(|| objective.evaluate_into(pool, &trial, true, spare.take()))
             };
             if value <= eval.value + 1e-4 * alpha * slope {
                 let next = derivatives();
@@ -321,6 +346,10 @@ fn line_search<const D: usize>(
                     return Some((trial, next));
                 }
             }
+        }
+        // A rejected full step's Hessian storage serves the next evaluation.
+        if let Some(rejected) = full.and_then(|e| e.hessian) {
+            *spare = Some(rejected);
         }
         alpha *= 0.5;
     }
