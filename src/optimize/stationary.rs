@@ -319,8 +319,11 @@ fn line_search<const D: usize>(
             .collect();
         // The first trial, which a Newton step near the optimum passes, is evaluated with its
         // derivatives at once; the backtracking ones by value only, their derivatives when kept.
-        let mut full = (tries == 0)
-            .then(|| objective.evaluate_into(pool, &trial, search.hessian, spare.take()));
+        let mut full = (tries == 0).then(|| {
+            // The spare storage is handed over only where a Hessian is evaluated.
+            let reuse = search.hessian.then(|| spare.take()).flatten();
+            objective.evaluate_into(pool, &trial, search.hessian, reuse)
+        });
         let value = match &full {
             Some(e) => e.value,
             None => objective.value(pool, &trial),
