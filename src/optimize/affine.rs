@@ -211,10 +211,16 @@ impl<const D: usize> AffineTerms<D> {
         std::array::from_fn(|k| x[k] - self.origin[k])
     }
 
+    /// `det S` of a block's terms at `u = x − x₀`.
+    #[inline(always)]
+    fn dets_of(b: &Block<D>, u: &Vector<D>) -> Lane {
+        lanes(|l| b.sigma[l] + (0..D).map(|k| b.grad_sigma[k][l] * u[k]).sum::<f64>())
+    }
+
     /// `det S` and `‖S‖²` of a block's terms at `u = x − x₀` (`uu = |u|²`).
     #[inline(always)]
     fn invariants(b: &Block<D>, u: &Vector<D>, uu: f64) -> (Lane, Lane) {
-        let sigma = lanes(|l| b.sigma[l] + (0..D).map(|k| b.grad_sigma[k][l] * u[k]).sum::<f64>());
+        let sigma = Self::dets_of(b, u);
         let n = lanes(|l| {
             let ju = (0..D).map(|k| b.jg[k][l] * u[k]).sum::<f64>();
             b.n[l] + 2.0 * ju + b.gg[l] * uu
@@ -269,9 +275,7 @@ impl<const D: usize> NodeTerms<D> for AffineTerms<D> {
         let u = self.offset(x);
         let mut out = Vec::with_capacity(self.blocks.len() * LANES);
         for b in &self.blocks {
-            out.extend(lanes(|l| {
-                b.sigma[l] + (0..D).map(|k| b.grad_sigma[k][l] * u[k]).sum::<f64>()
-            }));
+            out.extend(Self::dets_of(b, &u));
         }
         out.truncate(self.len);
         out.into_iter()

@@ -26,7 +26,7 @@ use rayon::ThreadPool;
 use super::aggregation::{aggregate, node_grouping, tentative_prolongator, Grouping};
 use super::block_rows::BlockRows;
 use super::blocks::{BlockLayout, BlockMatrix};
-use super::csr::Csr;
+use super::csr::{split_rows, Csr};
 use super::lattice;
 use super::problem::Problem;
 use super::small_matrix::Vector;
@@ -313,21 +313,17 @@ fn fine_level<const D: usize>(
     }
     let total = start[rows.len()];
     let (mut column, mut value) = (vec![0u32; total], vec![0.0; total]);
-    let mut slices = Vec::with_capacity(rows.len());
-    let (mut columns_left, mut values_left) = (&mut column[..], &mut value[..]);
-    for &length in &lengths {
-        let (c, rest) = std::mem::take(&mut columns_left).split_at_mut(length);
-        columns_left = rest;
-        let (v, rest) = std::mem::take(&mut values_left).split_at_mut(length);
-        values_left = rest;
-        slices.push((c, v));
-    }
+    let columns = split_rows(&mut column, lengths.iter().copied());
+    let values = split_rows(&mut value, lengths.iter().copied());
     pool.install(|| {
-        rows.par_iter().zip(slices).for_each(|(r, (c, v))| {
-            for ((ci, vi), (d, h)) in c.iter_mut().zip(v.iter_mut()).zip(entries(r)) {
-                (*ci, *vi) = (d, h);
-            }
-        })
+        rows.par_iter()
+            .zip(columns)
+            .zip(values)
+            .for_each(|((r, c), v)| {
+                for ((ci, vi), (d, h)) in c.iter_mut().zip(v.iter_mut()).zip(entries(r)) {
+                    (*ci, *vi) = (d, h);
+                }
+            })
     });
     let matrix = Csr {
         columns: rows.len(),

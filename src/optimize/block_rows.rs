@@ -12,6 +12,7 @@ use rayon::prelude::*;
 use rayon::ThreadPool;
 
 use super::blocks::{BlockLayout, BlockMatrix};
+use super::csr::split_rows;
 
 /// Nodes per parallel task of a product.
 const RUN: usize = 256;
@@ -31,8 +32,8 @@ pub struct BlockRows {
     neighbour: Vec<u32>,
     /// The blocks' values, block after block, each row-major.
     value: Vec<f32>,
-    /// Per coordinate: its free node.
-    node_of: Vec<u32>,
+    /// Number of free coordinates.
+    rows: usize,
 }
 
 impl BlockRows {
@@ -54,10 +55,9 @@ impl BlockRows {
             let width = free[v].count_ones() as u8;
             out.first.push(coordinates);
             out.width.push(width);
-            out.node_of
-                .extend(std::iter::repeat_n(i as u32, width as usize));
             coordinates += u32::from(width);
         }
+        out.rows = coordinates as usize;
         // Blocks and values per node first, then every node's blocks written in place.
         let couplings = |v: usize| {
             let (blocks, neighbours) = layout.row(v);
@@ -87,60 +87,49 @@ impl BlockRows {
         }
         out.neighbour = vec![0; out.block_start[nodes.len()]];
         out.value = vec![0.0; out.value_start[nodes.len()]];
-        let mut slices = Vec::with_capacity(nodes.len());
-        let (mut neighbours_left, mut values_left) = (&mut out.neighbour[..], &mut out.value[..]);
-        for &(blocks, values) in &counts {
-            let (n, rest) = std::mem::take(&mut neighbours_left).split_at_mut(blocks);
-            neighbours_left = rest;
-            let (x, rest) = std::mem::take(&mut values_left).split_at_mut(values);
-            values_left = rest;
-            slices.push((n, x));
-        }
+        let neighbours = split_rows(&mut out.neighbour, counts.iter().map(|c| c.0));
+        let values = split_rows(&mut out.value, counts.iter().map(|c| c.1));
         let components = |mask: u8| (0..D).filter(move |k| mask & (1 << k) != 0);
         pool.install(|| {
-            nodes.par_iter().zip(slices).for_each(|(&v, (n, x))| {
-                let mut at = 0;
-                for ((b, w), slot) in couplings(v).zip(n.iter_mut()) {
-                    *slot = index[w];
-                    for k in components(free[v]) {
-                        for l in components(free[w]) {
-                            x[at] = hessian.blocks[b][k][l] as f32;
-                            at += 1;
+            nodes
+                .par_iter()
+                .zip(neighbours)
+                .zip(values)
+                .for_each(|((&v, n), x)| {
+                    let mut at = 0;
+                    for ((b, w), slot) in couplings(v).zip(n.iter_mut()) {
+                        *slot = index[w];
+                        for k in components(free[v]) {
+                            for l in components(free[w]) {
+                                x[at] = hessian.blocks[b][k][l] as f32;
+                                at += 1;
+                            }
                         }
                     }
-                }
-            })
+                })
         });
         out
     }
 
     /// Number of rows (free coordinates).
     pub fn rows(&self) -> usize {
-        self.node_of.len()
-    }
-
-    /// Number of stored values.
-    pub fn stored(&self) -> usize {
-        self.value.len()
+        self.rows
     }
 
     /// `y = A x`, each row summed in double precision in the order of its columns. Nodes run
     /// in parallel by runs of `RUN` (256), each node's rows together (one pass over its blocks).
     pub fn apply(&self, pool: &ThreadPool, x: &[f64], y: &mut [f64]) {
         let nodes = self.first.len();
-        let mut runs = Vec::with_capacity(nodes.div_ceil(RUN));
-        let mut rest = y;
-        for start in (0..nodes).step_by(RUN) {
-            let end = (start + RUN).min(nodes);
-            let rows = self.row_end(end) - self.first[start] as usize;
-            let (run, tail) = std::mem::take(&mut rest).split_at_mut(rows);
-            rest = tail;
-            runs.push((start..end, run));
-        }
+        let starts: Vec<usize> = (0..nodes).step_by(RUN).collect();
+        let end = |start: usize| (start + RUN).min(nodes);
+        let lengths = starts
+            .iter()
+            .map(|&start| self.row_end(end(start)) - self.first[start] as usize);
+        let runs = split_rows(y, lengths);
         pool.install(|| {
-            runs.into_par_iter().for_each(|(range, out)| {
+            starts.into_par_iter().zip(runs).for_each(|(start, out)| {
                 let mut at = 0;
-                for v in range {
+                for v in start..end(start) {
                     let height = self.width[v] as usize;
                     out[at..at + height].copy_from_slice(&self.node_product(v, x)[..height]);
                     at += height;
@@ -183,7 +172,7 @@ impl BlockRows {
     fn row_end(&self, node: usize) -> usize {
         match node < self.first.len() {
             true => self.first[node] as usize,
-            false => self.node_of.len(),
+            false => self.rows,
         }
     }
 }

@@ -7,6 +7,20 @@
 use rayon::prelude::*;
 use rayon::ThreadPool;
 
+/// `values` cut into consecutive rows of the given `lengths` (which add up to at most its
+/// length), for rows to be written in parallel, each into its own slice.
+pub fn split_rows<T>(values: &mut [T], lengths: impl IntoIterator<Item = usize>) -> Vec<&mut [T]> {
+    let mut rest = values;
+    lengths
+        .into_iter()
+        .map(|length| {
+            let (row, tail) = std::mem::take(&mut rest).split_at_mut(length);
+            rest = tail;
+            row
+        })
+        .collect()
+}
+
 /// A sparse matrix in compressed rows, its values in double precision (`T = f64`, every
 /// operation) or single (`T = f32`, products only: the operator of a multigrid level's
 /// smoother, see [`Csr::single`]).

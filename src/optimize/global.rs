@@ -89,22 +89,26 @@ impl<'p, const D: usize> GlobalObjective<'p, D> {
     /// Value, gradient and (if `hessian`) Hessian at `x`. The result does not depend on the
     /// thread count: cells are evaluated in parallel and added in cell order.
     pub fn evaluate(&self, pool: &ThreadPool, x: &[Vector<D>], hessian: bool) -> Evaluation<D> {
-        self.evaluate_into(pool, x, hessian, None)
+        self.evaluate_into(pool, x, hessian, &mut None)
     }
 
-    /// [`GlobalObjective::evaluate`], the Hessian written into the storage of `reuse` (a
-    /// Hessian of the same layout that is no longer needed) when given: a solid mesh's Hessian
-    /// is hundreds of megabytes, and fresh storage is faulted in page by page (on the wing,
-    /// 480 MB: most of the page faults of a relocation were the first writes of new Hessians).
+    /// [`GlobalObjective::evaluate`], the Hessian (where one is evaluated) written into the
+    /// storage taken from `spare` (a Hessian of the same layout that is no longer needed) when
+    /// there is one: a solid mesh's Hessian is hundreds of megabytes, and fresh storage is
+    /// faulted in page by page (on the wing, 480 MB: most of the page faults of a relocation
+    /// were the first writes of new Hessians). Without a Hessian, `spare` is left as it is.
     pub fn evaluate_into(
         &self,
         pool: &ThreadPool,
         x: &[Vector<D>],
         hessian: bool,
-        reuse: Option<BlockMatrix<D>>,
+        spare: &mut Option<BlockMatrix<D>>,
     ) -> Evaluation<D> {
         let n = self.problem.node_count();
-        let storage = || match reuse.filter(|m| m.blocks.len() == self.layout.block_count()) {
+        let storage = || match spare
+            .take()
+            .filter(|m| m.blocks.len() == self.layout.block_count())
+        {
             Some(mut m) => {
                 pool.install(|| m.blocks.par_iter_mut().for_each(|b| *b = [[0.0; D]; D]));
                 m

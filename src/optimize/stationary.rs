@@ -145,7 +145,7 @@ pub fn minimise<const D: usize>(
                         (stats.gradient_norm, stats.converged) = (norm, true);
                         return Ok((stats, Some(solver)));
                     }
-                    eval = objective.evaluate_into(pool, x, true, spare.take());
+                    eval = objective.evaluate_into(pool, x, true, &mut spare);
                 }
                 preconditioner = Some(solver.preconditioner().clone());
                 spare = Some(solver.into_hessian());
@@ -319,11 +319,8 @@ fn line_search<const D: usize>(
             .collect();
         // The first trial, which a Newton step near the optimum passes, is evaluated with its
         // derivatives at once; the backtracking ones by value only, their derivatives when kept.
-        let mut full = (tries == 0).then(|| {
-            // The spare storage is handed over only where a Hessian is evaluated.
-            let reuse = search.hessian.then(|| spare.take()).flatten();
-            objective.evaluate_into(pool, &trial, search.hessian, reuse)
-        });
+        let mut full =
+            (tries == 0).then(|| objective.evaluate_into(pool, &trial, search.hessian, spare));
         let value = match &full {
             Some(e) => e.value,
             None => objective.value(pool, &trial),
@@ -337,7 +334,7 @@ fn line_search<const D: usize>(
         if value.is_finite() {
             let mut derivatives = || {
                 full.take()
-                    .unwrap_or_else(|| objective.evaluate_into(pool, &trial, true, spare.take()))
+                    .unwrap_or_else(|| objective.evaluate_into(pool, &trial, true, spare))
             };
             if value <= eval.value + 1e-4 * alpha * slope {
                 let next = derivatives();
