@@ -27,6 +27,7 @@ pub mod small_matrix;
 pub mod solver;
 pub mod sparse;
 pub mod stationary;
+mod supernodal;
 pub mod sweep;
 pub mod team;
 
