@@ -26,7 +26,19 @@ pub struct BlockLayout {
     /// of its real nodes, row-major, or [`NONE`].
     first: Vec<usize>,
     cell_blocks: Vec<u32>,
+    /// Per chunk of [`CELL_CHUNK`] cells (`chunk_touches[k]..chunk_touches[k + 1]` indexes
+    /// `touches`), the order in which the assembly adds its cells' rows.
+    chunk_touches: Vec<usize>,
+    touches: Vec<Touch>,
 }
+
+/// Cells whose Hessian contributions are computed together, then added to the global Hessian
+/// in cell order.
+pub const CELL_CHUNK: usize = 512;
+
+/// A row of one cell's local Hessian: its node, the cell's place in its chunk and the node's
+/// place in the cell.
+pub type Touch = (u32, u32, u32);
 
 impl BlockLayout {
     /// The layout of `problem`'s Hessian (it depends on the connectivity only).
@@ -60,6 +72,8 @@ impl BlockLayout {
             columns,
             first: Vec::with_capacity(problem.cell_count() + 1),
             cell_blocks: Vec::new(),
+            chunk_touches: vec![0],
+            touches: Vec::new(),
         };
         for (c, couples) in couplings.iter().enumerate() {
             layout.first.push(layout.cell_blocks.len());
@@ -77,7 +91,30 @@ impl BlockLayout {
             }
         }
         layout.first.push(layout.cell_blocks.len());
+        layout.order_touches(problem);
         layout
+    }
+
+    /// The touches of every chunk of cells, by node then cell: the same for every evaluation,
+    /// so sorted once (sorting them per evaluation was a tenth of an evaluation of the airfoil's
+    /// Hessian, on the thread that waits for the others).
+    fn order_touches<const D: usize>(&mut self, problem: &Problem<D>) {
+        let cells: Vec<usize> = (0..problem.cell_count()).collect();
+        for chunk in cells.chunks(CELL_CHUNK) {
+            let first = self.touches.len();
+            for (i, &c) in chunk.iter().enumerate() {
+                let nodes = problem.cell_nodes(c).iter().enumerate();
+                self.touches
+                    .extend(nodes.map(|(r, &v)| (v, i as u32, r as u32)));
+            }
+            self.touches[first..].sort_unstable();
+            self.chunk_touches.push(self.touches.len());
+        }
+    }
+
+    /// The touches of the `k`-th chunk of [`CELL_CHUNK`] cells, by node then cell.
+    pub fn chunk_touches(&self, k: usize) -> &[Touch] {
+        &self.touches[self.chunk_touches[k]..self.chunk_touches[k + 1]]
     }
 
     /// Number of nodes.
