@@ -99,20 +99,19 @@ pub struct Amg {
 }
 
 impl Level {
-    /// The level of operator `a` with the prolongator `p` from the next one (and the smoother's
-    /// `inverse_diagonal` and `lambda`), and the next level's operator `PᵀAP`; `smoother` makes
-    /// the smoother's operator of `a` once the product is made.
+    /// The level of operator `a` (and `ap = A P`, the operator times the prolongator `p` from
+    /// the next level; the smoother's `inverse_diagonal` and `lambda`), and the next level's
+    /// operator `PᵀAP`.
     fn new(
         pool: &ThreadPool,
-        a: Csr,
-        p: Csr,
+        a: Operator,
+        (ap, p): (Csr, Csr),
         (inverse_diagonal, lambda): (Vec<f64>, f64),
-        smoother: impl FnOnce(Csr) -> Operator,
     ) -> (Level, Csr) {
         let r = p.transpose();
-        let coarse = r.product(pool, &a.product(pool, &p));
+        let coarse = r.product(pool, &ap);
         let level = Level {
-            a: smoother(a),
+            a,
             inverse_diagonal,
             lambda,
             p,
@@ -155,28 +154,29 @@ impl Amg {
         free: &[u8],
         x: &[Vector<D>],
     ) -> Option<Amg> {
-        let (dof, a) = fine_level(pool, layout, hessian, free);
+        let fine = FineRows::new(layout, hessian, free);
         let modes = D * (D + 1) / 2;
         let mut levels = Vec::new();
-        let (mut a, mut grouping, mut null_space) = match corner_prolongator(problem, &dof, x) {
+        let (mut a, mut grouping, mut null_space) = match corner_prolongator(problem, &fine.dof, x)
+        {
             Some((p, grouping, null_space)) => {
-                // The corner prolongator is not smoothed: the largest eigenvalue is estimated
-                // after, with the level's single-precision operator (a third less traffic).
-                let inverse_diagonal = inverse_diagonal(&a);
-                // The compressed rows are dropped before the node blocks are made.
-                let blocks = |a: Csr| {
-                    drop(a);
-                    Operator::Blocks(BlockRows::new(pool, layout, hessian, free))
-                };
-                let (mut level, coarse) = Level::new(pool, a, p, (inverse_diagonal, 0.0), blocks);
+                // The finest operator is read from the block Hessian (no copy in compressed
+                // rows: on the wing, 720 MB); its smoother's operator is by node blocks in single
+                // precision, the largest eigenvalue estimated with it. The corner prolongator is
+                // not smoothed.
+                let inverse_diagonal = inverses(fine.diagonal());
+                let ap = Csr::product_of(pool, fine.rows.len(), |i| fine.entries(i), &p);
+                let blocks = Operator::Blocks(BlockRows::new(pool, layout, hessian, free));
+                let (mut level, coarse) =
+                    Level::new(pool, blocks, (ap, p), (inverse_diagonal, 0.0));
                 let apply = |x: &[f64], y: &mut [f64]| level.a.apply(pool, x, y);
                 level.lambda = spectral_radius(level.a.size(), apply, &level.inverse_diagonal);
                 levels.push(level);
                 (coarse, grouping, null_space)
             }
             None => {
-                let (grouping, null_space) = node_grouping(&dof, free.len(), x);
-                (a, grouping, null_space)
+                let (grouping, null_space) = node_grouping(&fine.dof, free.len(), x);
+                (fine.csr(pool), grouping, null_space)
             }
         };
         while a.rows() > COARSEST && levels.len() < 12 {
@@ -198,15 +198,16 @@ impl Amg {
             if tentative.columns as f64 > 0.8 * a.rows() as f64 {
                 break;
             }
-            let inverse_diagonal = inverse_diagonal(&a);
+            let inverse_diagonal = inverses(a.diagonal());
             let apply = |x: &[f64], y: &mut [f64]| a.apply(pool, x, y);
             let lambda = spectral_radius(a.rows(), apply, &inverse_diagonal);
             let p = match a.stored() <= SMOOTHING_DENSITY * a.rows() {
                 true => smooth_prolongator(pool, &a, &inverse_diagonal, lambda, &tentative),
                 false => tentative,
             };
+            let ap = a.product(pool, &p);
             let (level, coarse) =
-                Level::new(pool, a, p, (inverse_diagonal, lambda), Operator::rows);
+                Level::new(pool, Operator::rows(a), (ap, p), (inverse_diagonal, lambda));
             levels.push(level);
             a = coarse;
             grouping = coarse_grouping;
@@ -216,7 +217,7 @@ impl Amg {
             levels,
             coarsest: coarsest_factor(&a)?,
             coarsest_size: a.rows(),
-            dof,
+            dof: fine.dof,
         })
     }
 
@@ -274,64 +275,99 @@ impl Amg {
     }
 }
 
-/// The fine level: the numbering of the free coordinates (node by node) and `H_ff` in
-/// compressed rows over them. The rows are written in parallel, each into its own slice of the
-/// arrays (on the wing, 315,000 rows of 190 values each, row by row in one thread took 0.65 s).
-fn fine_level<const D: usize>(
-    pool: &ThreadPool,
-    layout: &BlockLayout,
-    hessian: &BlockMatrix<D>,
-    free: &[u8],
-) -> (Vec<u32>, Csr) {
-    let mut dof = vec![u32::MAX; free.len() * D];
-    let mut rows = Vec::new();
-    for (v, &mask) in free.iter().enumerate() {
-        for k in (0..D).filter(|k| mask & (1 << k) != 0) {
-            dof[v * D + k] = rows.len() as u32;
-            rows.push((v, k));
+/// The finest level, `H_ff` read from the block Hessian: a row `(v, k)` for every free
+/// component `k` of a node `v`, numbered node by node.
+struct FineRows<'a, const D: usize> {
+    layout: &'a BlockLayout,
+    hessian: &'a BlockMatrix<D>,
+    /// `dof[v·d + k]`: the row of component `k` of node `v`, `u32::MAX` where it is not free.
+    dof: Vec<u32>,
+    /// `(v, k)` per row.
+    rows: Vec<(usize, usize)>,
+}
+
+impl<'a, const D: usize> FineRows<'a, D> {
+    /// The free coordinates of `free` (per node, the bits of its free components).
+    fn new(layout: &'a BlockLayout, hessian: &'a BlockMatrix<D>, free: &[u8]) -> Self {
+        let mut dof = vec![u32::MAX; free.len() * D];
+        let mut rows = Vec::new();
+        for (v, &mask) in free.iter().enumerate() {
+            for k in (0..D).filter(|k| mask & (1 << k) != 0) {
+                dof[v * D + k] = rows.len() as u32;
+                rows.push((v, k));
+            }
+        }
+        FineRows {
+            layout,
+            hessian,
+            dof,
+            rows,
         }
     }
-    // Row (v, k): the free coordinates of v's neighbours, in column order, with their values.
-    let entries = |&(v, k): &(usize, usize)| {
-        let (blocks, neighbours) = layout.row(v);
-        let dof = &dof;
+
+    /// Row `i`: the free coordinates of its node's neighbours, in column order, with their
+    /// values.
+    fn entries(&self, i: usize) -> impl Iterator<Item = (u32, f64)> + '_ {
+        let (v, k) = self.rows[i];
+        let (blocks, neighbours) = self.layout.row(v);
         blocks.zip(neighbours).flat_map(move |(b, &w)| {
             (0..D).filter_map(move |l| {
-                let d = dof[w as usize * D + l];
-                (d != u32::MAX).then(|| (d, hessian.blocks[b][k][l]))
+                let d = self.dof[w as usize * D + l];
+                (d != u32::MAX).then(|| (d, self.hessian.blocks[b][k][l]))
             })
         })
-    };
-    // Lengths first, then every row written in place (collecting the rows' entries into new
-    // arrays in parallel took 0.83 s on the wing, of its 2.4 s multigrid setup; this 0.05 s).
-    let lengths: Vec<usize> =
-        pool.install(|| rows.par_iter().map(|r| entries(r).count()).collect());
-    let mut start = Vec::with_capacity(rows.len() + 1);
-    start.push(0);
-    for length in &lengths {
-        start.push(start[start.len() - 1] + length);
     }
-    let total = start[rows.len()];
-    let (mut column, mut value) = (vec![0u32; total], vec![0.0; total]);
-    let columns = split_rows(&mut column, lengths.iter().copied());
-    let values = split_rows(&mut value, lengths.iter().copied());
-    pool.install(|| {
-        rows.par_iter()
-            .zip(columns)
-            .zip(values)
-            .for_each(|((r, c), v)| {
-                for ((ci, vi), (d, h)) in c.iter_mut().zip(v.iter_mut()).zip(entries(r)) {
-                    (*ci, *vi) = (d, h);
-                }
+
+    /// The diagonal.
+    fn diagonal(&self) -> Vec<f64> {
+        (0..self.rows.len())
+            .map(|i| {
+                let (v, k) = self.rows[i];
+                let own = self.layout.find(v, v);
+                own.map_or(0.0, |b| self.hessian.blocks[b][k][k])
             })
-    });
-    let matrix = Csr {
-        columns: rows.len(),
-        start,
-        column,
-        value,
-    };
-    (dof, matrix)
+            .collect()
+    }
+
+    /// The rows in compressed form (the next levels of linear cells aggregate them), written in
+    /// parallel, each into its own slice of the arrays (on the wing, 315,000 rows of 190 values
+    /// each, row by row in one thread took 0.65 s).
+    fn csr(&self, pool: &ThreadPool) -> Csr {
+        // Lengths first, then every row written in place (collecting the rows' entries into new
+        // arrays in parallel took 0.83 s on the wing, of its 2.4 s multigrid setup; this 0.05 s).
+        let lengths: Vec<usize> = pool.install(|| {
+            (0..self.rows.len())
+                .into_par_iter()
+                .map(|i| self.entries(i).count())
+                .collect()
+        });
+        let mut start = Vec::with_capacity(self.rows.len() + 1);
+        start.push(0);
+        for length in &lengths {
+            start.push(start[start.len() - 1] + length);
+        }
+        let total = start[self.rows.len()];
+        let (mut column, mut value) = (vec![0u32; total], vec![0.0; total]);
+        let columns = split_rows(&mut column, lengths.iter().copied());
+        let values = split_rows(&mut value, lengths.iter().copied());
+        pool.install(|| {
+            columns
+                .into_par_iter()
+                .zip(values)
+                .enumerate()
+                .for_each(|(i, (c, v))| {
+                    for ((ci, vi), (d, h)) in c.iter_mut().zip(v.iter_mut()).zip(self.entries(i)) {
+                        (*ci, *vi) = (d, h);
+                    }
+                })
+        });
+        Csr {
+            columns: self.rows.len(),
+            start,
+            column,
+            value,
+        }
+    }
 }
 
 /// The p-coarsening of quadratic cells: the corners of the cells carry the coarse unknowns (their
@@ -415,8 +451,9 @@ fn corner_prolongator<const D: usize>(
     Some((Csr::from_rows(count as usize, rows), grouping, null_space))
 }
 
-fn inverse_diagonal(a: &Csr) -> Vec<f64> {
-    a.diagonal()
+/// The inverses of a diagonal's positive values (0 elsewhere).
+fn inverses(diagonal: Vec<f64>) -> Vec<f64> {
+    diagonal
         .iter()
         .map(|&d| if d > 0.0 { 1.0 / d } else { 0.0 })
         .collect()

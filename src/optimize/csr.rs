@@ -143,14 +143,29 @@ impl Csr {
 
     /// `A B` (rows in parallel, each accumulated in a dense scratch row and emitted sorted).
     pub fn product(&self, pool: &ThreadPool, b: &Csr) -> Csr {
+        let row = |i: usize| {
+            let (cols, vals) = self.row(i);
+            cols.iter().copied().zip(vals.iter().copied())
+        };
+        Csr::product_of(pool, self.rows(), row, b)
+    }
+
+    /// `A B` for the `rows × b.rows()` matrix `A` whose row `i` is given by `row(i)` (column,
+    /// value pairs, the columns in any order): the product of [`Csr::product`] without `A` in
+    /// compressed rows (each row's values are added in the order `row` gives them).
+    pub fn product_of<I: Iterator<Item = (u32, f64)>>(
+        pool: &ThreadPool,
+        rows: usize,
+        row: impl Fn(usize) -> I + Sync,
+        b: &Csr,
+    ) -> Csr {
         let rows: Vec<Vec<(u32, f64)>> = pool.install(|| {
-            (0..self.rows())
+            (0..rows)
                 .into_par_iter()
                 .map_init(
                     || (vec![0.0; b.columns], vec![false; b.columns], Vec::new()),
                     |(dense, seen, touched), i| {
-                        let (cols, vals) = self.row(i);
-                        for (&k, &a) in cols.iter().zip(vals) {
+                        for (k, a) in row(i) {
                             let (bc, bv) = b.row(k as usize);
                             for (&j, &v) in bc.iter().zip(bv) {
                                 let j = j as usize;
