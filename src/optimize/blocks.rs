@@ -26,7 +26,7 @@ pub struct BlockLayout {
     /// of its real nodes, row-major, or [`NONE`].
     first: Vec<usize>,
     cell_blocks: Vec<u32>,
-    /// Per chunk of [`CELL_CHUNK`] cells (`chunk_touches[k]..chunk_touches[k + 1]` indexes
+    /// Per chunk of `CELL_CHUNK` cells (`chunk_touches[k]..chunk_touches[k + 1]` indexes
     /// `touches`), the order in which the assembly adds its cells' rows.
     chunk_touches: Vec<usize>,
     touches: Vec<Touch>,
@@ -34,11 +34,11 @@ pub struct BlockLayout {
 
 /// Cells whose Hessian contributions are computed together, then added to the global Hessian
 /// in cell order.
-pub const CELL_CHUNK: usize = 512;
+pub(super) const CELL_CHUNK: usize = 512;
 
 /// A row of one cell's local Hessian: its node, the cell's place in its chunk and the node's
 /// place in the cell.
-pub type Touch = (u32, u32, u32);
+pub(super) type Touch = (u32, u32, u32);
 
 impl BlockLayout {
     /// The layout of `problem`'s Hessian (it depends on the connectivity only).
@@ -112,7 +112,7 @@ impl BlockLayout {
         }
     }
 
-    /// The touches of the `k`-th chunk of [`CELL_CHUNK`] cells, by node then cell.
+    /// The touches of the `k`-th chunk of cells (512 to a chunk), by node then cell.
     pub fn chunk_touches(&self, k: usize) -> &[Touch] {
         &self.touches[self.chunk_touches[k]..self.chunk_touches[k + 1]]
     }

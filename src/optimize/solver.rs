@@ -243,9 +243,10 @@ impl<const D: usize> HessianSolver<D> {
         &self.hessian
     }
 
-    /// The Hessian's storage, the solver done with (for the next evaluation to write into).
-    pub fn into_hessian(self) -> BlockMatrix<D> {
-        self.hessian
+    /// The Hessian's storage and the preconditioner, the solver done with (the storage for the
+    /// next evaluation to write into, the preconditioner for the next solves).
+    pub fn into_parts(self) -> (BlockMatrix<D>, Arc<Preconditioner<D>>) {
+        (self.hessian, self.preconditioner)
     }
 
     /// The layout of the Hessian.

@@ -82,7 +82,7 @@ pub fn minimise<const D: usize>(
     setup: &Arc<SolverSetup>,
     x: &mut [Vector<D>],
     options: &StationaryOptions,
-    preconditioner: Option<Arc<Preconditioner<D>>>,
+    mut preconditioner: Option<Arc<Preconditioner<D>>>,
     progress: &mut dyn FnMut(usize) -> bool,
 ) -> Result<(StationaryStats, Option<HessianSolver<D>>)> {
     let newton = Newton {
@@ -92,7 +92,7 @@ pub fn minimise<const D: usize>(
         tolerance: options.tolerance,
     };
     let objective = GlobalObjective::new(problem, setup.layout(), None, 0.0);
-    let free = setup.free.clone();
+    let free = &setup.free[..];
     let mut stats = StationaryStats {
         gradient_norm: f64::INFINITY,
         ..Default::default()
@@ -101,11 +101,10 @@ pub fn minimise<const D: usize>(
     if !eval.value.is_finite() {
         return Ok((stats, None));
     }
-    let mut preconditioner = preconditioner;
     // The storage of the last solver's Hessian, for the next evaluation to write into.
     let mut spare: Option<BlockMatrix<D>> = None;
     loop {
-        stats.gradient_norm = scaled_gradient_norm(&objective, &free, &eval.gradient);
+        stats.gradient_norm = scaled_gradient_norm(&objective, free, &eval.gradient);
         let hessian = eval.hessian.take().expect("Hessian evaluated");
         let lagged = preconditioner.is_some();
         let Some(mut solver) = newton.solver_for(x, hessian, preconditioner.take())? else {
@@ -126,33 +125,49 @@ pub fn minimise<const D: usize>(
         };
         trace(&stats, eval.value, &solved, lagged);
         let search = Search::after(options, stats.gradient_norm, &solved);
+        // Where the step's state is evaluated with its Hessian, that evaluation writes into the
+        // solver's storage (one Hessian at a time; the wing's: 480 MB); else the solver is kept.
+        let kept = match search.hessian {
+            true => retire(solver, &mut spare, &mut preconditioner),
+            false => Some(solver),
+        };
         let found = line_search(
             pool,
             &objective,
-            &free,
+            free,
             x,
             (&eval, &mut spare),
             &step,
             search,
         );
-        match found {
-            Some((next, next_eval)) => {
-                x.copy_from_slice(&next);
-                eval = next_eval;
-                if eval.hessian.is_none() {
-                    let norm = scaled_gradient_norm(&objective, &free, &eval.gradient);
-                    if norm <= options.tolerance {
-                        (stats.gradient_norm, stats.converged) = (norm, true);
-                        return Ok((stats, Some(solver)));
-                    }
-                    eval = objective.evaluate_into(pool, x, true, &mut spare);
-                }
-                preconditioner = Some(solver.preconditioner().clone());
-                spare = Some(solver.into_hessian());
+        let Some((next, next_eval)) = found else {
+            return Ok((stats, kept)); // No descent: short of the tolerance.
+        };
+        x.copy_from_slice(&next);
+        eval = next_eval;
+        if let Some(solver) = kept {
+            let norm = scaled_gradient_norm(&objective, free, &eval.gradient);
+            if norm <= options.tolerance {
+                (stats.gradient_norm, stats.converged) = (norm, true);
+                return Ok((stats, Some(solver)));
             }
-            None => return Ok((stats, Some(solver))),
+            retire(solver, &mut spare, &mut preconditioner);
+            eval = objective.evaluate_into(pool, x, true, &mut spare);
         }
     }
+}
+
+/// The solver done with: its Hessian's storage becomes `spare`, for the next evaluation to write
+/// into, and its preconditioner the next solves'. Returns no solver (a minimisation that then
+/// stops short of its tolerance returns none: its state predicts nothing).
+fn retire<const D: usize>(
+    solver: HessianSolver<D>,
+    spare: &mut Option<BlockMatrix<D>>,
+    preconditioner: &mut Option<Arc<Preconditioner<D>>>,
+) -> Option<HessianSolver<D>> {
+    let (hessian, lagged) = solver.into_parts();
+    (*spare, *preconditioner) = (Some(hessian), Some(lagged));
+    None
 }
 
 /// With `IGAPARAM_DEBUG` set, a line per Newton iteration on standard error.
