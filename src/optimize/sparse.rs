@@ -1,6 +1,6 @@
 //! The Hessian restricted to the free coordinates, `H_ff`, as a sparse matrix factorised by faer's
-//! sparse Cholesky (AMD ordering, supernodal where it pays, sequential so the result is the same
-//! for any thread count). The matrix is scaled to a unit diagonal first (`D^{-1/2} H D^{-1/2}`),
+//! sparse Cholesky (AMD ordering, supernodal, sequential so the result is the same for any thread
+//! count), its solves by the crate's own loops (`supernodal.rs`). The matrix is scaled to a unit diagonal first (`D^{-1/2} H D^{-1/2}`),
 //! so that one relative shift serves cells of every size; where it is not positive definite, the
 //! smallest of the shifts `τ = 10⁻², 10⁻¹, 1, 10` of the unit diagonal that makes it so gives the
 //! modified Newton step.
@@ -216,9 +216,10 @@ impl CholeskyPattern {
         let SymbolicCholeskyRaw::Supernodal(symbolic) = self.symbolic.raw() else {
             return;
         };
-        // The factor's ordering of the unknowns (AMD's): `x[i] = b[order[i]]`.
-        let order = |i: usize| self.symbolic.perm().map_or(i, |p| p.arrays().0[i]);
-        let position = |i: usize| self.symbolic.perm().map_or(i, |p| p.arrays().1[i]);
+        // The factor's ordering of the unknowns (AMD's): `x[i] = b[order(i)]`.
+        let arrays = self.symbolic.perm().map(|p| p.arrays());
+        let order = |i: usize| arrays.map_or(i, |(order, _)| order[i]);
+        let position = |i: usize| arrays.map_or(i, |(_, position)| position[i]);
         let mut x: Vec<f64> = (0..b.len())
             .map(|i| b[order(i)] * factor.scale[order(i)])
             .collect();
