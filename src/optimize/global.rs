@@ -144,8 +144,8 @@ impl<'p, const D: usize> GlobalObjective<'p, D> {
     /// Adds the Hessian blocks of the `chunk`'s cells (`locals`, in the chunk's order; `touches`,
     /// the chunk's rows by node then cell) to `h`, rows in parallel. Each block receives the
     /// cells' contributions in cell order, as one pass over the cells would add them: the sums
-    /// are the same to the last bit, for any thread count. (Adding them in one pass took more time than computing them on the wing:
-    /// 0.28 s against 0.19 s per evaluation.)
+    /// are the same to the last bit, for any thread count. (Adding them in one pass took more
+    /// time than computing them on the wing: 0.28 s against 0.19 s per evaluation.)
     fn assemble(
         &self,
         pool: &ThreadPool,

@@ -1,9 +1,9 @@
 //! The Hessian restricted to the free coordinates, `H_ff`, as a sparse matrix factorised by faer's
 //! sparse Cholesky (AMD ordering, supernodal, sequential so the result is the same for any thread
-//! count), its solves by the crate's own loops (`supernodal.rs`). The matrix is scaled to a unit diagonal first (`D^{-1/2} H D^{-1/2}`),
-//! so that one relative shift serves cells of every size; where it is not positive definite, the
-//! smallest of the shifts `τ = 10⁻², 10⁻¹, 1, 10` of the unit diagonal that makes it so gives the
-//! modified Newton step.
+//! count), its solves by the crate's own loops (`supernodal.rs`). The matrix is scaled to a unit
+//! diagonal first (`D^{-1/2} H D^{-1/2}`), so that one relative shift serves cells of every size;
+//! where it is not positive definite, the smallest of the shifts `τ = 10⁻², 10⁻¹, 1, 10` of the
+//! unit diagonal that makes it so gives the modified Newton step.
 
 use faer::dyn_stack::{MemBuffer, MemStack};
 use faer::linalg::cholesky::llt::factor::LltRegularization;
