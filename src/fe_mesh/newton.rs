@@ -13,7 +13,7 @@ use crate::optimize::blocks::BlockLayout;
 use crate::optimize::global::GlobalObjective;
 use crate::optimize::path::{self, PathStart};
 use crate::optimize::small_matrix::Vector;
-use crate::optimize::solver::{HessianSolver, SolverSetup};
+use crate::optimize::solver::{HessianSolver, Preconditioner, SolverSetup};
 use crate::optimize::stationary::{self, StationaryOptions};
 use crate::optimize::{invalid_cells, Problem};
 
@@ -94,11 +94,8 @@ impl Mesh {
             true => Ok(()),
             false => Err(NOT_ASKED.to_string()),
         };
-        Ok(Some((
-            outcome.x,
-            Some(outcome.solver as Solver),
-            sensitivity,
-        )))
+        let solver = outcome.solver.map(|s| s as Solver);
+        Ok(Some((outcome.x, solver, sensitivity)))
     }
 
     /// Where path following starts: the last relocated state (`Incremental`) or the optimum at
@@ -127,12 +124,12 @@ impl Mesh {
             stationary: false,
             threads: options.threads,
         });
+        let mut x = project::<D>(&state.positions, self.unit());
         let stored_solver = state
             .solver
             .clone()
             .filter(|_| state.stationary)
-            .and_then(|s| s.downcast::<HessianSolver<D>>().ok());
-        let mut x = project::<D>(&state.positions, self.unit());
+            .and_then(|s| restore(pool, problem, setup, &x, s));
         let solver = match stored_solver {
             Some(solver) => solver,
             None => {
@@ -161,9 +158,16 @@ impl Mesh {
                 let solver = Arc::new(solver);
                 if !from_last {
                     let positions = lift(&self.reference, &x, self.unit(), &self.fixed);
+                    // A factor's Hessian is kept with it; a multigrid's is not (a solid's
+                    // Hessian is the relocation's largest array: the wing's 480 MB) and is
+                    // evaluated again at the next cold start.
+                    let kept = match setup.is_direct() {
+                        true => solver.clone() as Solver,
+                        false => solver.preconditioner().clone() as Solver,
+                    };
                     let state = State {
                         positions,
-                        solver: Some(solver.clone() as Solver),
+                        solver: Some(kept),
                         stationary: true,
                         threads: options.threads,
                     };
@@ -231,6 +235,24 @@ impl Mesh {
             )),
         };
         Ok((solver.map(|s| Arc::new(s) as Solver), sensitivity))
+    }
+}
+
+/// The solver a stored state kept at `x`: the solver itself, or one made again from the
+/// Hessian evaluated there with the preconditioner it kept.
+fn restore<const D: usize>(
+    pool: &ThreadPool,
+    problem: &Problem<D>,
+    setup: &Arc<SolverSetup>,
+    x: &[Vector<D>],
+    stored: Solver,
+) -> Option<Arc<HessianSolver<D>>> {
+    match stored.downcast::<HessianSolver<D>>() {
+        Ok(solver) => Some(solver),
+        Err(stored) => {
+            let preconditioner = stored.downcast::<Preconditioner<D>>().ok()?;
+            stationary::solver_at(pool, problem, setup, x, preconditioner).map(Arc::new)
+        }
     }
 }
 

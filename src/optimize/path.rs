@@ -15,8 +15,8 @@ use rayon::ThreadPool;
 
 use super::problem::Problem;
 use super::small_matrix::Vector;
-use super::solver::{HessianSolver, SolverSetup};
-use super::stationary::{minimise, StationaryOptions};
+use super::solver::{HessianSolver, Preconditioner, SolverSetup};
+use super::stationary::{minimise, solver_at, Lagged, StationaryOptions};
 use super::sweep::invalid_cells;
 use crate::error::Result;
 
@@ -36,8 +36,10 @@ const CORRECTOR_ITERATIONS: u32 = 30;
 pub struct PathOutcome<const D: usize> {
     /// The last accepted state (stationary at the prescribed values of `reached`).
     pub x: Vec<Vector<D>>,
-    /// The solver of the Hessian at `x`.
-    pub solver: Arc<HessianSolver<D>>,
+    /// The solver of the Hessian at `x` (`None` only where the path stopped short of its goal).
+    pub solver: Option<Arc<HessianSolver<D>>>,
+    /// The preconditioner of the last corrector, to make the solver at `x` again with.
+    lagged: Option<Arc<Preconditioner<D>>>,
     /// Invalid cells of the first prediction.
     pub first_invalid: usize,
     /// Fraction of the motion reached (1: the goal).
@@ -87,7 +89,8 @@ pub fn follow<const D: usize>(
     let origin = start.x.clone();
     let mut outcome = PathOutcome {
         x: start.x,
-        solver: start.solver,
+        solver: Some(start.solver),
+        lagged: None,
         first_invalid: 0,
         reached: 0.0,
         steps: 0,
@@ -98,61 +101,107 @@ pub fn follow<const D: usize>(
     let mut schedule = Schedule::default();
     while let Some(t) = schedule.next() {
         let last = t >= 1.0;
-        // The prescribed coordinates at t, and their motion over this step.
-        let target: Vec<Vector<D>> = (0..goal.positions.len())
-            .map(|v| {
-                std::array::from_fn(|k| match prescribed[v] & (1 << k) != 0 {
-                    true => prescribed_at(&origin[v], &goal.positions[v], k, t),
-                    false => outcome.x[v][k],
-                })
-            })
-            .collect();
-        let predicted = predict(pool, &outcome.solver, &outcome.x, &target)?;
+        let target = target_at(&prescribed, (&origin, goal.positions), &outcome.x, t);
+        let Some(solver) = outcome.take_solver(pool, problem, setup) else {
+            break;
+        };
+        let predicted = predict(pool, &solver, &outcome.x, &target)?;
         let invalid = predicted
             .as_ref()
             .map_or(usize::MAX, |x| invalid_cells(pool, problem, x).len());
         if outcome.steps == 0 && schedule.first() {
             outcome.first_invalid = invalid;
         }
-        let corrected = match predicted {
-            Some(mut x) if invalid == 0 => {
-                let options = StationaryOptions {
-                    tolerance: if last { goal.tolerance } else { STEP_TOLERANCE },
-                    max_iterations: CORRECTOR_ITERATIONS,
-                    exact_solver: last && goal.exact_solver,
-                };
-                let done = outcome.newton_iterations as usize;
-                let (stats, solver) = minimise(
-                    pool,
-                    problem,
-                    setup,
-                    &mut x,
-                    &options,
-                    Some(outcome.solver.preconditioner().clone()),
-                    &mut |i| progress(done + i),
-                )?;
-                outcome.newton_iterations += stats.iterations;
-                match solver {
-                    Some(solver) if stats.converged => Some((x, solver, stats.gradient_norm)),
-                    _ => None,
-                }
-            }
-            _ => None,
+        let Some(mut x) = predicted.filter(|_| invalid == 0) else {
+            outcome.solver = Some(solver);
+            schedule.reject(t);
+            continue;
         };
-        match corrected {
-            Some((x, solver, gradient_norm)) => {
+        let (lagged, kept) = hand_over(solver);
+        outcome.lagged = Some(lagged.preconditioner.clone());
+        let options = StationaryOptions {
+            tolerance: if last { goal.tolerance } else { STEP_TOLERANCE },
+            max_iterations: CORRECTOR_ITERATIONS,
+            exact_solver: last && goal.exact_solver,
+        };
+        let done = outcome.newton_iterations as usize;
+        let (stats, solver) = minimise(
+            pool,
+            problem,
+            setup,
+            &mut x,
+            &options,
+            Some(lagged),
+            &mut |i| progress(done + i),
+        )?;
+        outcome.newton_iterations += stats.iterations;
+        match solver.filter(|_| stats.converged) {
+            Some(solver) => {
                 outcome.x = x;
-                outcome.solver = Arc::new(solver);
-                outcome.gradient_norm = gradient_norm;
+                outcome.solver = Some(Arc::new(solver));
+                outcome.gradient_norm = stats.gradient_norm;
                 outcome.reached = t;
                 outcome.steps += 1;
                 outcome.converged = last;
                 schedule.accept(t);
             }
-            None => schedule.reject(t),
+            None => {
+                outcome.solver = kept;
+                schedule.reject(t);
+            }
         }
     }
     Ok(outcome)
+}
+
+impl<const D: usize> PathOutcome<D> {
+    /// The solver at the last accepted state: the one kept, or one made again (with the last
+    /// preconditioner) where a failed step had retired it; `None` where none can be made.
+    fn take_solver(
+        &mut self,
+        pool: &ThreadPool,
+        problem: &Problem<D>,
+        setup: &Arc<SolverSetup>,
+    ) -> Option<Arc<HessianSolver<D>>> {
+        match self.solver.take() {
+            Some(solver) => Some(solver),
+            None => {
+                let preconditioner = self.lagged.clone()?;
+                solver_at(pool, problem, setup, &self.x, preconditioner).map(Arc::new)
+            }
+        }
+    }
+}
+
+/// The prescribed coordinates at fraction `t` of their motion from `origin` to `goal` (`ends`),
+/// the free ones those of `x`.
+fn target_at<const D: usize>(
+    prescribed: &[u8],
+    (origin, goal): (&[Vector<D>], &[Vector<D>]),
+    x: &[Vector<D>],
+    t: f64,
+) -> Vec<Vector<D>> {
+    (0..goal.len())
+        .map(|v| {
+            std::array::from_fn(|k| match prescribed[v] & (1 << k) != 0 {
+                true => prescribed_at(&origin[v], &goal[v], k, t),
+                false => x[v][k],
+            })
+        })
+        .collect()
+}
+
+/// The predictor's solver handed to the corrector. One no one else holds is done with: its
+/// Hessian's storage receives the corrector's first evaluation (one Hessian at a time: a
+/// million-node solid's are gigabytes), and it is evaluated again should the step fail. One
+/// held elsewhere too (a state kept on the mesh) lends its preconditioner and is returned.
+fn hand_over<const D: usize>(
+    solver: Arc<HessianSolver<D>>,
+) -> (Lagged<D>, Option<Arc<HessianSolver<D>>>) {
+    match Arc::try_unwrap(solver) {
+        Ok(solver) => (Lagged::retired(solver), None),
+        Err(shared) => (Lagged::shared(shared.preconditioner()), Some(shared)),
+    }
 }
 
 /// The fractions of the motion path following tries: the whole rest first, half the step tried

@@ -71,8 +71,55 @@ pub fn scaled_gradient_norm<const D: usize>(
 /// there where a cell would fold).
 const NODE_STEP: f64 = 4.0;
 
-/// Minimises `F` over the free coordinates of `x` (a valid state). `preconditioner`, when given,
-/// comes from a nearby state and is used while it pays. Returns the stats and the solver of the
+/// What a minimisation takes from the solver of a nearby state.
+pub struct Lagged<const D: usize> {
+    /// Used while it pays.
+    pub preconditioner: Arc<Preconditioner<D>>,
+    /// A Hessian done with, whose storage the first evaluation writes into.
+    pub storage: Option<BlockMatrix<D>>,
+}
+
+impl<const D: usize> Lagged<D> {
+    /// A nearby state's preconditioner, shared.
+    pub fn shared(preconditioner: &Arc<Preconditioner<D>>) -> Self {
+        Lagged {
+            preconditioner: preconditioner.clone(),
+            storage: None,
+        }
+    }
+
+    /// A nearby state's solver, done with: its preconditioner and its Hessian's storage.
+    pub fn retired(solver: HessianSolver<D>) -> Self {
+        let (hessian, preconditioner) = solver.into_parts();
+        Lagged {
+            preconditioner,
+            storage: Some(hessian),
+        }
+    }
+
+    /// The preconditioner and the storage, each as an option.
+    fn into_parts(self) -> (Option<Arc<Preconditioner<D>>>, Option<BlockMatrix<D>>) {
+        (Some(self.preconditioner), self.storage)
+    }
+}
+
+/// The solver of the Hessian at `x` with `preconditioner` (made for that Hessian, or from a
+/// nearby state); `None` where `x` is not a valid state.
+pub fn solver_at<const D: usize>(
+    pool: &ThreadPool,
+    problem: &Problem<D>,
+    setup: &Arc<SolverSetup>,
+    x: &[Vector<D>],
+    preconditioner: Arc<Preconditioner<D>>,
+) -> Option<HessianSolver<D>> {
+    let objective = GlobalObjective::new(problem, setup.layout(), None, 0.0);
+    let eval = objective.evaluate(pool, x, true);
+    let hessian = eval.hessian.filter(|_| eval.value.is_finite())?;
+    Some(HessianSolver::new(setup.clone(), hessian, preconditioner))
+}
+
+/// Minimises `F` over the free coordinates of `x` (a valid state). `lagged`, when given, comes
+/// from a nearby state: its preconditioner is used while it pays. Returns the stats and the solver of the
 /// Hessian at the final `x` (when one could be made; see [`StationaryOptions::exact_solver`]):
 /// the sensitivities' operator where the tolerance was met, the predictor of path following.
 /// `progress(iterations)` may cancel.
@@ -82,7 +129,7 @@ pub fn minimise<const D: usize>(
     setup: &Arc<SolverSetup>,
     x: &mut [Vector<D>],
     options: &StationaryOptions,
-    mut preconditioner: Option<Arc<Preconditioner<D>>>,
+    lagged: Option<Lagged<D>>,
     progress: &mut dyn FnMut(usize) -> bool,
 ) -> Result<(StationaryStats, Option<HessianSolver<D>>)> {
     let newton = Newton {
@@ -97,12 +144,12 @@ pub fn minimise<const D: usize>(
         gradient_norm: f64::INFINITY,
         ..Default::default()
     };
-    let mut eval = objective.evaluate(pool, x, true);
+    // A nearby state's preconditioner; the last solver's Hessian for the next evaluation.
+    let (mut preconditioner, mut spare) = lagged.map_or((None, None), Lagged::into_parts);
+    let mut eval = objective.evaluate_into(pool, x, true, &mut spare);
     if !eval.value.is_finite() {
         return Ok((stats, None));
     }
-    // The storage of the last solver's Hessian, for the next evaluation to write into.
-    let mut spare: Option<BlockMatrix<D>> = None;
     loop {
         stats.gradient_norm = scaled_gradient_norm(&objective, free, &eval.gradient);
         let hessian = eval.hessian.take().expect("Hessian evaluated");

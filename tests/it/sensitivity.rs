@@ -174,6 +174,15 @@ fn the_multigrid_newton_method_gives_the_same_result_for_one_and_two_threads() {
     assert!(a.newton_iterations > 0 && a.sweeps == 0, "{a:?}");
     assert_eq!(a.newton_iterations, b.newton_iterations);
     assert_eq!(one.positions(), two.positions());
+    // A second cold relocation starts from the reference state kept on the handle without its
+    // Hessian (evaluated again there, with the kept preconditioner): the same path.
+    let once = one.positions().to_vec();
+    let c = one.relocate(&default(1), &mut |_, _, _| true).unwrap();
+    assert!(
+        c.sweeps == 0 && c.newton_iterations <= a.newton_iterations,
+        "{c:?}"
+    );
+    assert_eq!(one.positions(), once);
 }
 
 #[test]
