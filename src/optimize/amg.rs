@@ -99,19 +99,22 @@ pub struct Amg {
 }
 
 impl Level {
-    /// The level of operator `a` (and `ap = A P`, the operator times the prolongator `p` from
-    /// the next level; the smoother's `inverse_diagonal` and `lambda`), and the next level's
-    /// operator `PᵀAP`.
+    /// The level of the operator `a()` (and `ap = A P`, the operator times the prolongator `p`
+    /// from the next level; the smoother's `inverse_diagonal` and `lambda`), and the next
+    /// level's operator `PᵀAP`. The operator is made once `A P` is dropped: at the finest level
+    /// `A P` and the smoother's copy of `A` are each hundreds of megabytes, and together they
+    /// were the peak of a relocation.
     fn new(
         pool: &ThreadPool,
-        a: Operator,
+        a: impl FnOnce() -> Operator,
         (ap, p): (Csr, Csr),
         (inverse_diagonal, lambda): (Vec<f64>, f64),
     ) -> (Level, Csr) {
         let r = p.transpose();
         let coarse = r.product(pool, &ap);
+        drop(ap);
         let level = Level {
-            a,
+            a: a(),
             inverse_diagonal,
             lambda,
             p,
@@ -166,7 +169,7 @@ impl Amg {
                 // not smoothed.
                 let inverse_diagonal = inverses(fine.diagonal());
                 let ap = Csr::product_of(pool, fine.rows.len(), |i| fine.entries(i), &p);
-                let blocks = Operator::Blocks(BlockRows::new(pool, layout, hessian, free));
+                let blocks = || Operator::Blocks(BlockRows::new(pool, layout, hessian, free));
                 let (mut level, coarse) =
                     Level::new(pool, blocks, (ap, p), (inverse_diagonal, 0.0));
                 let apply = |x: &[f64], y: &mut [f64]| level.a.apply(pool, x, y);
@@ -206,8 +209,8 @@ impl Amg {
                 false => tentative,
             };
             let ap = a.product(pool, &p);
-            let (level, coarse) =
-                Level::new(pool, Operator::rows(a), (ap, p), (inverse_diagonal, lambda));
+            let rows = || Operator::rows(a);
+            let (level, coarse) = Level::new(pool, rows, (ap, p), (inverse_diagonal, lambda));
             levels.push(level);
             a = coarse;
             grouping = coarse_grouping;
