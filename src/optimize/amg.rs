@@ -30,7 +30,7 @@ use super::csr::{split_rows, Csr};
 use super::lattice;
 use super::problem::Problem;
 use super::small_matrix::Vector;
-use super::sparse::{CholeskyPattern, Factor};
+use super::sparse::{CholeskyPattern, Coordinates, Factor};
 
 /// Stop coarsening below this many unknowns (then factor the level, sparse).
 const COARSEST: usize = 5_000;
@@ -94,8 +94,8 @@ pub struct Amg {
     levels: Vec<Level>,
     coarsest: (CholeskyPattern, Factor),
     coarsest_size: usize,
-    /// `dof[v·d + k]`: index of component `k` of node `v` among the free coordinates.
-    dof: Vec<u32>,
+    /// The free coordinates (the finest level's rows).
+    coordinates: Coordinates,
 }
 
 impl Level {
@@ -157,31 +157,34 @@ impl Amg {
         free: &[u8],
         x: &[Vector<D>],
     ) -> Option<Amg> {
-        let fine = FineRows::new(layout, hessian, free);
+        let fine = FineRows::new(layout, hessian, Coordinates::of_mask(free, D).ok()?);
         let modes = D * (D + 1) / 2;
         let mut levels = Vec::new();
-        let (mut a, mut grouping, mut null_space) = match corner_prolongator(problem, &fine.dof, x)
-        {
-            Some((p, grouping, null_space)) => {
-                // The finest operator is read from the block Hessian (no copy in compressed
-                // rows: on the wing, 720 MB); its smoother's operator is by node blocks in single
-                // precision, the largest eigenvalue estimated with it. The corner prolongator is
-                // not smoothed.
-                let inverse_diagonal = inverses(fine.diagonal());
-                let ap = Csr::product_of(pool, fine.rows.len(), |i| fine.entries(i), &p);
-                let blocks = || Operator::Blocks(BlockRows::new(pool, layout, hessian, free));
-                let (mut level, coarse) =
-                    Level::new(pool, blocks, (ap, p), (inverse_diagonal, 0.0));
-                let apply = |x: &[f64], y: &mut [f64]| level.a.apply(pool, x, y);
-                level.lambda = spectral_radius(level.a.size(), apply, &level.inverse_diagonal);
-                levels.push(level);
-                (coarse, grouping, null_space)
-            }
-            None => {
-                let (grouping, null_space) = node_grouping(&fine.dof, free.len(), x);
-                (fine.csr(pool), grouping, null_space)
-            }
-        };
+        let (mut a, mut grouping, mut null_space) =
+            match corner_prolongator(problem, &fine.coordinates, x) {
+                Some((p, grouping, null_space)) => {
+                    // The finest operator is read from the block Hessian (no copy in compressed
+                    // rows: on the wing, 720 MB); its smoother's operator is by node blocks in single
+                    // precision, the largest eigenvalue estimated with it. The corner prolongator is
+                    // not smoothed.
+                    let inverse_diagonal = inverses(fine.diagonal());
+                    let ap = Csr::product_of(pool, fine.rows.len(), |i| fine.entries(i), &p);
+                    let coordinates = &fine.coordinates;
+                    let blocks =
+                        || Operator::Blocks(BlockRows::new(pool, layout, hessian, coordinates));
+                    let (mut level, coarse) =
+                        Level::new(pool, blocks, (ap, p), (inverse_diagonal, 0.0));
+                    let apply = |x: &[f64], y: &mut [f64]| level.a.apply(pool, x, y);
+                    level.lambda = spectral_radius(level.a.size(), apply, &level.inverse_diagonal);
+                    levels.push(level);
+                    (coarse, grouping, null_space)
+                }
+                None => {
+                    let (grouping, null_space) =
+                        node_grouping(fine.coordinates.ids(), free.len(), x);
+                    (fine.csr(pool), grouping, null_space)
+                }
+            };
         while a.rows() > COARSEST && levels.len() < 12 {
             let clock = std::time::Instant::now();
             let aggregates = aggregate(&a, &grouping);
@@ -220,7 +223,7 @@ impl Amg {
             levels,
             coarsest: coarsest_factor(&a)?,
             coarsest_size: a.rows(),
-            dof: fine.dof,
+            coordinates: fine.coordinates,
         })
     }
 
@@ -236,14 +239,14 @@ impl Amg {
             .first()
             .map_or(self.coarsest_size, |l| l.a.size());
         let mut b = vec![0.0; n];
-        for (i, &d) in self.dof.iter().enumerate() {
+        for (i, &d) in self.coordinates.ids().iter().enumerate() {
             if d != u32::MAX {
                 b[d as usize] = r[i / D][i % D];
             }
         }
         let x = self.cycle(pool, 0, &b);
         let mut out = vec![[0.0; D]; r.len()];
-        for (i, &d) in self.dof.iter().enumerate() {
+        for (i, &d) in self.coordinates.ids().iter().enumerate() {
             if d != u32::MAX {
                 out[i / D][i % D] = x[d as usize];
             }
@@ -279,31 +282,28 @@ impl Amg {
 }
 
 /// The finest level, `H_ff` read from the block Hessian: a row `(v, k)` for every free
-/// component `k` of a node `v`, numbered node by node.
+/// component `k` of a node `v`, numbered as [`Coordinates`] number them.
 struct FineRows<'a, const D: usize> {
     layout: &'a BlockLayout,
     hessian: &'a BlockMatrix<D>,
-    /// `dof[v·d + k]`: the row of component `k` of node `v`, `u32::MAX` where it is not free.
-    dof: Vec<u32>,
+    coordinates: Coordinates,
     /// `(v, k)` per row.
     rows: Vec<(usize, usize)>,
 }
 
 impl<'a, const D: usize> FineRows<'a, D> {
-    /// The free coordinates of `free` (per node, the bits of its free components).
-    fn new(layout: &'a BlockLayout, hessian: &'a BlockMatrix<D>, free: &[u8]) -> Self {
-        let mut dof = vec![u32::MAX; free.len() * D];
-        let mut rows = Vec::new();
-        for (v, &mask) in free.iter().enumerate() {
-            for k in (0..D).filter(|k| mask & (1 << k) != 0) {
-                dof[v * D + k] = rows.len() as u32;
-                rows.push((v, k));
+    /// The rows of the free `coordinates`.
+    fn new(layout: &'a BlockLayout, hessian: &'a BlockMatrix<D>, coordinates: Coordinates) -> Self {
+        let mut rows = vec![(0, 0); coordinates.count()];
+        for (i, &d) in coordinates.ids().iter().enumerate() {
+            if d != u32::MAX {
+                rows[d as usize] = (i / D, i % D);
             }
         }
         FineRows {
             layout,
             hessian,
-            dof,
+            coordinates,
             rows,
         }
     }
@@ -315,8 +315,8 @@ impl<'a, const D: usize> FineRows<'a, D> {
         let (blocks, neighbours) = self.layout.row(v);
         blocks.zip(neighbours).flat_map(move |(b, &w)| {
             (0..D).filter_map(move |l| {
-                let d = self.dof[w as usize * D + l];
-                (d != u32::MAX).then(|| (d, self.hessian.blocks[b][k][l]))
+                let d = self.coordinates.of(w as usize, l)?;
+                Some((d as u32, self.hessian.blocks[b][k][l]))
             })
         })
     }
@@ -379,7 +379,7 @@ impl<'a, const D: usize> FineRows<'a, D> {
 /// corner (linear cells, T-meshes).
 fn corner_prolongator<const D: usize>(
     problem: &Problem<D>,
-    dof: &[u32],
+    fine: &Coordinates,
     x: &[Vector<D>],
 ) -> Option<(Csr, Grouping, Vec<f64>)> {
     let n = problem.node_count();
@@ -396,18 +396,12 @@ fn corner_prolongator<const D: usize>(
     if all_corners {
         return None;
     }
-    let mut coarse_dof = vec![u32::MAX; n * D];
-    let mut count = 0u32;
-    for v in (0..n).filter(|&v| corner[v]) {
-        for k in 0..D {
-            if dof[v * D + k] != u32::MAX {
-                coarse_dof[v * D + k] = count;
-                count += 1;
-            }
-        }
-    }
-    let fine = dof.iter().filter(|&&d| d != u32::MAX).count();
-    let mut rows: Vec<Vec<(u32, f64)>> = vec![Vec::new(); fine];
+    // The corners' free components.
+    let corner_mask: Vec<u8> = (0..n)
+        .map(|v| if corner[v] { fine.mask(v) } else { 0 })
+        .collect();
+    let coarse = Coordinates::of_mask(&corner_mask, D).ok()?;
+    let mut rows: Vec<Vec<(u32, f64)>> = vec![Vec::new(); fine.count()];
     for v in 0..n {
         let Some(&(c, r)) = problem.incident_cells(v).first() else {
             continue;
@@ -435,23 +429,19 @@ fn corner_prolongator<const D: usize>(
             })
             .collect();
         for k in 0..D {
-            let d = dof[v * D + k];
-            if d == u32::MAX {
+            let Some(d) = fine.of(v, k) else {
                 continue;
-            }
+            };
             let mut row: Vec<(u32, f64)> = weights
                 .iter()
-                .filter_map(|&(w, weight)| {
-                    let cd = coarse_dof[w * D + k];
-                    (cd != u32::MAX).then_some((cd, weight))
-                })
+                .filter_map(|&(w, weight)| Some((coarse.of(w, k)? as u32, weight)))
                 .collect();
             row.sort_unstable_by_key(|e| e.0);
-            rows[d as usize] = row;
+            rows[d] = row;
         }
     }
-    let (grouping, null_space) = node_grouping(&coarse_dof, n, x);
-    Some((Csr::from_rows(count as usize, rows), grouping, null_space))
+    let (grouping, null_space) = node_grouping(coarse.ids(), n, x);
+    Some((Csr::from_rows(coarse.count(), rows), grouping, null_space))
 }
 
 /// The inverses of a diagonal's positive values (0 elsewhere).

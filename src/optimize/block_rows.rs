@@ -13,6 +13,7 @@ use rayon::ThreadPool;
 
 use super::blocks::{BlockLayout, BlockMatrix};
 use super::csr::split_rows;
+use super::sparse::Coordinates;
 
 /// Nodes per parallel task of a product.
 const RUN: usize = 256;
@@ -37,27 +38,28 @@ pub struct BlockRows {
 }
 
 impl BlockRows {
-    /// The free-by-free part of `hessian` (free components of node `v` given by the bits of
-    /// `free[v]`), its values rounded to single precision. Nodes with no free component are
-    /// left out; the coordinates are numbered node by node, components in order.
+    /// The free-by-free part of `hessian` (its rows and columns the free `coordinates`), its
+    /// values rounded to single precision. Nodes with no free component are left out.
     pub fn new<const D: usize>(
         pool: &ThreadPool,
         layout: &BlockLayout,
         hessian: &BlockMatrix<D>,
-        free: &[u8],
+        coordinates: &Coordinates,
     ) -> Self {
-        let nodes: Vec<usize> = (0..free.len()).filter(|&v| free[v] != 0).collect();
-        let mut index = vec![u32::MAX; free.len()];
+        let node_count = coordinates.node_count();
+        let free: Vec<u8> = (0..node_count).map(|v| coordinates.mask(v)).collect();
+        let nodes: Vec<usize> = (0..node_count).filter(|&v| free[v] != 0).collect();
+        let mut index = vec![u32::MAX; node_count];
         let mut out = BlockRows::default();
-        let mut coordinates = 0u32;
         for (i, &v) in nodes.iter().enumerate() {
             index[v] = i as u32;
-            let width = free[v].count_ones() as u8;
-            out.first.push(coordinates);
-            out.width.push(width);
-            coordinates += u32::from(width);
+            let first = (0..D)
+                .find_map(|k| coordinates.of(v, k))
+                .expect("a free component");
+            out.first.push(first as u32);
+            out.width.push(free[v].count_ones() as u8);
         }
-        out.rows = coordinates as usize;
+        out.rows = coordinates.count();
         // Blocks and values per node first, then every node's blocks written in place.
         let couplings = |v: usize| {
             let (blocks, neighbours) = layout.row(v);
@@ -220,7 +222,8 @@ mod tests {
         let objective = GlobalObjective::new(&problem, &layout, None, 0.0);
         let hessian = objective.evaluate(&pool, &x, true).hessian.unwrap();
         let free: Vec<u8> = (0..n).map(|v| problem.free_mask(v)).collect();
-        let rows = BlockRows::new(&pool, &layout, &hessian, &free);
+        let coordinates = Coordinates::of_mask(&free, D).unwrap();
+        let rows = BlockRows::new(&pool, &layout, &hessian, &coordinates);
         // The free coordinates, node by node.
         let coordinates: Vec<(usize, usize)> = (0..n)
             .flat_map(|v| (0..D).map(move |k| (v, k)))

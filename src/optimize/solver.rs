@@ -71,7 +71,7 @@ impl SolverSetup {
         let free = Self::free_mask(problem);
         let coordinates: usize = free.iter().map(|m| m.count_ones() as usize).sum();
         let direct = if D == 2 || coordinates <= DIRECT_3D_COORDINATES {
-            let analysis = FreeHessian::new(problem, &layout)?;
+            let analysis = FreeHessian::new(problem, &layout, &free)?;
             (analysis.factor_size() <= DIRECT_FACTOR_LIMIT).then_some(analysis)
         } else {
             None
@@ -178,7 +178,7 @@ impl<const D: usize> Preconditioner<D> {
                 let mut flat = vec![0.0; coordinates.count()];
                 for (v, rv) in r.iter().enumerate() {
                     for (k, &value) in rv.iter().enumerate() {
-                        if let Some(i) = coordinates.of(D, v, k) {
+                        if let Some(i) = coordinates.of(v, k) {
                             flat[i] = value;
                         }
                     }
@@ -187,7 +187,7 @@ impl<const D: usize> Preconditioner<D> {
                 let mut z = vec![[0.0; D]; r.len()];
                 for (v, zv) in z.iter_mut().enumerate() {
                     for (k, value) in zv.iter_mut().enumerate() {
-                        if let Some(i) = coordinates.of(D, v, k) {
+                        if let Some(i) = coordinates.of(v, k) {
                             *value = flat[i];
                         }
                     }

@@ -25,33 +25,37 @@ use crate::error::{Error, Result};
 /// Marks a coordinate that is not free.
 const NONE: u32 = u32::MAX;
 
-/// The free coordinates of a problem: component `k` of node `v` is free when its bit is set in
-/// the node's free mask and the node belongs to a cell.
+/// The free coordinates of a mesh, numbered node by node, each node's components in order: the
+/// one numbering of `H_ff`'s rows (its factor, the multigrid's finest level, the smoother's
+/// node blocks).
 #[derive(Clone, Debug)]
 pub struct Coordinates {
     /// `id[v·d + k]`: index of the coordinate among the free ones, or `NONE`.
     id: Vec<u32>,
     count: usize,
+    dimension: usize,
 }
 
 impl Coordinates {
-    /// The free coordinates of `problem`, numbered node by node.
-    pub fn free<const D: usize>(problem: &Problem<D>) -> Result<Self> {
-        let mut id = vec![NONE; problem.node_count() * D];
+    /// The coordinates whose bits are set in `free` (per node, its free components among
+    /// `dimension`).
+    pub fn of_mask(free: &[u8], dimension: usize) -> Result<Self> {
+        let mut id = vec![NONE; free.len() * dimension];
         let mut count = 0usize;
-        for v in 0..problem.node_count() {
-            if problem.incident_cells(v).is_empty() {
-                continue;
-            }
-            for k in 0..D {
-                if problem.free_mask(v) & (1 << k) != 0 {
-                    id[v * D + k] = u32::try_from(count)
-                        .map_err(|_| Error::invalid("more than 2^32 - 1 free coordinates"))?;
-                    count += 1;
-                }
+        for (v, &mask) in free.iter().enumerate() {
+            for k in (0..dimension).filter(|k| mask & (1 << k) != 0) {
+                id[v * dimension + k] = u32::try_from(count)
+                    .ok()
+                    .filter(|&i| i != NONE)
+                    .ok_or_else(|| Error::invalid("more than 2^32 - 2 free coordinates"))?;
+                count += 1;
             }
         }
-        Ok(Coordinates { id, count })
+        Ok(Coordinates {
+            id,
+            count,
+            dimension,
+        })
     }
 
     /// Number of free coordinates.
@@ -60,9 +64,28 @@ impl Coordinates {
     }
 
     /// Index of component `k` of node `v` among the free coordinates.
-    pub fn of(&self, dimension: usize, v: usize, k: usize) -> Option<usize> {
-        let i = self.id[v * dimension + k];
+    pub fn of(&self, v: usize, k: usize) -> Option<usize> {
+        let i = self.id[v * self.dimension + k];
         (i != NONE).then_some(i as usize)
+    }
+
+    /// The bits of node `v`'s free components.
+    pub fn mask(&self, v: usize) -> u8 {
+        let ids = &self.id[v * self.dimension..(v + 1) * self.dimension];
+        (0..self.dimension)
+            .filter(|&k| ids[k] != NONE)
+            .fold(0, |mask, k| mask | 1 << k)
+    }
+
+    /// Number of nodes.
+    pub fn node_count(&self) -> usize {
+        self.id.len() / self.dimension
+    }
+
+    /// Per node and component (`v·d + k`), its index among the free coordinates, `u32::MAX`
+    /// where it is not free.
+    pub fn ids(&self) -> &[u32] {
+        &self.id
     }
 }
 
@@ -231,9 +254,14 @@ impl CholeskyPattern {
 }
 
 impl FreeHessian {
-    /// The structure of the free block of `problem`'s Hessian, laid out by `layout`.
-    pub fn new<const D: usize>(problem: &Problem<D>, layout: &BlockLayout) -> Result<Self> {
-        let coordinates = Coordinates::free(problem)?;
+    /// The structure of the free block (free components of node `v` given by the bits of
+    /// `free[v]`) of `problem`'s Hessian, laid out by `layout`.
+    pub fn new<const D: usize>(
+        problem: &Problem<D>,
+        layout: &BlockLayout,
+        free: &[u8],
+    ) -> Result<Self> {
+        let coordinates = Coordinates::of_mask(free, D)?;
         let n = coordinates.count();
         let mut col_ptr = Vec::with_capacity(n + 1);
         let mut row_idx = Vec::new();
@@ -241,13 +269,13 @@ impl FreeHessian {
         col_ptr.push(0);
         for w in 0..problem.node_count() {
             for l in 0..D {
-                let Some(j) = coordinates.of(D, w, l) else {
+                let Some(j) = coordinates.of(w, l) else {
                     continue;
                 };
                 let (blocks, neighbours) = layout.row(w);
                 for (b, &v) in blocks.zip(neighbours) {
                     for k in 0..D {
-                        match coordinates.of(D, v as usize, k) {
+                        match coordinates.of(v as usize, k) {
                             Some(i) if i >= j => {
                                 row_idx.push(i);
                                 // Block (w, v) holds ∂²F/∂x_wl∂x_vk at [l][k].

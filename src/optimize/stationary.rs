@@ -212,8 +212,7 @@ fn retire<const D: usize>(
     spare: &mut Option<BlockMatrix<D>>,
     preconditioner: &mut Option<Arc<Preconditioner<D>>>,
 ) -> Option<HessianSolver<D>> {
-    let (hessian, lagged) = solver.into_parts();
-    (*spare, *preconditioner) = (Some(hessian), Some(lagged));
+    (*preconditioner, *spare) = Lagged::retired(solver).into_parts();
     None
 }
 
