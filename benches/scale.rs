@@ -42,7 +42,10 @@ fn main() {
         .find(|(i, a)| !a.starts_with('-') && (*i == 0 || args[i - 1] != "--max-nodes"))
         .map(|(_, a)| a.clone());
     let cores = std::thread::available_parallelism().map_or(1, |n| n.get());
-    println!("machine: {cores} cores; default options (method AUTO where the row does not say otherwise, threads: all)");
+    println!(
+        "machine: {cores} cores; default options (method AUTO where the row does not say \
+         otherwise, threads: all)"
+    );
     println!("| mesh | splits | cells | nodes | method | seconds | µs per node | sweeps | Newton iterations | invalid after | min q | mean q | peak MB |");
     println!("|---|---|---|---|---|---|---|---|---|---|---|---|---|");
     for (name, file, s, newton) in CASES {

@@ -163,10 +163,10 @@ impl Amg {
         let (mut a, mut grouping, mut null_space) =
             match corner_prolongator(problem, &fine.coordinates, x) {
                 Some((p, grouping, null_space)) => {
-                    // The finest operator is read from the block Hessian (no copy in compressed
-                    // rows: on the wing, 720 MB); its smoother's operator is by node blocks in single
-                    // precision, the largest eigenvalue estimated with it. The corner prolongator is
-                    // not smoothed.
+                    // The finest operator is read from the block Hessian (no copy in
+                    // compressed rows: on the wing, 720 MB); its smoother's operator is by node
+                    // blocks in single precision, the largest eigenvalue estimated with it. The
+                    // corner prolongator is not smoothed.
                     let inverse_diagonal = inverses(fine.diagonal());
                     let ap = Csr::product_of(pool, fine.rows.len(), |i| fine.entries(i), &p);
                     let coordinates = &fine.coordinates;

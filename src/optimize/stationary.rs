@@ -119,10 +119,10 @@ pub fn solver_at<const D: usize>(
 }
 
 /// Minimises `F` over the free coordinates of `x` (a valid state). `lagged`, when given, comes
-/// from a nearby state: its preconditioner is used while it pays. Returns the stats and the solver of the
-/// Hessian at the final `x` (when one could be made; see [`StationaryOptions::exact_solver`]):
-/// the sensitivities' operator where the tolerance was met, the predictor of path following.
-/// `progress(iterations)` may cancel.
+/// from a nearby state: its preconditioner is used while it pays. Returns the stats and the
+/// solver of the Hessian at the final `x` (when one could be made; see
+/// [`StationaryOptions::exact_solver`]): the sensitivities' operator where the tolerance was met,
+/// the predictor of path following. `progress(iterations)` may cancel.
 pub fn minimise<const D: usize>(
     pool: &ThreadPool,
     problem: &Problem<D>,
