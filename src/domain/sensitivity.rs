@@ -113,7 +113,7 @@ impl<const D: usize, B: CubeMap<D>> Domain<D, B> {
             )));
         }
         let hessian = eval.hessian.take().expect("Hessian evaluated");
-        HessianSolver::fresh(pool, &problem, &setup, hessian, &self.framed)?
+        HessianSolver::fresh(pool, &problem, &setup, hessian, (&self.framed, 0))?
             .ok_or_else(|| unavailable("the Hessian at the T-mesh has no factorisation"))
     }
 

@@ -137,9 +137,9 @@ fn coarsest_factor(a: &Csr) -> Option<(CholeskyPattern, Factor)> {
         );
     }
     let factor = pattern
-        .factorize(positions.iter().map(|&p| a.value[p]).collect())
+        .factorize(positions.iter().map(|&p| a.value[p]).collect(), 0)
         .ok()??;
-    if factor.modified {
+    if factor.modified() {
         return None;
     }
     Some((pattern, factor))

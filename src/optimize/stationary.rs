@@ -236,14 +236,15 @@ struct Newton<'a, const D: usize> {
 }
 
 impl<const D: usize> Newton<'_, D> {
-    /// The solver of `hessian` (at `x`) with a preconditioner made from it; `None` where none
-    /// can be made.
+    /// The solver of `hessian` (at `x`) with a preconditioner made from it, a factor's shifts
+    /// tried from level `first`; `None` where none can be made.
     fn fresh_solver(
         &self,
         x: &[Vector<D>],
         hessian: BlockMatrix<D>,
+        first: usize,
     ) -> Result<Option<HessianSolver<D>>> {
-        HessianSolver::fresh(self.pool, self.problem, self.setup, hessian, x)
+        HessianSolver::fresh(self.pool, self.problem, self.setup, hessian, (x, first))
     }
 
     /// The solver of `hessian` (at `x`) with `preconditioner` from an earlier state, or with
@@ -256,7 +257,7 @@ impl<const D: usize> Newton<'_, D> {
     ) -> Result<Option<HessianSolver<D>>> {
         match preconditioner {
             Some(p) => Ok(Some(HessianSolver::new(self.setup.clone(), hessian, p))),
-            None => self.fresh_solver(x, hessian),
+            None => self.fresh_solver(x, hessian, 0),
         }
     }
 
@@ -289,7 +290,13 @@ impl<const D: usize> Newton<'_, D> {
         if lagged && (solved.residual > inner || solved.negative_curvature) {
             // The earlier preconditioner stopped paying: make one from this Hessian.
             let hessian = solver.hessian().clone();
-            let Some(fresh) = self.fresh_solver(x, hessian)? else {
+            // Where CG met negative curvature, this Hessian is indefinite: its factor's shifts
+            // start from the one the earlier state's needed (none tried below it).
+            let first = match solved.negative_curvature {
+                true => solver.preconditioner().next_shift(),
+                false => 0,
+            };
+            let Some(fresh) = self.fresh_solver(x, hessian, first)? else {
                 return Ok(None);
             };
             *solver = fresh;
