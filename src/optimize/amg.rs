@@ -26,7 +26,7 @@ use rayon::ThreadPool;
 use super::aggregation::{aggregate, node_grouping, tentative_prolongator, Grouping};
 use super::block_rows::BlockRows;
 use super::blocks::{BlockLayout, BlockMatrix};
-use super::csr::{split_rows, Csr};
+use super::csr::Csr;
 use super::lattice;
 use super::problem::Problem;
 use super::small_matrix::Vector;
@@ -344,32 +344,17 @@ impl<'a, const D: usize> FineRows<'a, D> {
                 .map(|i| self.entries(i).count())
                 .collect()
         });
-        let mut start = Vec::with_capacity(self.rows.len() + 1);
-        start.push(0);
-        for length in &lengths {
-            start.push(start[start.len() - 1] + length);
-        }
-        let total = start[self.rows.len()];
-        let (mut column, mut value) = (vec![0u32; total], vec![0.0; total]);
-        let columns = split_rows(&mut column, lengths.iter().copied());
-        let values = split_rows(&mut value, lengths.iter().copied());
-        pool.install(|| {
-            columns
-                .into_par_iter()
-                .zip(values)
-                .enumerate()
-                .for_each(|(i, (c, v))| {
-                    for ((ci, vi), (d, h)) in c.iter_mut().zip(v.iter_mut()).zip(self.entries(i)) {
-                        (*ci, *vi) = (d, h);
-                    }
-                })
-        });
-        Csr {
-            columns: self.rows.len(),
-            start,
-            column,
-            value,
-        }
+        Csr::filled(
+            pool,
+            self.rows.len(),
+            &lengths,
+            || (),
+            |_, i, c, v| {
+                for ((ci, vi), (d, h)) in c.iter_mut().zip(v.iter_mut()).zip(self.entries(i)) {
+                    (*ci, *vi) = (d, h);
+                }
+            },
+        )
     }
 }
 

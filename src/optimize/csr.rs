@@ -173,27 +173,40 @@ impl Csr {
                 .map_init(scratch, |g, i| g.pattern(row(i), b))
                 .collect()
         });
-        let mut start = Vec::with_capacity(rows + 1);
+        Csr::filled(pool, b.columns, &lengths, scratch, |g, i, c, v| {
+            g.pattern(row(i), b);
+            g.emit(row(i), b, c, v);
+        })
+    }
+
+    /// The matrix of `columns` columns whose rows have the given `lengths`, each row `i`
+    /// written in place by `fill(scratch, i, columns, values)` in parallel (`scratch` made by
+    /// `init`, per task): the arrays are allocated once, at their size.
+    pub fn filled<S>(
+        pool: &ThreadPool,
+        columns: usize,
+        lengths: &[usize],
+        init: impl Fn() -> S + Sync + Send,
+        fill: impl Fn(&mut S, usize, &mut [u32], &mut [f64]) + Sync + Send,
+    ) -> Csr {
+        let mut start = Vec::with_capacity(lengths.len() + 1);
         start.push(0);
-        for length in &lengths {
+        for length in lengths {
             start.push(start[start.len() - 1] + length);
         }
-        let stored = start[rows];
+        let stored = start[lengths.len()];
         let (mut column, mut value) = (vec![0u32; stored], vec![0.0; stored]);
-        let columns = split_rows(&mut column, lengths.iter().copied());
-        let values = split_rows(&mut value, lengths.iter().copied());
+        let row_columns = split_rows(&mut column, lengths.iter().copied());
+        let row_values = split_rows(&mut value, lengths.iter().copied());
         pool.install(|| {
-            columns
+            row_columns
                 .into_par_iter()
-                .zip(values)
+                .zip(row_values)
                 .enumerate()
-                .for_each_init(scratch, |g, (i, (c, v))| {
-                    g.pattern(row(i), b);
-                    g.emit(row(i), b, c, v);
-                })
+                .for_each_init(init, |s, (i, (c, v))| fill(s, i, c, v))
         });
         Csr {
-            columns: b.columns,
+            columns,
             start,
             column,
             value,
