@@ -6,11 +6,11 @@
 //! Blocks are stored for both triangles, so a row-wise product needs no transposition and
 //! parallelises with a result independent of the thread count.
 
-use rayon::prelude::*;
 use rayon::ThreadPool;
 
 use super::problem::Problem;
 use super::small_matrix::{Matrix, Vector};
+use crate::threads;
 
 /// Marks a pair of a cell's nodes that does not couple.
 pub(super) const NONE: u32 = u32::MAX;
@@ -180,8 +180,9 @@ impl<const D: usize> BlockMatrix<D> {
 
     /// `y = M x` restricted to the coordinates selected by `rows` (bit `k` of `rows[v]` selects
     /// component `k` of node `v`) on both sides, i.e. `x` is read where `columns` selects and `y`
-    /// is written where `rows` selects, zero elsewhere. Rows run in parallel; each sums its
-    /// blocks in column order, so the result does not depend on the thread count.
+    /// is written where `rows` selects, zero elsewhere. Rows run in parallel (on a large
+    /// matrix: [`threads::for_each_mut`]); each sums its blocks in column order, so the result
+    /// does not depend on the thread count.
     pub fn product(
         &self,
         pool: &ThreadPool,
@@ -191,38 +192,37 @@ impl<const D: usize> BlockMatrix<D> {
         x: &[Vector<D>],
         y: &mut [Vector<D>],
     ) {
-        pool.install(|| {
-            y.par_iter_mut().enumerate().for_each(|(v, yv)| {
-                *yv = [0.0; D];
-                if rows[v] == 0 {
-                    return;
+        let work = self.blocks.len() * D * D;
+        threads::for_each_mut(pool, work, y, |v, yv| {
+            *yv = [0.0; D];
+            if rows[v] == 0 {
+                return;
+            }
+            let (blocks, neighbours) = layout.row(v);
+            let full = (1u8 << D) - 1;
+            for (block, &w) in self.blocks[blocks].iter().zip(neighbours) {
+                let (w, mask) = (w as usize, columns[w as usize]);
+                if mask == 0 {
+                    continue;
                 }
-                let (blocks, neighbours) = layout.row(v);
-                let full = (1u8 << D) - 1;
-                for (block, &w) in self.blocks[blocks].iter().zip(neighbours) {
-                    let (w, mask) = (w as usize, columns[w as usize]);
-                    if mask == 0 {
-                        continue;
-                    }
-                    // Plain loops: an array built by a closure per block was not inlined.
-                    let mut xw = x[w];
-                    if mask != full {
-                        for (l, xl) in xw.iter_mut().enumerate() {
-                            if mask & (1 << l) == 0 {
-                                *xl = 0.0;
-                            }
+                // Plain loops: an array built by a closure per block was not inlined.
+                let mut xw = x[w];
+                if mask != full {
+                    for (l, xl) in xw.iter_mut().enumerate() {
+                        if mask & (1 << l) == 0 {
+                            *xl = 0.0;
                         }
                     }
-                    for (yk, row) in yv.iter_mut().zip(block) {
-                        *yk += row.iter().zip(&xw).map(|(b, x)| b * x).sum::<f64>();
-                    }
                 }
-                for (k, yk) in yv.iter_mut().enumerate() {
-                    if rows[v] & (1 << k) == 0 {
-                        *yk = 0.0;
-                    }
+                for (yk, row) in yv.iter_mut().zip(block) {
+                    *yk += row.iter().zip(&xw).map(|(b, x)| b * x).sum::<f64>();
                 }
-            })
+            }
+            for (k, yk) in yv.iter_mut().enumerate() {
+                if rows[v] & (1 << k) == 0 {
+                    *yk = 0.0;
+                }
+            }
         });
     }
 }

@@ -9,6 +9,7 @@
 use faer::dyn_stack::{MemBuffer, MemStack};
 use faer::linalg::cholesky::llt::factor::LltRegularization;
 use faer::reborrow::Reborrow;
+use faer::sparse::linalg::cholesky::supernodal::SymbolicSupernodalCholesky;
 use faer::sparse::linalg::cholesky::{
     factorize_symbolic_cholesky, CholeskySymbolicParams, SymbolicCholesky, SymbolicCholeskyRaw,
     SymmetricOrdering,
@@ -121,6 +122,8 @@ const SHIFTS: [f64; 4] = [1e-2, 1e-1, 1.0, 10.0];
 /// A numeric factorisation `D^{-1/2} A D^{-1/2} = L Lᵀ`, possibly of a modified matrix.
 pub struct Factor {
     values: Vec<f64>,
+    /// `1 / L_jj` per column ([`supernodal::reciprocal_diagonal`]).
+    inverse: Vec<f64>,
     /// `D^{-1/2}`, per unknown.
     scale: Vec<f64>,
     /// The shift of the diagonal: 0 for none, else `SHIFTS[level - 1]` (the matrix was not
@@ -213,8 +216,12 @@ impl CholeskyPattern {
                 }
             }
             if let Some(l) = self.try_factorize(&values)? {
+                let inverse = self.supernodal().map_or(Vec::new(), |symbolic| {
+                    supernodal::reciprocal_diagonal(symbolic, &l)
+                });
                 return Ok(Some(Factor {
                     values: l,
+                    inverse,
                     scale,
                     level: i,
                 }));
@@ -246,10 +253,18 @@ impl CholeskyPattern {
         Ok(result.is_ok().then_some(l))
     }
 
+    /// The supernodal structure of the factor (forced in `new`: faer analyses only an empty
+    /// matrix as simplicial, and that one has none).
+    fn supernodal(&self) -> Option<&SymbolicSupernodalCholesky<usize>> {
+        match self.symbolic.raw() {
+            SymbolicCholeskyRaw::Supernodal(symbolic) => Some(symbolic),
+            SymbolicCholeskyRaw::Simplicial(_) => None,
+        }
+    }
+
     /// Solves with the factored (possibly modified) matrix in place.
     pub fn solve(&self, factor: &Factor, b: &mut [f64]) {
-        // Forced supernodal in `new`, faer analyses only an empty matrix as simplicial.
-        let SymbolicCholeskyRaw::Supernodal(symbolic) = self.symbolic.raw() else {
+        let Some(symbolic) = self.supernodal() else {
             return;
         };
         // The factor's ordering of the unknowns (AMD's): `x[i] = b[order(i)]`.
@@ -259,7 +274,7 @@ impl CholeskyPattern {
         let mut x: Vec<f64> = (0..b.len())
             .map(|i| b[order(i)] * factor.scale[order(i)])
             .collect();
-        supernodal::solve(symbolic, &factor.values, &mut x);
+        supernodal::solve(symbolic, (&factor.values, &factor.inverse), &mut x);
         for (i, v) in b.iter_mut().enumerate() {
             *v = x[position(i)] * factor.scale[i];
         }

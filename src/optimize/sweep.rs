@@ -9,6 +9,7 @@ use super::problem::Problem;
 use super::small_matrix::Vector;
 use super::team::{Alone, Team};
 use crate::error::{Error, Result};
+use crate::threads;
 
 /// When the sweeps stop.
 #[derive(Clone, Copy, Debug)]
@@ -41,12 +42,13 @@ pub fn invalid_cells<const D: usize>(
     problem: &Problem<D>,
     positions: &[Vector<D>],
 ) -> Vec<usize> {
-    pool.install(|| {
-        (0..problem.cell_count())
-            .into_par_iter()
-            .filter(|&c| !problem.cell_is_valid(c, positions))
-            .collect()
-    })
+    let mut valid = vec![false; problem.cell_count()];
+    // A Jacobian per Gauss–Lobatto point, from up to 3^d nodes (as many as the points).
+    let per_cell = Problem::<D>::POINTS * Problem::<D>::POINTS * D * D;
+    threads::for_each_mut(pool, valid.len() * per_cell, &mut valid, |c, valid| {
+        *valid = problem.cell_is_valid(c, positions)
+    });
+    (0..valid.len()).filter(|&c| !valid[c]).collect()
 }
 
 /// Optimizes the free components of the free nodes in place. `progress(done, total)` is called
