@@ -101,7 +101,7 @@ impl<const D: usize, B: CubeMap<D>> Domain<D, B> {
         let setup = Arc::new(SolverSetup::new(&problem, layout)?);
         self.check_prescribed(&setup.free)?;
         let objective = GlobalObjective::new(&problem, setup.layout(), None, 0.0);
-        let mut eval = objective.evaluate(pool, &self.framed, true);
+        let mut eval = objective.evaluate(pool, &self.framed, true)?;
         if !eval.value.is_finite() {
             return Err(unavailable("a cell of the T-mesh is invalid"));
         }

@@ -125,11 +125,10 @@ impl Mesh {
             threads: options.threads,
         });
         let mut x = project::<D>(&state.positions, self.unit());
-        let stored_solver = state
-            .solver
-            .clone()
-            .filter(|_| state.stationary)
-            .and_then(|s| restore(pool, problem, setup, &x, s));
+        let stored_solver = match state.solver.clone().filter(|_| state.stationary) {
+            Some(s) => restore(pool, problem, setup, &x, s)?,
+            None => None,
+        };
         let solver = match stored_solver {
             Some(solver) => solver,
             None => {
@@ -202,7 +201,7 @@ impl Mesh {
         if options.stationarity_tolerance <= 0.0 {
             let objective = GlobalObjective::new(problem, &layout, None, 0.0);
             let free = SolverSetup::free_mask(problem);
-            let eval = objective.evaluate(pool, x, false);
+            let eval = objective.evaluate(pool, x, false)?;
             report.gradient_norm =
                 stationary::scaled_gradient_norm(&objective, &free, &eval.gradient);
             return Ok((None, Err(NOT_ASKED.into())));
@@ -246,13 +245,13 @@ fn restore<const D: usize>(
     setup: &Arc<SolverSetup>,
     x: &[Vector<D>],
     stored: Solver,
-) -> Option<Arc<HessianSolver<D>>> {
+) -> Result<Option<Arc<HessianSolver<D>>>> {
     match stored.downcast::<HessianSolver<D>>() {
-        Ok(solver) => Some(solver),
-        Err(stored) => {
-            let preconditioner = stored.downcast::<Preconditioner<D>>().ok()?;
-            stationary::solver_at(pool, problem, setup, x, preconditioner).map(Arc::new)
-        }
+        Ok(solver) => Ok(Some(solver)),
+        Err(stored) => match stored.downcast::<Preconditioner<D>>() {
+            Ok(p) => Ok(stationary::solver_at(pool, problem, setup, x, p)?.map(Arc::new)),
+            Err(_) => Ok(None),
+        },
     }
 }
 

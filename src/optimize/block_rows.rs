@@ -220,7 +220,11 @@ mod tests {
             .map(|p| std::array::from_fn(|k| p[k]))
             .collect();
         let objective = GlobalObjective::new(&problem, &layout, None, 0.0);
-        let hessian = objective.evaluate(&pool, &x, true).hessian.unwrap();
+        let hessian = objective
+            .evaluate(&pool, &x, true)
+            .unwrap()
+            .hessian
+            .unwrap();
         let free: Vec<u8> = (0..n).map(|v| problem.free_mask(v)).collect();
         let coordinates = Coordinates::of_mask(&free, D).unwrap();
         let rows = BlockRows::new(&pool, &layout, &hessian, &coordinates);

@@ -10,6 +10,7 @@ use rayon::ThreadPool;
 
 use super::problem::Problem;
 use super::small_matrix::{Matrix, Vector};
+use crate::error::{Error, ErrorKind, Result};
 use crate::threads;
 
 /// Marks a pair of a cell's nodes that does not couple.
@@ -163,6 +164,28 @@ fn coupling<const D: usize>(problem: &Problem<D>, c: usize) -> Vec<bool> {
     couples
 }
 
+/// `count` zero blocks, or a refusal naming the sweeps where they cannot be allocated: a Hessian
+/// larger than the machine's memory and swap (several million quadratic solid nodes; the sweeps
+/// keep none) would otherwise abort the process. The request is tried first, then made zeroed,
+/// so that the pages stay untouched until the evaluation writes them (as fresh storage: filling
+/// it with zeros instead would be one more pass over it, 480 MB on the wing).
+fn zero_blocks<const D: usize>(count: usize) -> Result<Vec<Matrix<D>>> {
+    let mut probe: Vec<Matrix<D>> = Vec::new();
+    probe.try_reserve_exact(count).map_err(|_| {
+        let values = count.saturating_mul(D * D);
+        Error::new(
+            ErrorKind::LimitExceeded,
+            format!(
+                "not enough memory for a Hessian of {values} values ({:.1} GB): relocate by the \
+                 sweeps (method SWEEPS), which keep none",
+                values as f64 * 8e-9
+            ),
+        )
+    })?;
+    drop(probe);
+    Ok(vec![[[0.0; D]; D]; count])
+}
+
 /// A symmetric matrix over node coordinates, in the blocks of a [`BlockLayout`].
 #[derive(Clone, Debug)]
 pub struct BlockMatrix<const D: usize> {
@@ -171,17 +194,18 @@ pub struct BlockMatrix<const D: usize> {
 }
 
 impl<const D: usize> BlockMatrix<D> {
-    /// The zero matrix of `layout`.
-    pub fn zero(layout: &BlockLayout) -> Self {
-        BlockMatrix {
-            blocks: vec![[[0.0; D]; D]; layout.block_count()],
-        }
+    /// The zero matrix of `layout`; refused ([`ErrorKind::LimitExceeded`]) where its storage
+    /// cannot be allocated.
+    pub fn zero(layout: &BlockLayout) -> Result<Self> {
+        Ok(BlockMatrix {
+            blocks: zero_blocks(layout.block_count())?,
+        })
     }
 
     /// `y = M x` restricted to the coordinates selected by `rows` (bit `k` of `rows[v]` selects
     /// component `k` of node `v`) on both sides, i.e. `x` is read where `columns` selects and `y`
-    /// is written where `rows` selects, zero elsewhere. Rows run in parallel (on a large
-    /// matrix: [`threads::for_each_mut`]); each sums its blocks in column order, so the result
+    /// is written where `rows` selects, zero elsewhere. Rows run in parallel (those of a
+    /// small matrix on the calling thread); each sums its blocks in column order, so the result
     /// does not depend on the thread count.
     pub fn product(
         &self,
@@ -224,5 +248,19 @@ impl<const D: usize> BlockMatrix<D> {
                 }
             }
         });
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A Hessian whose storage cannot be had is refused with the sweeps named, not an abort.
+    #[test]
+    fn a_hessian_past_memory_is_refused() {
+        let e = zero_blocks::<3>(usize::MAX / 64).unwrap_err();
+        assert_eq!(e.kind, ErrorKind::LimitExceeded);
+        assert!(e.message.contains("method SWEEPS"), "{}", e.message);
+        assert_eq!(zero_blocks::<2>(3).unwrap(), vec![[[0.0; 2]; 2]; 3]);
     }
 }

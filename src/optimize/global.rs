@@ -17,6 +17,7 @@ use super::blocks::{BlockLayout, BlockMatrix, Touch, CELL_CHUNK, NONE};
 use super::distortion::{derivatives, value as distortion};
 use super::problem::Problem;
 use super::small_matrix::{Matrix, Vector};
+use crate::error::Result;
 
 /// The objective's value, gradient (per node) and, if asked, Hessian at one state.
 #[derive(Clone, Debug)]
@@ -85,7 +86,13 @@ impl<'p, const D: usize> GlobalObjective<'p, D> {
 
     /// Value, gradient and (if `hessian`) Hessian at `x`. The result does not depend on the
     /// thread count: cells are evaluated in parallel and added in cell order.
-    pub fn evaluate(&self, pool: &ThreadPool, x: &[Vector<D>], hessian: bool) -> Evaluation<D> {
+    /// Refused where a Hessian's storage cannot be allocated ([`BlockMatrix::zero`]).
+    pub fn evaluate(
+        &self,
+        pool: &ThreadPool,
+        x: &[Vector<D>],
+        hessian: bool,
+    ) -> Result<Evaluation<D>> {
         self.evaluate_into(pool, x, hessian, &mut None)
     }
 
@@ -100,7 +107,7 @@ impl<'p, const D: usize> GlobalObjective<'p, D> {
         x: &[Vector<D>],
         hessian: bool,
         spare: &mut Option<BlockMatrix<D>>,
-    ) -> Evaluation<D> {
+    ) -> Result<Evaluation<D>> {
         let n = self.problem.node_count();
         let storage = || match spare
             .take()
@@ -108,14 +115,14 @@ impl<'p, const D: usize> GlobalObjective<'p, D> {
         {
             Some(mut m) => {
                 pool.install(|| m.blocks.par_iter_mut().for_each(|b| *b = [[0.0; D]; D]));
-                m
+                Ok(m)
             }
             None => BlockMatrix::zero(self.layout),
         };
         let mut out = Evaluation {
             value: 0.0,
             gradient: vec![[0.0; D]; n],
-            hessian: hessian.then(storage),
+            hessian: hessian.then(storage).transpose()?,
         };
         let cells: Vec<usize> = (0..self.problem.cell_count()).collect();
         for (k, chunk) in cells.chunks(CELL_CHUNK).enumerate() {
@@ -138,7 +145,7 @@ impl<'p, const D: usize> GlobalObjective<'p, D> {
                 self.assemble(pool, (chunk, self.layout.chunk_touches(k)), &locals, h);
             }
         }
-        out
+        Ok(out)
     }
 
     /// Adds the Hessian blocks of the `chunk`'s cells (`locals`, in the chunk's order; `touches`,

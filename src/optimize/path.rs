@@ -105,7 +105,7 @@ pub fn follow<const D: usize>(
     while let Some(t) = schedule.next() {
         let last = t >= 1.0;
         let target = target_at(&prescribed, (&origin, goal.positions), &outcome.x, t);
-        let Some(solver) = outcome.take_solver(pool, problem, setup) else {
+        let Some(solver) = outcome.take_solver(pool, problem, setup)? else {
             break;
         };
         let predicted = predict(pool, &solver, &outcome.x, &target)?;
@@ -165,13 +165,11 @@ impl<const D: usize> PathOutcome<D> {
         pool: &ThreadPool,
         problem: &Problem<D>,
         setup: &Arc<SolverSetup>,
-    ) -> Option<Arc<HessianSolver<D>>> {
-        match self.solver.take() {
-            Some(solver) => Some(solver),
-            None => {
-                let preconditioner = self.lagged.clone()?;
-                solver_at(pool, problem, setup, &self.x, preconditioner).map(Arc::new)
-            }
+    ) -> Result<Option<Arc<HessianSolver<D>>>> {
+        match (self.solver.take(), self.lagged.clone()) {
+            (Some(solver), _) => Ok(Some(solver)),
+            (None, Some(p)) => Ok(solver_at(pool, problem, setup, &self.x, p)?.map(Arc::new)),
+            (None, None) => Ok(None),
         }
     }
 }

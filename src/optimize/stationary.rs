@@ -111,11 +111,11 @@ pub fn solver_at<const D: usize>(
     setup: &Arc<SolverSetup>,
     x: &[Vector<D>],
     preconditioner: Arc<Preconditioner<D>>,
-) -> Option<HessianSolver<D>> {
+) -> Result<Option<HessianSolver<D>>> {
     let objective = GlobalObjective::new(problem, setup.layout(), None, 0.0);
-    let eval = objective.evaluate(pool, x, true);
-    let hessian = eval.hessian.filter(|_| eval.value.is_finite())?;
-    Some(HessianSolver::new(setup.clone(), hessian, preconditioner))
+    let eval = objective.evaluate(pool, x, true)?;
+    let hessian = eval.hessian.filter(|_| eval.value.is_finite());
+    Ok(hessian.map(|h| HessianSolver::new(setup.clone(), h, preconditioner)))
 }
 
 /// Minimises `F` over the free coordinates of `x` (a valid state). `lagged`, when given, comes
@@ -146,7 +146,7 @@ pub fn minimise<const D: usize>(
     };
     // A nearby state's preconditioner; the last solver's Hessian for the next evaluation.
     let (mut preconditioner, mut spare) = lagged.map_or((None, None), Lagged::into_parts);
-    let mut eval = objective.evaluate_into(pool, x, true, &mut spare);
+    let mut eval = objective.evaluate_into(pool, x, true, &mut spare)?;
     if !eval.value.is_finite() {
         return Ok((stats, None));
     }
@@ -186,7 +186,7 @@ pub fn minimise<const D: usize>(
             (&eval, &mut spare),
             &step,
             search,
-        );
+        )?;
         let Some((next, next_eval)) = found else {
             return Ok((stats, kept)); // No descent: short of the tolerance.
         };
@@ -199,7 +199,7 @@ pub fn minimise<const D: usize>(
                 return Ok((stats, Some(solver)));
             }
             retire(solver, &mut spare, &mut preconditioner);
-            eval = objective.evaluate_into(pool, x, true, &mut spare);
+            eval = objective.evaluate_into(pool, x, true, &mut spare)?;
         }
     }
 }
@@ -349,6 +349,7 @@ impl Search {
 /// Backtracks along `step` from `x` until `F` decreases enough (Armijo), or — where the decrease
 /// is below `F`'s round-off — until the scaled gradient decreases. The step is first cut so that
 /// no node moves more than a few local lengths.
+/// Refused where a Hessian's storage cannot be allocated.
 fn line_search<const D: usize>(
     pool: &ThreadPool,
     objective: &GlobalObjective<'_, D>,
@@ -357,7 +358,7 @@ fn line_search<const D: usize>(
     (eval, spare): (&Evaluation<D>, &mut Option<BlockMatrix<D>>),
     step: &[Vector<D>],
     search: Search,
-) -> Option<(Vec<Vector<D>>, Evaluation<D>)> {
+) -> Result<Option<(Vec<Vector<D>>, Evaluation<D>)>> {
     let gradient_norm = search.gradient_norm;
     let step = mask(free, step);
     let slope: f64 = eval
@@ -367,7 +368,7 @@ fn line_search<const D: usize>(
         .map(|(g, p)| (0..D).map(|k| g[k] * p[k]).sum::<f64>())
         .sum();
     if slope.is_nan() || slope >= 0.0 {
-        return None;
+        return Ok(None);
     }
     let problem = objective.problem();
     let mut alpha = 1.0f64;
@@ -387,8 +388,10 @@ fn line_search<const D: usize>(
             .collect();
         // The first trial, which a Newton step near the optimum passes, is evaluated with its
         // derivatives at once; the backtracking ones by value only, their derivatives when kept.
-        let mut full =
-            (tries == 0).then(|| objective.evaluate_into(pool, &trial, search.hessian, spare));
+        let mut full = match tries {
+            0 => Some(objective.evaluate_into(pool, &trial, search.hessian, spare)?),
+            _ => None,
+        };
         let value = match &full {
             Some(e) => e.value,
             None => objective.value(pool, &trial),
@@ -400,18 +403,18 @@ fn line_search<const D: usize>(
             );
         }
         if value.is_finite() {
-            let mut derivatives = || {
-                full.take()
-                    .unwrap_or_else(|| objective.evaluate_into(pool, &trial, true, spare))
+            let mut derivatives = || match full.take() {
+                Some(e) => Ok(e),
+                None => objective.evaluate_into(pool, &trial, true, spare),
             };
             if value <= eval.value + 1e-4 * alpha * slope {
-                let next = derivatives();
-                return Some((trial, next));
+                let next = derivatives()?;
+                return Ok(Some((trial, next)));
             }
             if value - eval.value <= round_off {
-                let next = derivatives();
+                let next = derivatives()?;
                 if scaled_gradient_norm(objective, free, &next.gradient) < gradient_norm {
-                    return Some((trial, next));
+                    return Ok(Some((trial, next)));
                 }
             }
         }
@@ -421,5 +424,5 @@ fn line_search<const D: usize>(
         }
         alpha *= 0.5;
     }
-    None
+    Ok(None)
 }

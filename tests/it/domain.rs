@@ -369,7 +369,7 @@ fn the_polished_t_mesh_is_valid_and_stationary() {
             .num_threads(1)
             .build()
             .unwrap();
-        let eval = objective.evaluate(&pool, &x, false);
+        let eval = objective.evaluate(&pool, &x, false).unwrap();
         scaled_gradient_norm(
             &objective,
             &SolverSetup::free_mask(&problem),
