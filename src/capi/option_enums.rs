@@ -30,9 +30,9 @@ pub const IGAPARAM_PLACEMENT_INCREMENTAL: igaparam_placement = 2;
 pub type igaparam_method = c_int;
 /// `IGAPARAM_METHOD_NEWTON` where the Hessian's Cholesky factor is small (2D meshes, 3D meshes
 /// up to about 20,000 nodes) or, beyond, where the Hessian has at most 10⁸ values (about
-/// 170,000 H27 nodes; multigrid-preconditioned steps, about 11 bytes per value at the peak),
+/// 170,000 H27 nodes; multigrid-preconditioned steps, about 10 bytes per value at the peak),
 /// else `IGAPARAM_METHOD_SWEEPS` (default). Where memory is short, `IGAPARAM_METHOD_SWEEPS`
-/// needs about a quarter (the bundled wing: 0.16 GB against 0.64 GB).
+/// needs about a quarter (the bundled wing: 0.16 GB against 0.59 GB).
 pub const IGAPARAM_METHOD_AUTO: igaparam_method = 0;
 /// The per-node optimizer's coloured Gauss–Seidel sweeps, large motions in steps placed
 /// harmonically; with `stationarity_tolerance > 0`, followed by the Newton stage.

@@ -43,9 +43,9 @@ pub enum Stage {
 pub enum Method {
     /// `Newton` where the Hessian's Cholesky factor is small (2D meshes, 3D ones up to about
     /// 20,000 nodes) or, beyond, where the Hessian has at most 10⁸ values (about 170,000 H27
-    /// nodes; multigrid-preconditioned steps, about 11 bytes per value at the peak), else
+    /// nodes; multigrid-preconditioned steps, about 10 bytes per value at the peak), else
     /// `Sweeps`. Where memory is short, `Sweeps` needs about a quarter (the wing: 0.16 GB
-    /// against 0.64 GB).
+    /// against 0.59 GB).
     Auto,
     /// The per-node optimizer's coloured Gauss–Seidel sweeps, large motions in steps placed
     /// harmonically; with `stationarity_tolerance > 0`, followed by the Newton stage.

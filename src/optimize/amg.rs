@@ -12,7 +12,8 @@
 //! Jacobi step where the level is sparse enough for that to keep the coarse operator sparse;
 //! coarse operators are Galerkin products; each level is smoothed by a Chebyshev polynomial in
 //! the Jacobi-scaled operator (symmetric, so the V-cycle preconditions CG; the smoothers keep
-//! their operators in single precision, their products being bound by memory traffic), and the
+//! their operators in single precision, the finest one of quadratic cells in bfloat16, their
+//! products being bound by memory traffic), and the
 //! coarsest level (at most 40,000 unknowns) is solved by a sparse Cholesky factorisation. Every
 //! step is sequential or row-parallel with a fixed summation order, so the result does not
 //! depend on the thread count.
@@ -165,7 +166,7 @@ impl Amg {
                 Some((p, grouping, null_space)) => {
                     // The finest operator is read from the block Hessian (no copy in
                     // compressed rows: on the wing, 720 MB); its smoother's operator is by node
-                    // blocks in single precision, the largest eigenvalue estimated with it. The
+                    // blocks in bfloat16, the largest eigenvalue estimated with it. The
                     // corner prolongator is not smoothed.
                     let inverse_diagonal = inverses(fine.diagonal());
                     let ap = Csr::product_of(pool, fine.rows.len(), |i| fine.entries(i), &p);

@@ -25,8 +25,8 @@ const DIRECT_3D_COORDINATES: usize = 60_000;
 
 /// Largest Hessian (stored values) of a 3D mesh too large to factor for which the Newton method
 /// is the default: its multigrid-preconditioned steps keep one Hessian and the hierarchy (the
-/// start state keeps only its preconditioner), about 11 bytes per value at the peak (the wing's
-/// 60 million values: 0.64 GB, where its sweeps take 0.16 GB). 10⁸ values are about 170,000 H27
+/// start state keeps only its preconditioner), about 10 bytes per value at the peak (the wing's
+/// 60 million values: 0.59 GB, where its sweeps take 0.16 GB). 10⁸ values are about 170,000 H27
 /// nodes.
 const MULTIGRID_NEWTON_VALUES: usize = 100_000_000;
 
