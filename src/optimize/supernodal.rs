@@ -11,8 +11,10 @@
 //! The loops read the factor in faer's layout: per supernode, its columns one after the other,
 //! each with the supernode's diagonal-block rows first, then the rows of its pattern. They
 //! multiply by the reciprocals of the diagonal values, computed once per factor
-//! ([`reciprocal_diagonal`]): a division in the chain of dependent operations that runs down a
-//! supernode's columns cost about a tenth of a solve.
+//! ([`reciprocal_diagonal`]), where a division lengthened the chain of dependent operations down
+//! a supernode's columns, and sum the backward pass's dot products by four partial sums: together
+//! 198–203 → 188–194 µs a solve of that Hessian (warm relocation steps, alternated runs, in a
+//! slower hour than the figures above).
 
 use faer::sparse::linalg::cholesky::supernodal::SymbolicSupernodalCholesky;
 
