@@ -13,10 +13,9 @@
 //! coarse operators are Galerkin products; each level is smoothed by a Chebyshev polynomial in
 //! the Jacobi-scaled operator (symmetric, so the V-cycle preconditions CG; the smoothers keep
 //! their operators in single precision, the finest one of quadratic cells in bfloat16, their
-//! products being bound by memory traffic), and the
-//! coarsest level (at most 40,000 unknowns) is solved by a sparse Cholesky factorisation. Every
-//! step is sequential or row-parallel with a fixed summation order, so the result does not
-//! depend on the thread count.
+//! products being bound by memory traffic), and the coarsest level (at most 40,000 unknowns) is
+//! solved by a sparse Cholesky factorisation. Every step is sequential or row-parallel with a
+//! fixed summation order, so the result does not depend on the thread count.
 //!
 //! Hand-written: no maintained Rust crate provides aggregation with a rigid-motion near-null
 //! space; faer's sparse Cholesky factorises the coarsest level.

@@ -18,6 +18,7 @@ use super::distortion::{derivatives, value as distortion};
 use super::problem::Problem;
 use super::small_matrix::{Matrix, Vector};
 use crate::error::Result;
+use crate::threads;
 
 /// The objective's value, gradient (per node) and, if asked, Hessian at one state.
 #[derive(Clone, Debug)]
@@ -114,7 +115,8 @@ impl<'p, const D: usize> GlobalObjective<'p, D> {
             .filter(|m| m.blocks.len() == self.layout.block_count())
         {
             Some(mut m) => {
-                pool.install(|| m.blocks.par_iter_mut().for_each(|b| *b = [[0.0; D]; D]));
+                let work = m.blocks.len() * D * D;
+                threads::for_each_mut(pool, work, &mut m.blocks, |_, b| *b = [[0.0; D]; D]);
                 Ok(m)
             }
             None => BlockMatrix::zero(self.layout),

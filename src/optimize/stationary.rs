@@ -236,17 +236,6 @@ struct Newton<'a, const D: usize> {
 }
 
 impl<const D: usize> Newton<'_, D> {
-    /// The solver of `hessian` (at `x`) with a preconditioner made from it, a factor's shifts
-    /// tried from level `first`; `None` where none can be made.
-    fn fresh_solver(
-        &self,
-        x: &[Vector<D>],
-        hessian: BlockMatrix<D>,
-        first: usize,
-    ) -> Result<Option<HessianSolver<D>>> {
-        HessianSolver::fresh(self.pool, self.problem, self.setup, hessian, (x, first))
-    }
-
     /// The solver of `hessian` (at `x`) with `preconditioner` from an earlier state, or with
     /// one made from it when none is given; `None` where none can be made.
     fn solver_for(
@@ -257,7 +246,7 @@ impl<const D: usize> Newton<'_, D> {
     ) -> Result<Option<HessianSolver<D>>> {
         match preconditioner {
             Some(p) => Ok(Some(HessianSolver::new(self.setup.clone(), hessian, p))),
-            None => self.fresh_solver(x, hessian, 0),
+            None => HessianSolver::fresh(self.pool, self.problem, self.setup, hessian, (x, 0)),
         }
     }
 
@@ -288,18 +277,16 @@ impl<const D: usize> Newton<'_, D> {
         let (mut step, mut solved) = solver.solve_with(self.pool, &minus_g, inner, budget);
         let mut stale = lagged;
         if lagged && (solved.residual > inner || solved.negative_curvature) {
-            // The earlier preconditioner stopped paying: make one from this Hessian.
-            let hessian = solver.hessian().clone();
-            // Where CG met negative curvature, this Hessian is indefinite: its factor's shifts
-            // start from the one the earlier state's needed (none tried below it).
+            // The earlier preconditioner stopped paying: make one from this Hessian. Where CG
+            // met negative curvature, this Hessian is indefinite: its factor's shifts start from
+            // the one the earlier state's needed (none tried below it).
             let first = match solved.negative_curvature {
                 true => solver.preconditioner().next_shift(),
                 false => 0,
             };
-            let Some(fresh) = self.fresh_solver(x, hessian, first)? else {
+            if !solver.refresh(self.pool, self.problem, (x, first))? {
                 return Ok(None);
-            };
-            *solver = fresh;
+            }
             (step, solved) = solver.solve(self.pool, &minus_g, inner);
             stale = false;
         }
