@@ -50,7 +50,7 @@ impl<const D: usize, B: CubeMap<D>> Domain<D, B> {
             stats.gradient_norm = f64::INFINITY;
             return Ok(stats);
         }
-        let layout = Arc::new(BlockLayout::new(&problem));
+        let layout = Arc::new(BlockLayout::new(pool, &problem));
         let setup = Arc::new(SolverSetup::new(&problem, layout)?);
         let mut x = self.framed.clone();
         let newton = StationaryOptions {

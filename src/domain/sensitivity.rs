@@ -97,7 +97,7 @@ impl<const D: usize, B: CubeMap<D>> Domain<D, B> {
         }
         self.check_on_boundary()?;
         let problem = self.mesh.problem()?;
-        let layout = Arc::new(BlockLayout::new(&problem));
+        let layout = Arc::new(BlockLayout::new(pool, &problem));
         let setup = Arc::new(SolverSetup::new(&problem, layout)?);
         self.check_prescribed(&setup.free)?;
         let objective = GlobalObjective::new(&problem, setup.layout(), None, 0.0);

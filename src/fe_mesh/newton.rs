@@ -32,19 +32,24 @@ pub(super) type Relocated<const D: usize> = (
 
 impl Mesh {
     /// The layout of the Hessian, built once per mesh.
-    fn layout_for<const D: usize>(&mut self, problem: &Problem<D>) -> Arc<BlockLayout> {
+    fn layout_for<const D: usize>(
+        &mut self,
+        pool: &ThreadPool,
+        problem: &Problem<D>,
+    ) -> Arc<BlockLayout> {
         self.layout
-            .get_or_insert_with(|| Arc::new(BlockLayout::new(problem)))
+            .get_or_insert_with(|| Arc::new(BlockLayout::new(pool, problem)))
             .clone()
     }
 
     /// The solvers' setup for the current constraints, built once per set of constraints.
     pub(super) fn setup_for<const D: usize>(
         &mut self,
+        pool: &ThreadPool,
         problem: &Problem<D>,
     ) -> Result<Arc<SolverSetup>> {
         if self.setup.is_none() {
-            let layout = self.layout_for(problem);
+            let layout = self.layout_for(pool, problem);
             self.setup = Some(Arc::new(SolverSetup::new(problem, layout)?));
         }
         Ok(self.setup.clone().expect("setup"))
@@ -62,7 +67,7 @@ impl Mesh {
         report: &mut RelocateReport,
         progress: &mut dyn FnMut(Stage, usize, usize) -> bool,
     ) -> Result<Option<Relocated<D>>> {
-        let setup = self.setup_for(problem)?;
+        let setup = self.setup_for(pool, problem)?;
         if !progress(Stage::Placement, 0, 1) {
             return Err(crate::error::Error::cancelled());
         }
@@ -197,7 +202,7 @@ impl Mesh {
             let why = format!("the last relocation left {invalid} invalid cells");
             return Ok((None, Err(why)));
         }
-        let layout = self.layout_for(problem);
+        let layout = self.layout_for(pool, problem);
         if options.stationarity_tolerance <= 0.0 {
             let objective = GlobalObjective::new(problem, &layout, None, 0.0);
             let free = SolverSetup::free_mask(problem);
@@ -206,7 +211,7 @@ impl Mesh {
                 stationary::scaled_gradient_norm(&objective, &free, &eval.gradient);
             return Ok((None, Err(NOT_ASKED.into())));
         }
-        let setup = self.setup_for(problem)?;
+        let setup = self.setup_for(pool, problem)?;
         let stationary_options = StationaryOptions {
             tolerance: options.stationarity_tolerance,
             max_iterations: MAX_NEWTON_ITERATIONS,

@@ -259,7 +259,7 @@ impl Mesh {
             && match options.method {
                 Method::Sweeps => false,
                 Method::Newton => true,
-                Method::Auto => self.setup_for(problem)?.newton_by_default(),
+                Method::Auto => self.setup_for(pool, problem)?.newton_by_default(),
             };
         let followed = match newton && options.placement != Placement::Current {
             true => self.follow_path(pool, problem, &goal, options, &mut report, progress)?,

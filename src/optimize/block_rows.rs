@@ -153,7 +153,8 @@ impl BlockRows {
         self.rows
     }
 
-    /// `y = A x`, each row summed in double precision in the order of its columns. Nodes run
+    /// `y = A x` in double precision, each row summed by the entries of its blocks in the order
+    /// of its columns (see `node_product`), the same order for any thread count. Nodes run
     /// in parallel by runs of `RUN` (256), each node's rows together (one pass over its blocks).
     pub fn apply(&self, pool: &ThreadPool, x: &[f64], y: &mut [f64]) {
         let nodes = self.first.len();
@@ -175,11 +176,14 @@ impl BlockRows {
         });
     }
 
-    /// The rows of node `v` times `x` (the first `width[v]` entries).
+    /// The rows of node `v` times `x` (the first `width[v]` entries). Each entry of a block
+    /// has a running sum of its own (entry `(k, l)` in slot `3k + l`), the row's three added
+    /// at the end: nine independent chains of one addition per block, where one sum per row
+    /// made three chains of three additions per block, bound by the additions' latency.
     #[inline]
     fn node_product(&self, v: usize, x: &[f64]) -> [f64; 3] {
         let height = self.width[v] as usize;
-        let mut sums = [-0.0; 3];
+        let mut slots = [-0.0; 9];
         let mut at = self.value_start[v];
         for &w in &self.neighbour[self.block_start[v]..self.block_start[v + 1]] {
             let (first, width) = (self.first[w as usize] as usize, self.width[w as usize]);
@@ -187,22 +191,20 @@ impl BlockRows {
             let xs = &x[first..first + width];
             let block = &self.value[at..at + height * width];
             if let (Ok(b), Ok(xs)) = (<&[Bf16; 9]>::try_from(block), <&[f64; 3]>::try_from(xs)) {
-                // Whole 3×3 blocks (most of a solid mesh): unrolled, the same order.
-                for (k, sum) in sums.iter_mut().enumerate() {
-                    for l in 0..3 {
-                        *sum += b[3 * k + l].value() * xs[l];
-                    }
+                // Whole 3×3 blocks (most of a solid mesh): unrolled.
+                for (j, slot) in slots.iter_mut().enumerate() {
+                    *slot += b[j].value() * xs[j % 3];
                 }
             } else {
-                for (sum, row) in sums.iter_mut().zip(block.chunks_exact(width)) {
-                    for (a, b) in row.iter().zip(xs) {
-                        *sum += a.value() * b;
+                for (k, row) in block.chunks_exact(width).enumerate() {
+                    for (l, (a, b)) in row.iter().zip(xs).enumerate() {
+                        slots[3 * k + l] += a.value() * b;
                     }
                 }
             }
             at += height * width;
         }
-        sums
+        std::array::from_fn(|k| (slots[3 * k] + slots[3 * k + 1]) + slots[3 * k + 2])
     }
 
     /// The end of the rows of the nodes before `node`.
@@ -224,7 +226,7 @@ mod tests {
     /// One cell of `cell_type` on its lattice (spacing ½, slightly bent so that the Hessian has
     /// no zero pattern of its own), with fixed, sliding and free nodes: the node blocks'
     /// product equals, to the last bit, the free-by-free Hessian rounded to bfloat16 and summed
-    /// row by row in column order.
+    /// in column order by a sum per position of a column in its node, the row's sums added last.
     fn reproduces<const D: usize>(cell_type: CellType) {
         let reference: Vec<[f64; 3]> = cell_type
             .lattice()
@@ -248,8 +250,8 @@ mod tests {
             1.0,
         )
         .unwrap();
-        let layout = BlockLayout::new(&problem);
         let pool = crate::threads::pool(2).unwrap();
+        let layout = BlockLayout::new(&pool, &problem);
         let x: Vec<[f64; D]> = reference
             .iter()
             .map(|p| std::array::from_fn(|k| p[k]))
@@ -273,12 +275,15 @@ mod tests {
         let mut y = vec![0.0; rows.rows()];
         rows.apply(&pool, &input, &mut y);
         for (i, &(v, k)) in coordinates.iter().enumerate() {
-            let mut sum = -0.0;
+            // A running sum per position of a column within its node's free components.
+            let mut slots = [-0.0; 3];
             for (j, &(w, l)) in coordinates.iter().enumerate() {
                 if let Some(b) = layout.find(v, w) {
-                    sum += Bf16::from(hessian.blocks[b][k][l]).value() * input[j];
+                    let position = (0..l).filter(|&m| free[w] & (1 << m) != 0).count();
+                    slots[position] += Bf16::from(hessian.blocks[b][k][l]).value() * input[j];
                 }
             }
+            let sum = (slots[0] + slots[1]) + slots[2];
             assert_eq!(
                 y[i].to_bits(),
                 sum.to_bits(),

@@ -6,8 +6,10 @@
 //! Blocks are stored for both triangles, so a row-wise product needs no transposition and
 //! parallelises with a result independent of the thread count.
 
+use rayon::prelude::*;
 use rayon::ThreadPool;
 
+use super::csr::split_rows;
 use super::problem::Problem;
 use super::small_matrix::{Matrix, Vector};
 use crate::error::{Error, ErrorKind, Result};
@@ -42,75 +44,98 @@ pub(super) const CELL_CHUNK: usize = 512;
 pub(super) type Touch = (u32, u32, u32);
 
 impl BlockLayout {
-    /// The layout of `problem`'s Hessian (it depends on the connectivity only).
-    pub fn new<const D: usize>(problem: &Problem<D>) -> Self {
-        let n = problem.node_count();
-        let mut rows: Vec<Vec<u32>> = (0..n as u32).map(|v| vec![v]).collect();
-        let couplings: Vec<Vec<bool>> = (0..problem.cell_count())
-            .map(|c| coupling(problem, c))
-            .collect();
-        for (c, couples) in couplings.iter().enumerate() {
-            let nodes = problem.cell_nodes(c);
-            for (r, &v) in nodes.iter().enumerate() {
-                for (s, &w) in nodes.iter().enumerate() {
-                    if couples[r * nodes.len() + s] && v != w {
-                        rows[v as usize].push(w);
-                    }
-                }
-            }
+    /// The layout of `problem`'s Hessian (it depends on the connectivity only), made by nodes
+    /// and cells in parallel (sequential, it was 1.6 s of the 812,040-node wing's relocation);
+    /// the same for any thread count. Its arrays are allocated once, at their size: vectors per
+    /// row or cell, made on the workers, stayed in their allocator's arenas (190 MB more at the
+    /// peak of that relocation).
+    pub fn new<const D: usize>(pool: &ThreadPool, problem: &Problem<D>) -> Self {
+        let cells = problem.cell_count();
+        let mut first = Vec::with_capacity(cells + 1);
+        first.push(0);
+        for c in 0..cells {
+            let count = problem.cell_nodes(c).len();
+            first.push(first[c] + count * count);
         }
-        let mut start = Vec::with_capacity(n + 1);
-        let mut columns = Vec::new();
-        start.push(0);
-        for mut row in rows {
-            row.sort_unstable();
-            row.dedup();
-            columns.extend_from_slice(&row);
-            start.push(columns.len());
-        }
+        // Which pairs of each cell's nodes couple, indexed like `cell_blocks`.
+        let mut couplings = vec![false; first[cells]];
+        let parts = split_rows(&mut couplings, first.windows(2).map(|w| w[1] - w[0]));
+        pool.install(|| {
+            parts
+                .into_par_iter()
+                .enumerate()
+                .for_each(|(c, part)| part.copy_from_slice(&coupling(problem, c)))
+        });
+        let (start, columns) = rows(pool, problem, (&first, &couplings));
         let mut layout = BlockLayout {
             start,
             columns,
-            first: Vec::with_capacity(problem.cell_count() + 1),
+            first,
             cell_blocks: Vec::new(),
             chunk_touches: vec![0],
             touches: Vec::new(),
         };
-        for (c, couples) in couplings.iter().enumerate() {
-            layout.first.push(layout.cell_blocks.len());
-            let nodes = problem.cell_nodes(c);
-            for (r, &v) in nodes.iter().enumerate() {
-                for (s, &w) in nodes.iter().enumerate() {
-                    let block = match couples[r * nodes.len() + s] {
-                        true => layout
-                            .find(v as usize, w as usize)
-                            .map_or(NONE, |b| b as u32),
-                        false => NONE,
-                    };
-                    layout.cell_blocks.push(block);
-                }
-            }
-        }
-        layout.first.push(layout.cell_blocks.len());
-        layout.order_touches(problem);
+        layout.cell_blocks = layout.cell_block_map(pool, problem, &couplings);
+        layout.order_touches(pool, problem);
         layout
+    }
+
+    /// Per cell, the block of each pair of its real nodes (row-major), [`NONE`] where the pair
+    /// does not couple; cells in parallel, each writing its own part.
+    fn cell_block_map<const D: usize>(
+        &self,
+        pool: &ThreadPool,
+        problem: &Problem<D>,
+        couplings: &[bool],
+    ) -> Vec<u32> {
+        let mut map = vec![NONE; self.first[problem.cell_count()]];
+        let lengths = self.first.windows(2).map(|w| w[1] - w[0]);
+        let parts = split_rows(&mut map, lengths);
+        pool.install(|| {
+            parts.into_par_iter().enumerate().for_each(|(c, part)| {
+                let nodes = problem.cell_nodes(c);
+                let pairs = nodes
+                    .iter()
+                    .flat_map(|&v| nodes.iter().map(move |&w| (v, w)));
+                let couples = &couplings[self.first[c]..self.first[c + 1]];
+                for ((slot, (v, w)), &couples) in part.iter_mut().zip(pairs).zip(couples) {
+                    if couples {
+                        *slot = self.find(v as usize, w as usize).map_or(NONE, |b| b as u32);
+                    }
+                }
+            })
+        });
+        map
     }
 
     /// The touches of every chunk of cells, by node then cell: the same for every evaluation,
     /// so sorted once (sorting them per evaluation was a tenth of an evaluation of the airfoil's
-    /// Hessian, on the thread that waits for the others).
-    fn order_touches<const D: usize>(&mut self, problem: &Problem<D>) {
+    /// Hessian, on the thread that waits for the others). Chunks in parallel.
+    fn order_touches<const D: usize>(&mut self, pool: &ThreadPool, problem: &Problem<D>) {
         let cells: Vec<usize> = (0..problem.cell_count()).collect();
         for chunk in cells.chunks(CELL_CHUNK) {
-            let first = self.touches.len();
-            for (i, &c) in chunk.iter().enumerate() {
-                let nodes = problem.cell_nodes(c).iter().enumerate();
-                self.touches
-                    .extend(nodes.map(|(r, &v)| (v, i as u32, r as u32)));
-            }
-            self.touches[first..].sort_unstable();
-            self.chunk_touches.push(self.touches.len());
+            let count: usize = chunk.iter().map(|&c| problem.cell_nodes(c).len()).sum();
+            self.chunk_touches
+                .push(self.chunk_touches[self.chunk_touches.len() - 1] + count);
         }
+        self.touches = vec![(0, 0, 0); self.chunk_touches[self.chunk_touches.len() - 1]];
+        let lengths = self.chunk_touches.windows(2).map(|w| w[1] - w[0]);
+        let parts = split_rows(&mut self.touches, lengths);
+        pool.install(|| {
+            parts
+                .into_par_iter()
+                .zip(cells.par_chunks(CELL_CHUNK))
+                .for_each(|(touches, chunk)| {
+                    let nodes = chunk.iter().enumerate().flat_map(|(i, &c)| {
+                        let nodes = problem.cell_nodes(c).iter().enumerate();
+                        nodes.map(move |(r, &v)| (v, i as u32, r as u32))
+                    });
+                    for (slot, touch) in touches.iter_mut().zip(nodes) {
+                        *slot = touch;
+                    }
+                    touches.sort_unstable();
+                })
+        });
     }
 
     /// The touches of the `k`-th chunk of cells (512 to a chunk), by node then cell.
@@ -149,6 +174,58 @@ impl BlockLayout {
     }
 }
 
+/// The layout's rows, `v` and the nodes it couples with, sorted: their starts and their
+/// columns, the lengths found first, then each row written in place (nodes in parallel).
+/// `(first, couplings)`: per cell, where its pairs start, and which of them couple.
+fn rows<const D: usize>(
+    pool: &ThreadPool,
+    problem: &Problem<D>,
+    (first, couplings): (&[usize], &[bool]),
+) -> (Vec<usize>, Vec<u32>) {
+    let row = |v: usize, row: &mut Vec<u32>| {
+        row.clear();
+        row.push(v as u32);
+        for &(c, r) in problem.incident_cells(v) {
+            let nodes = problem.cell_nodes(c as usize);
+            let pairs = &couplings[first[c as usize] + r as usize * nodes.len()..][..nodes.len()];
+            let coupled = nodes
+                .iter()
+                .zip(pairs)
+                .filter(|&(&w, &p)| p && w != v as u32);
+            row.extend(coupled.map(|(&w, _)| w));
+        }
+        row.sort_unstable();
+        row.dedup();
+    };
+    let n = problem.node_count();
+    let lengths: Vec<usize> = pool.install(|| {
+        (0..n)
+            .into_par_iter()
+            .map_init(Vec::new, |scratch, v| {
+                row(v, scratch);
+                scratch.len()
+            })
+            .collect()
+    });
+    let mut start = Vec::with_capacity(n + 1);
+    start.push(0);
+    for length in &lengths {
+        start.push(start[start.len() - 1] + length);
+    }
+    let mut columns = vec![0u32; start[n]];
+    let parts = split_rows(&mut columns, lengths.iter().copied());
+    pool.install(|| {
+        parts
+            .into_par_iter()
+            .enumerate()
+            .for_each_init(Vec::new, |scratch, (v, part)| {
+                row(v, scratch);
+                part.copy_from_slice(scratch);
+            })
+    });
+    (start, columns)
+}
+
 /// Which pairs of cell `c`'s real nodes enter one Jacobian together (row-major `r·n + s`).
 fn coupling<const D: usize>(problem: &Problem<D>, c: usize) -> Vec<bool> {
     let pattern = problem.pattern(c);
@@ -166,9 +243,9 @@ fn coupling<const D: usize>(problem: &Problem<D>, c: usize) -> Vec<bool> {
 
 /// `count` zero blocks, or a refusal naming the sweeps where they cannot be allocated: a Hessian
 /// larger than the machine's memory and swap (several million quadratic solid nodes; the sweeps
-/// keep none) would otherwise abort the process. The request is tried first, then made zeroed,
-/// so that the pages stay untouched until the evaluation writes them (as fresh storage: filling
-/// it with zeros instead would be one more pass over it, 480 MB on the wing).
+/// keep none) would otherwise abort the process. The request is tried first, then made zeroed
+/// by the allocator (fresh pages, untouched: the evaluation stores its zeros in order, see
+/// [`GlobalObjective::evaluate_into`](super::global::GlobalObjective::evaluate_into)).
 fn zero_blocks<const D: usize>(count: usize) -> Result<Vec<Matrix<D>>> {
     let mut probe: Vec<Matrix<D>> = Vec::new();
     probe.try_reserve_exact(count).map_err(|_| {

@@ -357,7 +357,11 @@ fn the_polished_t_mesh_is_valid_and_stationary() {
     let boundary = || BoundaryLoop2::from_gismo_file(boundary_data("rotor_bdry.xml")).unwrap();
     let norm = |domain: &PlanarDomain| {
         let problem = domain.mesh().problem().unwrap();
-        let layout = BlockLayout::new(&problem);
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(1)
+            .build()
+            .unwrap();
+        let layout = BlockLayout::new(&pool, &problem);
         let objective = GlobalObjective::new(&problem, &layout, None, 0.0);
         let frame = domain.frame();
         let x: Vec<[f64; 2]> = domain
@@ -365,10 +369,6 @@ fn the_polished_t_mesh_is_valid_and_stationary() {
             .iter()
             .map(|&p| frame.to_frame(p))
             .collect();
-        let pool = rayon::ThreadPoolBuilder::new()
-            .num_threads(1)
-            .build()
-            .unwrap();
         let eval = objective.evaluate(&pool, &x, false).unwrap();
         scaled_gradient_norm(
             &objective,
