@@ -20,7 +20,6 @@
 //! Hand-written: no maintained Rust crate provides aggregation with a rigid-motion near-null
 //! space; faer's sparse Cholesky factorises the coarsest level.
 
-use rayon::prelude::*;
 use rayon::ThreadPool;
 
 use super::aggregation::{aggregate, node_grouping, tentative_prolongator, Grouping};
@@ -161,14 +160,16 @@ impl Amg {
         let modes = D * (D + 1) / 2;
         let mut levels = Vec::new();
         let (mut a, mut grouping, mut null_space) =
-            match corner_prolongator(problem, &fine.coordinates, x) {
+            match corner_prolongator(pool, problem, &fine, x) {
                 Some((p, grouping, null_space)) => {
                     // The finest operator is read from the block Hessian (no copy in
                     // compressed rows: on the wing, 720 MB); its smoother's operator is by node
                     // blocks in bfloat16, the largest eigenvalue estimated with it. The
                     // corner prolongator is not smoothed.
                     let inverse_diagonal = inverses(fine.diagonal());
-                    let ap = Csr::product_of(pool, fine.rows.len(), |i| fine.entries(i), &p);
+                    let (sizes, nodes) = fine.nodes();
+                    let entries = |g: usize| fine.node_entries(nodes[g]);
+                    let ap = Csr::grouped_product_of::<D, _>(pool, &sizes, entries, &p);
                     let coordinates = &fine.coordinates;
                     let blocks =
                         || Operator::Blocks(BlockRows::new(pool, layout, hessian, coordinates));
@@ -321,6 +322,31 @@ impl<'a, const D: usize> FineRows<'a, D> {
         })
     }
 
+    /// The nodes with a free component, in the order of their rows, and their rows' counts.
+    fn nodes(&self) -> (Vec<usize>, Vec<usize>) {
+        let runs = self.rows.chunk_by(|a, b| a.0 == b.0);
+        runs.map(|run| (run.len(), run[0].0)).unzip()
+    }
+
+    /// The rows of node `v` together: per free coordinate of its neighbours, in column order,
+    /// its value in each of the node's rows.
+    fn node_entries(&self, v: usize) -> impl Iterator<Item = (u32, [f64; D])> + '_ {
+        let mask = self.coordinates.mask(v);
+        let (blocks, neighbours) = self.layout.row(v);
+        blocks.zip(neighbours).flat_map(move |(b, &w)| {
+            (0..D).filter_map(move |l| {
+                let d = self.coordinates.of(w as usize, l)?;
+                let block = &self.hessian.blocks[b];
+                let mut values = [0.0; D];
+                let rows = (0..D).filter(|&k| mask & (1 << k) != 0);
+                for (value, k) in values.iter_mut().zip(rows) {
+                    *value = block[k][l];
+                }
+                Some((d as u32, values))
+            })
+        })
+    }
+
     /// The diagonal.
     fn diagonal(&self) -> Vec<f64> {
         (0..self.rows.len())
@@ -338,23 +364,7 @@ impl<'a, const D: usize> FineRows<'a, D> {
     fn csr(&self, pool: &ThreadPool) -> Csr {
         // Lengths first, then every row written in place (collecting the rows' entries into new
         // arrays in parallel took 0.83 s on the wing, of its 2.4 s multigrid setup; this 0.05 s).
-        let lengths: Vec<usize> = pool.install(|| {
-            (0..self.rows.len())
-                .into_par_iter()
-                .map(|i| self.entries(i).count())
-                .collect()
-        });
-        Csr::filled(
-            pool,
-            self.rows.len(),
-            &lengths,
-            || (),
-            |_, i, c, v| {
-                for ((ci, vi), (d, h)) in c.iter_mut().zip(v.iter_mut()).zip(self.entries(i)) {
-                    (*ci, *vi) = (d, h);
-                }
-            },
-        )
+        Csr::collected(pool, self.rows.len(), self.rows.len(), |i| self.entries(i))
     }
 }
 
@@ -363,8 +373,9 @@ impl<'a, const D: usize> FineRows<'a, D> {
 /// Returns the prolongator, the coarse grouping and near-null space; `None` when every node is a
 /// corner (linear cells, T-meshes).
 fn corner_prolongator<const D: usize>(
+    pool: &ThreadPool,
     problem: &Problem<D>,
-    fine: &Coordinates,
+    fine: &FineRows<'_, D>,
     x: &[Vector<D>],
 ) -> Option<(Csr, Grouping, Vec<f64>)> {
     let n = problem.node_count();
@@ -383,50 +394,55 @@ fn corner_prolongator<const D: usize>(
     }
     // The corners' free components.
     let corner_mask: Vec<u8> = (0..n)
-        .map(|v| if corner[v] { fine.mask(v) } else { 0 })
+        .map(|v| {
+            if corner[v] {
+                fine.coordinates.mask(v)
+            } else {
+                0
+            }
+        })
         .collect();
     let coarse = Coordinates::of_mask(&corner_mask, D).ok()?;
-    let mut rows: Vec<Vec<(u32, f64)>> = vec![Vec::new(); fine.count()];
-    for v in 0..n {
-        let Some(&(c, r)) = problem.incident_cells(v).first() else {
-            continue;
-        };
-        let (c, r) = (c as usize, r as usize);
-        let pattern = problem.pattern(c);
-        let nodes = problem.cell_nodes(c);
-        let at = lattice::coords::<D>(pattern.real[r]);
-        // The cell's corner nodes with their bi-/trilinear weights at the node's lattice point.
-        let weights: Vec<(usize, f64)> = pattern
-            .real
-            .iter()
-            .zip(nodes)
-            .filter_map(|(&l, &w)| {
-                let cc = lattice::coords::<D>(l);
-                let weight: f64 = (0..D)
-                    .map(|k| match (cc[k], at[k]) {
-                        (1, _) => 0.0,
-                        (_, 1) => 0.5,
-                        (a, b) if a == b => 1.0,
-                        _ => 0.0,
-                    })
-                    .product();
-                (weight != 0.0).then_some((w as usize, weight))
-            })
+    // Row `(v, k)`: the coarse coordinates `k` of the corners, sorted, with their weights.
+    let row = |i: usize| {
+        let (v, k) = fine.rows[i];
+        let weights = corner_weights(problem, v).into_iter();
+        let mut row: Vec<(u32, f64)> = weights
+            .filter_map(|(w, weight)| Some((coarse.of(w, k)? as u32, weight)))
             .collect();
-        for k in 0..D {
-            let Some(d) = fine.of(v, k) else {
-                continue;
-            };
-            let mut row: Vec<(u32, f64)> = weights
-                .iter()
-                .filter_map(|&(w, weight)| Some((coarse.of(w, k)? as u32, weight)))
-                .collect();
-            row.sort_unstable_by_key(|e| e.0);
-            rows[d] = row;
-        }
-    }
+        row.sort_unstable_by_key(|e| e.0);
+        row.into_iter()
+    };
+    let p = Csr::collected(pool, coarse.count(), fine.rows.len(), row);
     let (grouping, null_space) = node_grouping(coarse.ids(), n, x);
-    Some((Csr::from_rows(coarse.count(), rows), grouping, null_space))
+    Some((p, grouping, null_space))
+}
+
+/// The corner nodes of the first cell around node `v`, with their bi-/trilinear weights at the
+/// node's lattice point in it (none for a node in no cell).
+fn corner_weights<const D: usize>(problem: &Problem<D>, v: usize) -> Vec<(usize, f64)> {
+    let Some(&(c, r)) = problem.incident_cells(v).first() else {
+        return Vec::new();
+    };
+    let pattern = problem.pattern(c as usize);
+    let at = lattice::coords::<D>(pattern.real[r as usize]);
+    pattern
+        .real
+        .iter()
+        .zip(problem.cell_nodes(c as usize))
+        .filter_map(|(&l, &w)| {
+            let cc = lattice::coords::<D>(l);
+            let weight: f64 = (0..D)
+                .map(|k| match (cc[k], at[k]) {
+                    (1, _) => 0.0,
+                    (_, 1) => 0.5,
+                    (a, b) if a == b => 1.0,
+                    _ => 0.0,
+                })
+                .product();
+            (weight != 0.0).then_some((w as usize, weight))
+        })
+        .collect()
 }
 
 /// The inverses of a diagonal's positive values (0 elsewhere).
