@@ -7,7 +7,7 @@
 use rayon::ThreadPool;
 
 use super::small_matrix::Vector;
-use super::solver::{mask, HessianSolver};
+use super::solver::{mask, HessianSolver, Stop};
 use crate::error::{Error, Result};
 
 /// Relative residual to which the solves of the sensitivities are carried.
@@ -84,7 +84,7 @@ impl<const D: usize> HessianSolver<D> {
         b: &[Vector<D>],
         tolerance: f64,
     ) -> Result<Vec<Vector<D>>> {
-        let (y, stats) = self.solve(pool, b, tolerance);
+        let (y, stats) = self.solve(pool, b, Stop::relative(tolerance));
         if stats.negative_curvature {
             return Err(Error::invalid(
                 "the Hessian at the last relocation's end is not positive definite (not a strict \

@@ -40,6 +40,60 @@ pub struct SolveStats {
     /// Whether CG met a direction of non-positive curvature (the matrix is not positive
     /// definite) and stopped there.
     pub negative_curvature: bool,
+    /// The residual's scaled max-norm reached, where [`Stop::scaled`] asked for it (else +∞).
+    pub scaled: f64,
+}
+
+/// Where CG stops, besides its iteration limit: at a relative residual, or at a scaled
+/// max-norm of the residual, whichever comes first.
+#[derive(Clone, Copy, Debug)]
+pub struct Stop<'a> {
+    /// The relative residual `‖b − H y‖/‖b‖` to reach.
+    pub relative: f64,
+    /// Per node a scale `s_v`, and the max-norm `max |r_vk| s_v` of the residual to reach:
+    /// the quantity the Newton stage stops on, for the gradient that a step's solve leaves (the
+    /// residual) is what the step's state will have to first order.
+    pub scaled: Option<(&'a [f64], f64)>,
+}
+
+impl Stop<'_> {
+    /// At the relative residual `relative` only.
+    pub fn relative(relative: f64) -> Self {
+        Stop {
+            relative,
+            scaled: None,
+        }
+    }
+
+    /// The scaled max-norm of `r` (+∞ where not asked for).
+    fn scaled_norm<const D: usize>(&self, r: &[Vector<D>]) -> f64 {
+        self.scaled.map_or(f64::INFINITY, |(scales, _)| {
+            let largest = |r: &Vector<D>| r.iter().fold(0.0f64, |m, x| m.max(x.abs()));
+            r.iter()
+                .zip(scales)
+                .map(|(r, s)| largest(r) * s)
+                .fold(0.0, f64::max)
+        })
+    }
+
+    /// Whether `stats` meet this.
+    pub fn met(&self, stats: &SolveStats) -> bool {
+        stats.residual <= self.relative || self.scaled.is_some_and(|(_, t)| stats.scaled <= t)
+    }
+
+    /// The iterations to meet this at the rate of `stats` (from `scaled_start`, the scaled norm
+    /// of the right-hand side); +∞ before the residual falls.
+    fn projected(&self, stats: &SolveStats, scaled_start: f64) -> f64 {
+        let at_rate = |reached: f64, target: f64| match reached < 1.0 {
+            true => stats.iterations as f64 * target.ln() / reached.ln(),
+            false => f64::INFINITY,
+        };
+        let relative = at_rate(stats.residual, self.relative);
+        let scaled = self.scaled.map_or(f64::INFINITY, |(_, t)| {
+            at_rate(stats.scaled / scaled_start, t / scaled_start)
+        });
+        relative.min(scaled)
+    }
 }
 
 /// The structure a solver needs for one mesh and one set of free coordinates, to be kept and
@@ -295,14 +349,14 @@ impl<const D: usize> HessianSolver<D> {
     }
 
     /// Solves `H_ff y = b` over the free coordinates (entries of `b` elsewhere are ignored,
-    /// those of `y` are 0) by preconditioned CG to a relative residual `tolerance`, in at most
-    /// `max_iterations`; CG stops early at negative curvature (the stats say so) and where its
-    /// rate so far shows the tolerance out of reach within `max_iterations`.
+    /// those of `y` are 0) by preconditioned CG until `stop`, in at most `max_iterations`; CG
+    /// stops early at negative curvature (the stats say so) and where its rate so far shows
+    /// `stop` out of reach within `max_iterations`.
     pub fn solve_with(
         &self,
         pool: &ThreadPool,
         b: &[Vector<D>],
-        tolerance: f64,
+        stop: Stop<'_>,
         max_iterations: usize,
     ) -> (Vec<Vector<D>>, SolveStats) {
         let free = &self.setup.free;
@@ -312,7 +366,7 @@ impl<const D: usize> HessianSolver<D> {
                 .product(pool, &self.setup.layout, free, free, x, y)
         };
         let precondition = |r: &[Vector<D>]| self.preconditioner.apply(pool, &self.setup, r);
-        conjugate_gradients(&apply, &precondition, &b, tolerance, max_iterations)
+        conjugate_gradients(&apply, &precondition, &b, stop, max_iterations)
     }
 
     /// The preconditioner applied to `r`.
@@ -326,9 +380,9 @@ impl<const D: usize> HessianSolver<D> {
         &self,
         pool: &ThreadPool,
         b: &[Vector<D>],
-        tolerance: f64,
+        stop: Stop<'_>,
     ) -> (Vec<Vector<D>>, SolveStats) {
-        self.solve_with(pool, b, tolerance, 20 * b.len() + 100)
+        self.solve_with(pool, b, stop, 20 * b.len() + 100)
     }
 }
 
@@ -383,14 +437,14 @@ fn block_jacobi<const D: usize>(
         .collect()
 }
 
-/// Preconditioned conjugate gradients from 0 to a relative residual `tolerance`; stops at
-/// negative curvature (returning the iterate so far), after `max_iterations`, or earlier where
-/// the rate so far cannot reach the tolerance within them.
+/// Preconditioned conjugate gradients from 0 until `stop`; stops at negative curvature
+/// (returning the iterate so far), after `max_iterations`, or earlier where the rate so far
+/// cannot meet `stop` within them.
 fn conjugate_gradients<const D: usize>(
     apply: &dyn Fn(&[Vector<D>], &mut [Vector<D>]),
     precondition: &dyn Fn(&[Vector<D>]) -> Vec<Vector<D>>,
     b: &[Vector<D>],
-    tolerance: f64,
+    stop: Stop<'_>,
     max_iterations: usize,
 ) -> (Vec<Vector<D>>, SolveStats) {
     let n = b.len();
@@ -400,13 +454,15 @@ fn conjugate_gradients<const D: usize>(
     if b_norm == 0.0 {
         return (x, stats);
     }
+    let scaled_start = stop.scaled_norm(b);
+    stats.scaled = scaled_start;
     let mut r = b.to_vec();
     let mut z = precondition(&r);
     let mut p = z.clone();
     let mut rz = dot(&r, &z);
     let mut ap = vec![[0.0; D]; n];
     stats.residual = 1.0;
-    while stats.iterations < max_iterations && stats.residual > tolerance {
+    while stats.iterations < max_iterations && !stop.met(&stats) {
         apply(&p, &mut ap);
         let curvature = dot(&p, &ap);
         if curvature.is_nan() || curvature <= 0.0 {
@@ -422,14 +478,14 @@ fn conjugate_gradients<const D: usize>(
         }
         stats.iterations += 1;
         stats.residual = norm(&r) / b_norm;
-        if stats.iterations >= max_iterations || stats.residual <= tolerance {
+        stats.scaled = stop.scaled_norm(&r);
+        if stats.iterations >= max_iterations || stop.met(&stats) {
             // Done: the next direction (one more preconditioner application) is not needed.
             break;
         }
-        // At the rate so far (from the second iteration on, once the residual fell), the
-        // iterations the tolerance needs.
-        let projected = stats.iterations as f64 * tolerance.ln() / stats.residual.ln();
-        if stats.iterations >= 2 && stats.residual < 1.0 && projected > max_iterations as f64 {
+        // At the rate so far (from the second iteration on), the iterations `stop` needs.
+        let projected = stop.projected(&stats, scaled_start);
+        if stats.iterations >= 2 && projected.is_finite() && projected > max_iterations as f64 {
             // The tolerance is out of reach within `max_iterations`: give up early.
             break;
         }
@@ -472,7 +528,8 @@ mod tests {
                 .collect()
         };
         let b = vec![[1.0]; n];
-        let (y, stats) = conjugate_gradients(&apply, &precondition, &b, tolerance, max_iterations);
+        let stop = Stop::relative(tolerance);
+        let (y, stats) = conjugate_gradients(&apply, &precondition, &b, stop, max_iterations);
         (y, stats, calls.get())
     }
 

@@ -16,7 +16,7 @@ use super::blocks::BlockMatrix;
 use super::global::{Evaluation, GlobalObjective};
 use super::problem::Problem;
 use super::small_matrix::Vector;
-use super::solver::{mask, HessianSolver, Preconditioner, SolveStats, SolverSetup};
+use super::solver::{mask, HessianSolver, Preconditioner, SolveStats, SolverSetup, Stop};
 use crate::error::{Error, Result};
 
 /// Stopping rules of the Newton stage.
@@ -51,13 +51,12 @@ pub fn scaled_gradient_norm<const D: usize>(
     free: &[u8],
     gradient: &[Vector<D>],
 ) -> f64 {
-    let problem = objective.problem();
     let mut norm = 0.0f64;
     for (v, g) in gradient.iter().enumerate() {
         if free[v] == 0 {
             continue;
         }
-        let scale = problem.node_length(v) / objective.node_weight(v);
+        let scale = node_scale(objective, v);
         for (k, gk) in g.iter().enumerate() {
             if free[v] & (1 << k) != 0 {
                 norm = norm.max(gk.abs() * scale);
@@ -66,6 +65,15 @@ pub fn scaled_gradient_norm<const D: usize>(
     }
     norm
 }
+
+/// The scale of node `v`'s gradient in the scaled norm: its local length over its cells' weights.
+fn node_scale<const D: usize>(objective: &GlobalObjective<'_, D>, v: usize) -> f64 {
+    objective.problem().node_length(v) / objective.node_weight(v)
+}
+
+/// The share of the tolerance a step expected to be the last leaves to its solve's residual
+/// (in the scaled max-norm; the rest to the quadratic term).
+const RESIDUAL_SHARE: f64 = 0.5;
 
 /// Largest move of a node in one Newton step, in local lengths (the line search backtracks from
 /// there where a cell would fold).
@@ -132,14 +140,9 @@ pub fn minimise<const D: usize>(
     lagged: Option<Lagged<D>>,
     progress: &mut dyn FnMut(usize) -> bool,
 ) -> Result<(StationaryStats, Option<HessianSolver<D>>)> {
-    let newton = Newton {
-        pool,
-        problem,
-        setup,
-        tolerance: options.tolerance,
-    };
     let objective = GlobalObjective::new(problem, setup.layout(), None, 0.0);
     let free = &setup.free[..];
+    let newton = Newton::new((pool, problem), &objective, setup, options.tolerance);
     let mut stats = StationaryStats {
         gradient_norm: f64::INFINITY,
         ..Default::default()
@@ -233,9 +236,34 @@ struct Newton<'a, const D: usize> {
     setup: &'a Arc<SolverSetup>,
     /// The scaled-gradient tolerance of the stage.
     tolerance: f64,
+    /// Per node, the scale of its gradient in the scaled norm (0 for a node with no free
+    /// component).
+    scales: Vec<f64>,
 }
 
-impl<const D: usize> Newton<'_, D> {
+impl<'a, const D: usize> Newton<'a, D> {
+    /// The iterations' shared state for the minimisation of `objective`.
+    fn new(
+        (pool, problem): (&'a ThreadPool, &'a Problem<D>),
+        objective: &GlobalObjective<'_, D>,
+        setup: &'a Arc<SolverSetup>,
+        tolerance: f64,
+    ) -> Self {
+        let free = &setup.free;
+        Newton {
+            pool,
+            problem,
+            setup,
+            tolerance,
+            scales: (0..free.len())
+                .map(|v| match free[v] {
+                    0 => 0.0,
+                    _ => node_scale(objective, v),
+                })
+                .collect(),
+        }
+    }
+
     /// The solver of `hessian` (at `x`) with `preconditioner` from an earlier state, or with
     /// one made from it when none is given; `None` where none can be made.
     fn solver_for(
@@ -265,18 +293,26 @@ impl<const D: usize> Newton<'_, D> {
         let minus_g: Vec<Vector<D>> = gradient.iter().map(|g| g.map(|v| -v)).collect();
         // Inexact Newton: the inner tolerance shrinks with the gradient (superlinear rate); where
         // the quadratic term no longer stands in the way, tight enough to end in this step.
+        // There the solve also stops once the gradient it leaves (its residual, to first order)
+        // is within its share of the tolerance in the scaled norm: the relative residual, a
+        // 2-norm, bounds that only loosely (the wing's last step: 16 CG iterations to the
+        // relative residual, 14 to the scaled share, the same final gradient).
         let mut inner = gradient_norm.sqrt();
-        if gradient_norm * gradient_norm <= self.tolerance {
+        let last = gradient_norm * gradient_norm <= self.tolerance;
+        if last {
             inner = inner.min(0.1 * self.tolerance / gradient_norm);
         }
-        let inner = inner.clamp(1e-14, 0.1);
+        let stop = Stop {
+            relative: inner.clamp(1e-14, 0.1),
+            scaled: last.then_some((&self.scales[..], RESIDUAL_SHARE * self.tolerance)),
+        };
         // A preconditioner from an earlier state gets its own budget of iterations
         // ([`Preconditioner::lagged_iterations`]); CG gives up sooner where its rate shows the
         // inner tolerance out of reach within them.
         let budget = solver.preconditioner().lagged_iterations();
-        let (mut step, mut solved) = solver.solve_with(self.pool, &minus_g, inner, budget);
+        let (mut step, mut solved) = solver.solve_with(self.pool, &minus_g, stop, budget);
         let mut stale = lagged;
-        if lagged && (solved.residual > inner || solved.negative_curvature) {
+        if lagged && (!stop.met(&solved) || solved.negative_curvature) {
             // The earlier preconditioner stopped paying: make one from this Hessian. Where CG
             // met negative curvature, this Hessian is indefinite: its factor's shifts start from
             // the one the earlier state's needed (none tried below it).
@@ -287,7 +323,7 @@ impl<const D: usize> Newton<'_, D> {
             if !solver.refresh(self.pool, self.problem, (x, first))? {
                 return Ok(None);
             }
-            (step, solved) = solver.solve(self.pool, &minus_g, inner);
+            (step, solved) = solver.solve(self.pool, &minus_g, stop);
             stale = false;
         }
         // A factor modified for an earlier, indefinite Hessian says nothing of this one: where
@@ -325,7 +361,8 @@ impl Search {
     fn after(options: &StationaryOptions, gradient_norm: f64, solved: &SolveStats) -> Self {
         let tolerance = options.tolerance;
         let last = gradient_norm * gradient_norm <= tolerance
-            && solved.residual * gradient_norm <= tolerance;
+            && (solved.residual * gradient_norm <= tolerance
+                || solved.scaled <= RESIDUAL_SHARE * tolerance);
         Search {
             gradient_norm,
             hessian: options.exact_solver || !last,
