@@ -123,7 +123,10 @@ impl BlockRows {
                 .push(out.value_start[out.value_start.len() - 1] + values);
         }
         out.neighbour = vec![0; out.block_start[nodes.len()]];
-        out.value = vec![Bf16(0); out.value_start[nodes.len()]];
+        // Zeros written in parallel (`vec!` writes them on one thread: on the 812,040-node
+        // wing, a gigabyte of first touches, one page fault after the other).
+        let count = out.value_start[nodes.len()];
+        out.value = pool.install(|| (0..count).into_par_iter().map(|_| Bf16(0)).collect());
         let neighbours = split_rows(&mut out.neighbour, counts.iter().map(|c| c.0));
         let values = split_rows(&mut out.value, counts.iter().map(|c| c.1));
         let components = |mask: u8| (0..D).filter(move |k| mask & (1 << k) != 0);
