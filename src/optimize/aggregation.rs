@@ -5,6 +5,7 @@
 
 use super::csr::Csr;
 use super::small_matrix::Vector;
+use super::sparse::Coordinates;
 
 /// Strength threshold of the aggregation: `‖A_ij‖ ≥ θ √(‖A_ii‖‖A_jj‖)`.
 const STRENGTH: f64 = 0.08;
@@ -25,20 +26,19 @@ impl Grouping {
     }
 }
 
-/// Groups the unknowns numbered by `dof` (`node·d + k`) by node, with the rigid motions at the
-/// nodes' positions `x` as near-null space (row-major, `d(d+1)/2` values per unknown).
+/// Groups the free `coordinates` by node, with the rigid motions at the nodes' positions `x`
+/// (one per node of `coordinates`) as near-null space (row-major, `d(d+1)/2` values per unknown).
 pub(super) fn node_grouping<const D: usize>(
-    dof: &[u32],
-    nodes: usize,
+    coordinates: &Coordinates,
     x: &[Vector<D>],
 ) -> (Grouping, Vec<f64>) {
     let modes = D * (D + 1) / 2;
     let mut start = vec![0usize];
     let mut null_space = Vec::new();
-    for v in 0..nodes {
+    for (v, xv) in x.iter().enumerate() {
         let mut owned = 0;
         for k in 0..D {
-            if dof[v * D + k] == u32::MAX {
+            if coordinates.of(v, k).is_none() {
                 continue;
             }
             owned += 1;
@@ -47,8 +47,8 @@ pub(super) fn node_grouping<const D: usize>(
             // Rotations: in the plane of axes (a, b), component a gets −x_b and b gets x_a.
             for (m, (a, b)) in rotation_planes(D).into_iter().enumerate() {
                 row[D + m] = match k {
-                    k if k == a => -x[v][b],
-                    k if k == b => x[v][a],
+                    k if k == a => -xv[b],
+                    k if k == b => xv[a],
                     _ => 0.0,
                 };
             }

@@ -181,8 +181,7 @@ impl Amg {
                     (coarse, grouping, null_space)
                 }
                 None => {
-                    let (grouping, null_space) =
-                        node_grouping(fine.coordinates.ids(), free.len(), x);
+                    let (grouping, null_space) = node_grouping(&fine.coordinates, x);
                     (fine.csr(pool), grouping, null_space)
                 }
             };
@@ -240,17 +239,13 @@ impl Amg {
             .first()
             .map_or(self.coarsest_size, |l| l.a.size());
         let mut b = vec![0.0; n];
-        for (i, &d) in self.coordinates.ids().iter().enumerate() {
-            if d != u32::MAX {
-                b[d as usize] = r[i / D][i % D];
-            }
+        for (v, k, d) in self.coordinates.free() {
+            b[d] = r[v][k];
         }
         let x = self.cycle(pool, 0, &b);
         let mut out = vec![[0.0; D]; r.len()];
-        for (i, &d) in self.coordinates.ids().iter().enumerate() {
-            if d != u32::MAX {
-                out[i / D][i % D] = x[d as usize];
-            }
+        for (v, k, d) in self.coordinates.free() {
+            out[v][k] = x[d];
         }
         out
     }
@@ -296,10 +291,8 @@ impl<'a, const D: usize> FineRows<'a, D> {
     /// The rows of the free `coordinates`.
     fn new(layout: &'a BlockLayout, hessian: &'a BlockMatrix<D>, coordinates: Coordinates) -> Self {
         let mut rows = vec![(0, 0); coordinates.count()];
-        for (i, &d) in coordinates.ids().iter().enumerate() {
-            if d != u32::MAX {
-                rows[d as usize] = (i / D, i % D);
-            }
+        for (v, k, d) in coordinates.free() {
+            rows[d] = (v, k);
         }
         FineRows {
             layout,
@@ -414,7 +407,7 @@ fn corner_prolongator<const D: usize>(
         row.into_iter()
     };
     let p = Csr::collected(pool, coarse.count(), fine.rows.len(), row);
-    let (grouping, null_space) = node_grouping(coarse.ids(), n, x);
+    let (grouping, null_space) = node_grouping(&coarse, x);
     Some((p, grouping, null_space))
 }
 

@@ -26,7 +26,7 @@ use super::sparse::Coordinates;
 /// A bfloat16 value: the upper half of a single-precision one. Written here rather than taken
 /// from the `half` crate, which would bring a procedural-macro chain (zerocopy-derive, syn)
 /// into the library's build for these two conversions.
-#[derive(Clone, Copy, Debug, Default, PartialEq)]
+#[derive(Clone, Copy, Debug)]
 pub struct Bf16(u16);
 
 impl From<f64> for Bf16 {

@@ -84,10 +84,14 @@ impl Coordinates {
         self.id.len() / self.dimension
     }
 
-    /// Per node and component (`v·d + k`), its index among the free coordinates, `u32::MAX`
-    /// where it is not free.
-    pub fn ids(&self) -> &[u32] {
-        &self.id
+    /// The free coordinates, node by node: `(node, component, index among the free ones)`.
+    pub fn free(&self) -> impl Iterator<Item = (usize, usize, usize)> + '_ {
+        let d = self.dimension;
+        self.id
+            .iter()
+            .enumerate()
+            .filter(|&(_, &i)| i != NONE)
+            .map(move |(at, &i)| (at / d, at % d, i as usize))
     }
 }
 
