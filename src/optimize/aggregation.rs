@@ -35,6 +35,7 @@ pub(super) fn node_grouping<const D: usize>(
     let modes = D * (D + 1) / 2;
     let mut start = vec![0usize];
     let mut null_space = Vec::new();
+    debug_assert_eq!(x.len(), coordinates.node_count());
     for (v, xv) in x.iter().enumerate() {
         let mut owned = 0;
         for k in 0..D {

@@ -303,19 +303,19 @@ impl<'a, const D: usize> FineRows<'a, D> {
     }
 
     /// Row `i`: the free coordinates of its node's neighbours, in column order, with their
-    /// values.
+    /// values (its node's rows taken together, [`FineRows::node_entries`], the one of its
+    /// component picked).
     fn entries(&self, i: usize) -> impl Iterator<Item = (u32, f64)> + '_ {
         let (v, k) = self.rows[i];
-        let (blocks, neighbours) = self.layout.row(v);
-        blocks.zip(neighbours).flat_map(move |(b, &w)| {
-            (0..D).filter_map(move |l| {
-                let d = self.coordinates.of(w as usize, l)?;
-                Some((d as u32, self.hessian.blocks[b][k][l]))
-            })
-        })
+        let position = (0..k)
+            .filter(|&m| self.coordinates.of(v, m).is_some())
+            .count();
+        self.node_entries(v)
+            .map(move |(d, values)| (d, values[position]))
     }
 
-    /// The nodes with a free component, in the order of their rows, and their rows' counts.
+    /// The rows' counts of the nodes with a free component, and those nodes, in the order of
+    /// their rows.
     fn nodes(&self) -> (Vec<usize>, Vec<usize>) {
         let runs = self.rows.chunk_by(|a, b| a.0 == b.0);
         runs.map(|run| (run.len(), run[0].0)).unzip()

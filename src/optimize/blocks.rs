@@ -64,7 +64,7 @@ impl BlockLayout {
             parts
                 .into_par_iter()
                 .enumerate()
-                .for_each(|(c, part)| part.copy_from_slice(&coupling(problem, c)))
+                .for_each(|(c, part)| coupling(problem, c, part))
         });
         let (start, columns) = rows(pool, problem, (&first, &couplings));
         let mut layout = BlockLayout {
@@ -226,11 +226,11 @@ fn rows<const D: usize>(
     (start, columns)
 }
 
-/// Which pairs of cell `c`'s real nodes enter one Jacobian together (row-major `r·n + s`).
-fn coupling<const D: usize>(problem: &Problem<D>, c: usize) -> Vec<bool> {
+/// Marks in `couples` (row-major `r·n + s`, false on entry) the pairs of cell `c`'s real nodes
+/// that enter one Jacobian together.
+fn coupling<const D: usize>(problem: &Problem<D>, c: usize, couples: &mut [bool]) {
     let pattern = problem.pattern(c);
     let n = pattern.real_count;
-    let mut couples = vec![false; n * n];
     for stencil in &pattern.jacobian {
         for &(r, _) in stencil {
             for &(s, _) in stencil {
@@ -238,7 +238,6 @@ fn coupling<const D: usize>(problem: &Problem<D>, c: usize) -> Vec<bool> {
             }
         }
     }
-    couples
 }
 
 /// `count` zero blocks, or a refusal naming the sweeps where they cannot be allocated: a Hessian

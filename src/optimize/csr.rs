@@ -1,7 +1,7 @@
 //! A plain compressed-sparse-row matrix with the few operations the multigrid preconditioner
 //! needs: a row-parallel product (each row sums in column order, so the result does not depend
-//! on the thread count), the transpose, and the sparse product (Gustavson's row-by-row
-//! algorithm). Hand-written because these are the hot loops of the preconditioner and faer's
+//! on the thread count), the transpose, and the sparse product (Gustavson's algorithm, row by
+//! row or by groups of rows that share their columns). Hand-written because these are the hot loops of the preconditioner and faer's
 //! sparse types add nothing to them.
 
 use rayon::prelude::*;
@@ -183,6 +183,7 @@ impl Csr {
         group: impl Fn(usize) -> I + Sync,
         b: &Csr,
     ) -> Csr {
+        debug_assert!(sizes.iter().all(|&size| size <= W));
         let scratch = || Gustavson::<W>::new(b.columns);
         let patterns: Vec<usize> = pool.install(|| {
             (0..sizes.len())
@@ -228,7 +229,7 @@ impl Csr {
     /// The matrix of `columns` columns whose rows have the given `lengths`, each row `i`
     /// written in place by `fill(scratch, i, columns, values)` in parallel (`scratch` made by
     /// `init`, per task): the arrays are allocated once, at their size.
-    pub fn filled<S>(
+    fn filled<S>(
         pool: &ThreadPool,
         columns: usize,
         lengths: &[usize],

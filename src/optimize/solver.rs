@@ -31,7 +31,7 @@ const DIRECT_3D_COORDINATES: usize = 60_000;
 const MULTIGRID_NEWTON_VALUES: usize = 100_000_000;
 
 /// How a solve went.
-#[derive(Clone, Copy, Debug, Default)]
+#[derive(Clone, Copy, Debug)]
 pub struct SolveStats {
     /// CG iterations.
     pub iterations: usize,
@@ -42,6 +42,18 @@ pub struct SolveStats {
     pub negative_curvature: bool,
     /// The residual's scaled max-norm reached, where [`Stop::scaled`] asked for it (else +∞).
     pub scaled: f64,
+}
+
+impl Default for SolveStats {
+    /// No iteration yet: the relative residual 1, the scaled one not known (+∞).
+    fn default() -> Self {
+        SolveStats {
+            iterations: 0,
+            residual: 1.0,
+            negative_curvature: false,
+            scaled: f64::INFINITY,
+        }
+    }
 }
 
 /// Where CG stops, besides its iteration limit: at a relative residual, or at a scaled
@@ -65,7 +77,8 @@ impl Stop<'_> {
         }
     }
 
-    /// The scaled max-norm of `r` (+∞ where not asked for).
+    /// The scaled max-norm of `r`, a residual over the free coordinates (+∞ where not asked
+    /// for).
     fn scaled_norm<const D: usize>(&self, r: &[Vector<D>]) -> f64 {
         self.scaled.map_or(f64::INFINITY, |(scales, _)| {
             let largest = |r: &Vector<D>| r.iter().fold(0.0f64, |m, x| m.max(x.abs()));
@@ -452,6 +465,8 @@ fn conjugate_gradients<const D: usize>(
     let mut x = vec![[0.0; D]; n];
     let mut stats = SolveStats::default();
     if b_norm == 0.0 {
+        // `x = 0` solves it exactly.
+        (stats.residual, stats.scaled) = (0.0, 0.0);
         return (x, stats);
     }
     let scaled_start = stop.scaled_norm(b);
@@ -461,7 +476,6 @@ fn conjugate_gradients<const D: usize>(
     let mut p = z.clone();
     let mut rz = dot(&r, &z);
     let mut ap = vec![[0.0; D]; n];
-    stats.residual = 1.0;
     while stats.iterations < max_iterations && !stop.met(&stats) {
         apply(&p, &mut ap);
         let curvature = dot(&p, &ap);
@@ -486,7 +500,7 @@ fn conjugate_gradients<const D: usize>(
         // At the rate so far (from the second iteration on), the iterations `stop` needs.
         let projected = stop.projected(&stats, scaled_start);
         if stats.iterations >= 2 && projected.is_finite() && projected > max_iterations as f64 {
-            // The tolerance is out of reach within `max_iterations`: give up early.
+            // `stop` is out of reach within `max_iterations`: give up early.
             break;
         }
         z = precondition(&r);
@@ -510,7 +524,7 @@ mod tests {
     /// A diagonal system `diag(1..=n) y = 1` with a preconditioner that counts its applications.
     fn diagonal_solve(
         exact: bool,
-        tolerance: f64,
+        stop: Stop<'_>,
         max_iterations: usize,
     ) -> (Vec<Vector<1>>, SolveStats, usize) {
         let n = 50;
@@ -528,7 +542,6 @@ mod tests {
                 .collect()
         };
         let b = vec![[1.0]; n];
-        let stop = Stop::relative(tolerance);
         let (y, stats) = conjugate_gradients(&apply, &precondition, &b, stop, max_iterations);
         (y, stats, calls.get())
     }
@@ -537,7 +550,7 @@ mod tests {
     /// the last iteration.
     #[test]
     fn an_exact_preconditioner_is_applied_once() {
-        let (y, stats, calls) = diagonal_solve(true, 1e-12, 10);
+        let (y, stats, calls) = diagonal_solve(true, Stop::relative(1e-12), 10);
         assert_eq!((stats.iterations, calls), (1, 1));
         for (i, y) in y.iter().enumerate() {
             assert!((y[0] - 1.0 / (i + 1) as f64).abs() < 1e-14);
@@ -548,9 +561,38 @@ mod tests {
     /// as soon as its rate shows the tolerance out of reach; with enough it gets there.
     #[test]
     fn conjugate_gradients_give_up_where_the_rate_cannot_reach_the_tolerance() {
-        let (_, stats, _) = diagonal_solve(false, 1e-12, 8);
+        let (_, stats, _) = diagonal_solve(false, Stop::relative(1e-12), 8);
         assert!(stats.iterations < 8 && stats.residual > 1e-12, "{stats:?}");
-        let (_, stats, _) = diagonal_solve(false, 1e-12, 1000);
+        let (_, stats, _) = diagonal_solve(false, Stop::relative(1e-12), 1000);
         assert!(stats.residual <= 1e-12, "{stats:?}");
+        assert_eq!(stats.scaled, f64::INFINITY);
+    }
+
+    /// A scaled target met before the relative one stops CG there, its residual's scaled
+    /// max-norm within the target (the true residual, recomputed).
+    #[test]
+    fn conjugate_gradients_stop_at_a_scaled_residual() {
+        let scales: Vec<f64> = (0..50).map(|i| 1.0 / (i + 1) as f64).collect();
+        let target = 1e-3;
+        let stop = Stop {
+            relative: 1e-12,
+            scaled: Some((&scales, target)),
+        };
+        let (y, stats, _) = diagonal_solve(false, stop, 1000);
+        let (_, relative, _) = diagonal_solve(false, Stop::relative(1e-12), 1000);
+        assert!(stats.residual > 1e-12 && stats.iterations < relative.iterations);
+        let residual = (0..50).map(|i| (1.0 - (i + 1) as f64 * y[i][0]).abs() * scales[i]);
+        let largest = residual.fold(0.0, f64::max);
+        assert!(
+            largest <= target * (1.0 + 1e-9) && stats.scaled <= target,
+            "{largest}"
+        );
+        // The give-up waits while either target is projected in reach: never sooner than for
+        // the relative target alone.
+        for budget in [4, 8, 16] {
+            let (_, both, _) = diagonal_solve(false, stop, budget);
+            let (_, alone, _) = diagonal_solve(false, Stop::relative(1e-12), budget);
+            assert!(both.iterations >= alone.iterations || both.scaled <= target);
+        }
     }
 }

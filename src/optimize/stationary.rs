@@ -51,14 +51,27 @@ pub fn scaled_gradient_norm<const D: usize>(
     free: &[u8],
     gradient: &[Vector<D>],
 ) -> f64 {
+    masked_norm(&node_scales(objective, free), free, gradient)
+}
+
+/// Per node, the scale of its gradient in the scaled norm: its local length over its cells'
+/// weights (0 for a node with no free component).
+fn node_scales<const D: usize>(objective: &GlobalObjective<'_, D>, free: &[u8]) -> Vec<f64> {
+    let length = |v: usize| objective.problem().node_length(v);
+    (0..free.len())
+        .map(|v| match free[v] {
+            0 => 0.0,
+            _ => length(v) / objective.node_weight(v),
+        })
+        .collect()
+}
+
+/// `max |g_vk| scales[v]` over the free components `k` of the nodes.
+fn masked_norm<const D: usize>(scales: &[f64], free: &[u8], gradient: &[Vector<D>]) -> f64 {
     let mut norm = 0.0f64;
-    for (v, g) in gradient.iter().enumerate() {
-        if free[v] == 0 {
-            continue;
-        }
-        let scale = node_scale(objective, v);
+    for ((g, &scale), &mask) in gradient.iter().zip(scales).zip(free) {
         for (k, gk) in g.iter().enumerate() {
-            if free[v] & (1 << k) != 0 {
+            if mask & (1 << k) != 0 {
                 norm = norm.max(gk.abs() * scale);
             }
         }
@@ -66,9 +79,10 @@ pub fn scaled_gradient_norm<const D: usize>(
     norm
 }
 
-/// The scale of node `v`'s gradient in the scaled norm: its local length over its cells' weights.
-fn node_scale<const D: usize>(objective: &GlobalObjective<'_, D>, v: usize) -> f64 {
-    objective.problem().node_length(v) / objective.node_weight(v)
+/// Whether Newton's quadratic term no longer stands in the way of ending at `tolerance` in one
+/// step from a scaled gradient norm `gradient_norm` (then the step's solve decides).
+fn quadratic_negligible(gradient_norm: f64, tolerance: f64) -> bool {
+    gradient_norm * gradient_norm <= tolerance
 }
 
 /// The share of the tolerance a step expected to be the last leaves to its solve's residual
@@ -154,7 +168,7 @@ pub fn minimise<const D: usize>(
         return Ok((stats, None));
     }
     loop {
-        stats.gradient_norm = scaled_gradient_norm(&objective, free, &eval.gradient);
+        stats.gradient_norm = newton.gradient_norm(&eval.gradient);
         let hessian = eval.hessian.take().expect("Hessian evaluated");
         let lagged = preconditioner.is_some();
         let Some(mut solver) = newton.solver_for(x, hessian, preconditioner.take())? else {
@@ -196,7 +210,7 @@ pub fn minimise<const D: usize>(
         x.copy_from_slice(&next);
         eval = next_eval;
         if let Some(solver) = kept {
-            let norm = scaled_gradient_norm(&objective, free, &eval.gradient);
+            let norm = newton.gradient_norm(&eval.gradient);
             if norm <= options.tolerance {
                 (stats.gradient_norm, stats.converged) = (norm, true);
                 return Ok((stats, Some(solver)));
@@ -249,19 +263,18 @@ impl<'a, const D: usize> Newton<'a, D> {
         setup: &'a Arc<SolverSetup>,
         tolerance: f64,
     ) -> Self {
-        let free = &setup.free;
         Newton {
             pool,
             problem,
             setup,
             tolerance,
-            scales: (0..free.len())
-                .map(|v| match free[v] {
-                    0 => 0.0,
-                    _ => node_scale(objective, v),
-                })
-                .collect(),
+            scales: node_scales(objective, &setup.free),
         }
+    }
+
+    /// The scaled max-norm of `gradient` over the free coordinates.
+    fn gradient_norm(&self, gradient: &[Vector<D>]) -> f64 {
+        masked_norm(&self.scales, &self.setup.free, gradient)
     }
 
     /// The solver of `hessian` (at `x`) with `preconditioner` from an earlier state, or with
@@ -296,9 +309,9 @@ impl<'a, const D: usize> Newton<'a, D> {
         // There the solve also stops once the gradient it leaves (its residual, to first order)
         // is within its share of the tolerance in the scaled norm: the relative residual, a
         // 2-norm, bounds that only loosely (the wing's last step: 16 CG iterations to the
-        // relative residual, 14 to the scaled share, the same final gradient).
+        // relative residual, 13 to the scaled share, the same final gradient).
         let mut inner = gradient_norm.sqrt();
-        let last = gradient_norm * gradient_norm <= self.tolerance;
+        let last = quadratic_negligible(gradient_norm, self.tolerance);
         if last {
             inner = inner.min(0.1 * self.tolerance / gradient_norm);
         }
@@ -307,8 +320,8 @@ impl<'a, const D: usize> Newton<'a, D> {
             scaled: last.then_some((&self.scales[..], RESIDUAL_SHARE * self.tolerance)),
         };
         // A preconditioner from an earlier state gets its own budget of iterations
-        // ([`Preconditioner::lagged_iterations`]); CG gives up sooner where its rate shows the
-        // inner tolerance out of reach within them.
+        // ([`Preconditioner::lagged_iterations`]); CG gives up sooner where its rate shows
+        // `stop` out of reach within them.
         let budget = solver.preconditioner().lagged_iterations();
         let (mut step, mut solved) = solver.solve_with(self.pool, &minus_g, stop, budget);
         let mut stale = lagged;
@@ -360,7 +373,7 @@ impl Search {
     /// linear model's residual within the tolerance, its quadratic term negligible).
     fn after(options: &StationaryOptions, gradient_norm: f64, solved: &SolveStats) -> Self {
         let tolerance = options.tolerance;
-        let last = gradient_norm * gradient_norm <= tolerance
+        let last = quadratic_negligible(gradient_norm, tolerance)
             && (solved.residual * gradient_norm <= tolerance
                 || solved.scaled <= RESIDUAL_SHARE * tolerance);
         Search {
