@@ -1,8 +1,8 @@
 //! A plain compressed-sparse-row matrix with the few operations the multigrid preconditioner
 //! needs: a row-parallel product (each row sums in column order, so the result does not depend
 //! on the thread count), the transpose, and the sparse product (Gustavson's algorithm, row by
-//! row or by groups of rows that share their columns). Hand-written because these are the hot loops of the preconditioner and faer's
-//! sparse types add nothing to them.
+//! row or by groups of rows that share their columns). Hand-written because these are the hot
+//! loops of the preconditioner and faer's sparse types add nothing to them.
 
 use rayon::prelude::*;
 use rayon::ThreadPool;
