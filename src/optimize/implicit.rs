@@ -6,8 +6,9 @@
 
 use rayon::ThreadPool;
 
+use super::cg::Stop;
 use super::small_matrix::Vector;
-use super::solver::{mask, HessianSolver, Stop};
+use super::solver::{mask, HessianSolver};
 use crate::error::{Error, Result};
 
 /// Relative residual to which the solves of the sensitivities are carried.

@@ -9,6 +9,7 @@ mod aggregation;
 pub mod amg;
 pub mod block_rows;
 pub mod blocks;
+pub mod cg;
 pub mod colour;
 pub mod csr;
 pub mod distortion;

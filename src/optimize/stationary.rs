@@ -13,10 +13,11 @@ use std::sync::Arc;
 use rayon::ThreadPool;
 
 use super::blocks::BlockMatrix;
+use super::cg::{SolveStats, Stop};
 use super::global::{Evaluation, GlobalObjective};
 use super::problem::Problem;
 use super::small_matrix::Vector;
-use super::solver::{mask, HessianSolver, Preconditioner, SolveStats, SolverSetup, Stop};
+use super::solver::{mask, HessianSolver, Preconditioner, SolverSetup};
 use crate::error::{Error, Result};
 
 /// Stopping rules of the Newton stage.
@@ -317,7 +318,8 @@ impl<'a, const D: usize> Newton<'a, D> {
         }
         let stop = Stop {
             relative: inner.clamp(1e-14, 0.1),
-            scaled: last.then_some((&self.scales[..], RESIDUAL_SHARE * self.tolerance)),
+            scales: if last { &self.scales } else { &[] },
+            scaled: RESIDUAL_SHARE * self.tolerance,
         };
         // A preconditioner from an earlier state gets its own budget of iterations
         // ([`Preconditioner::lagged_iterations`]); CG gives up sooner where its rate shows
