@@ -1,7 +1,9 @@
 //! How relocation scales with the mesh: the bundled airfoil (Q9) and wing (H27), each cell split
 //! into `s^d` cells on its own quadratic map (`igaparam::fe_mesh::refined_grid`), so that every
 //! size has the same geometry and the same boundary motion; relocated with the default options,
-//! and the largest wing by Newton's method too.
+//! and the larger wings by Newton's method too. The wing is the airfoil's mesh extruded along
+//! every cell's third axis: split 2, 2 and 3 times along its cells' axes
+//! (`igaparam::fe_mesh::refined_grid_by`) it has 1,214,040 nodes.
 //!
 //! `cargo bench --bench scale` runs every size; `-- airfoil` or `-- wing` one family;
 //! `--max-nodes N` skips meshes of more nodes (an estimate before refining). Each size runs in a
@@ -11,24 +13,29 @@
 use std::path::Path;
 use std::process::Command;
 
-use igaparam::{fe_mesh::refined_grid, io::vtu, Mesh, Method, RelocateOptions};
+use igaparam::{fe_mesh::refined_grid_by, io::vtu, Mesh, Method, RelocateOptions};
 
-/// The runs: name, bundled file, splits per direction, and whether the method is forced to
-/// Newton's (else `AUTO`: the 812,040-node wing's Hessian is past its limit, so it is run both
-/// ways).
-const CASES: [(&str, &str, usize, bool); 6] = [
-    ("airfoil Q9", "airfoil_0012_q9.vtu", 1, false),
-    ("airfoil Q9", "airfoil_0012_q9.vtu", 3, false),
-    ("airfoil Q9", "airfoil_0012_q9.vtu", 7, false),
-    ("wing H27", "wing_0012_h27.vtu", 1, false),
-    ("wing H27", "wing_0012_h27.vtu", 2, false),
-    ("wing H27", "wing_0012_h27.vtu", 2, true),
+/// The runs: name, bundled file, splits along the cells' axes, and whether the method is forced
+/// to Newton's (else `AUTO`: the 812,040-node wing's Hessian is past its limit, so it is run both
+/// ways; the sweeps of the 1,214,040-node one would take minutes).
+const CASES: [(&str, &str, [usize; 3], bool); 7] = [
+    ("airfoil Q9", "airfoil_0012_q9.vtu", [1; 3], false),
+    ("airfoil Q9", "airfoil_0012_q9.vtu", [3; 3], false),
+    ("airfoil Q9", "airfoil_0012_q9.vtu", [7; 3], false),
+    ("wing H27", "wing_0012_h27.vtu", [1; 3], false),
+    ("wing H27", "wing_0012_h27.vtu", [2; 3], false),
+    ("wing H27", "wing_0012_h27.vtu", [2; 3], true),
+    ("wing H27", "wing_0012_h27.vtu", [2, 2, 3], true),
 ];
 
 fn main() {
     let args: Vec<String> = std::env::args().skip(1).collect();
     if let Some(i) = args.iter().position(|a| a == "--case") {
-        let splits = args[i + 2].parse().expect("splits");
+        let splits: Vec<usize> = args[i + 2]
+            .split(',')
+            .map(|s| s.parse().expect("splits"))
+            .collect();
+        let splits = <[usize; 3]>::try_from(splits).expect("three splits");
         return child(&args[i + 1], splits, args[i + 3] == "newton");
     }
     let max_nodes: f64 = args
@@ -54,16 +61,26 @@ fn main() {
         }
         let grid = vtu::read(&data(file)).expect("bundled mesh");
         let d = if name.contains("H27") { 3 } else { 2 };
-        if grid.point_count() as f64 * (s as f64).powi(d) > max_nodes {
+        let product: usize = s[..d].iter().product();
+        if (grid.point_count() * product) as f64 > max_nodes {
             continue;
         }
         let exe = std::env::current_exe().expect("own path");
         let method = if newton { "newton" } else { "auto" };
+        let list = s.map(|s| s.to_string()).join(",");
         let out = Command::new(exe)
-            .args(["--case", file, &s.to_string(), method])
+            .args(["--case", file, &list, method])
             .output()
             .expect("child process");
         let line = String::from_utf8_lossy(&out.stdout);
+        let s = match s[..d].iter().all(|&k| k == s[0]) {
+            true => s[0].to_string(),
+            false => s[..d]
+                .iter()
+                .map(|s| s.to_string())
+                .collect::<Vec<_>>()
+                .join("×"),
+        };
         match line.lines().find_map(|l| l.strip_prefix("RESULT ")) {
             Some(row) => println!("| {name} | {s} | {row} |"),
             None => println!(
@@ -82,9 +99,9 @@ fn data(file: &str) -> std::path::PathBuf {
 
 /// One size: refines, relocates (by Newton's method where `newton`, else by `AUTO`'s choice)
 /// and prints the row after `RESULT `.
-fn child(file: &str, splits: usize, newton: bool) {
+fn child(file: &str, splits: [usize; 3], newton: bool) {
     let grid = vtu::read(&data(file)).expect("bundled mesh");
-    let fine = refined_grid(&grid, splits).expect("refinement");
+    let fine = refined_grid_by(&grid, splits).expect("refinement");
     drop(grid);
     let mut mesh = Mesh::from_grid_with_motion(&fine).expect("mesh");
     drop(fine);

@@ -12,7 +12,7 @@ mod sensitivity;
 
 pub use cell_type::CellType;
 pub use node_order::NodeOrder;
-pub use refine::refined_grid;
+pub use refine::{refined_grid, refined_grid_by};
 pub(crate) use relocate::sweep_motion;
 pub use relocate::{
     Method, Placement, RelocateOptions, RelocateReport, Stage, DEFAULT_NEWTON_TOLERANCE,

@@ -24,18 +24,28 @@ const MAX_POINTS: usize = 1 << 31;
 /// edge it lies on (so a node inside a fixed boundary face is fixed as the face is), none inside a
 /// cell. Other arrays are dropped. Nodes are numbered in the order the cells first meet them.
 pub fn refined_grid(grid: &UnstructuredGrid, splits: usize) -> Result<UnstructuredGrid> {
+    refined_grid_by(grid, [splits; 3])
+}
+
+/// [`refined_grid`] with a number of splits per local direction of the cells (`splits[k]`
+/// along their axis ξ, η, ζ for `k` = 0, 1, 2; the third ignored for Q9 cells), e.g. a mesh
+/// extruded along every cell's ζ refined more across the extrusion than along it. Cells that
+/// share an edge must split it the same number of times, which holds where their local axes line
+/// up; an edge split differently by two cells is an error that names it.
+pub fn refined_grid_by(grid: &UnstructuredGrid, splits: [usize; 3]) -> Result<UnstructuredGrid> {
     let cell_type = lagrange_type(grid)?;
-    if !(1..=MAX_SPLITS).contains(&splits) {
+    let d = cell_type.dimension();
+    if let Some(s) = splits[..d].iter().find(|s| !(1..=MAX_SPLITS).contains(*s)) {
         return Err(Error::invalid(format!(
-            "splits = {splits}: expected 1 to {MAX_SPLITS}"
+            "splits = {s}: expected 1 to {MAX_SPLITS}"
         )));
     }
-    let d = cell_type.dimension();
-    let per_cell = (2 * splits + 1).pow(d as u32);
+    let per_cell: usize = splits[..d].iter().map(|s| 2 * s + 1).product();
     if grid.types.len().saturating_mul(per_cell) > MAX_POINTS {
         return Err(Error::invalid(format!(
-            "{} cells split {splits} times per direction would exceed {MAX_POINTS} points",
-            grid.types.len()
+            "{} cells split {:?} times would exceed {MAX_POINTS} points",
+            grid.types.len(),
+            &splits[..d]
         )));
     }
     let mask = point_array(grid, "fixed_components", 1)?;
@@ -43,7 +53,9 @@ pub fn refined_grid(grid: &UnstructuredGrid, splits: usize) -> Result<Unstructur
     let mut out = Refinement {
         cell_type,
         splits,
+        denominator: 2 * splits[..d].iter().fold(1, |l, &s| lcm(l, s)),
         ids: HashMap::new(),
+        edges: HashMap::new(),
         points: Vec::new(),
         mask: mask.map(|_| Vec::new()),
         moved: moved.map(|_| Vec::new()),
@@ -52,6 +64,7 @@ pub fn refined_grid(grid: &UnstructuredGrid, splits: usize) -> Result<Unstructur
     let nodes = cell_type.node_count();
     for cell in grid.connectivity.chunks(nodes) {
         let lattice_nodes = lattice_nodes(cell_type, cell, grid.point_count())?;
+        out.check_edges(&lattice_nodes)?;
         let source = Source {
             grid,
             nodes: &lattice_nodes,
@@ -61,6 +74,15 @@ pub fn refined_grid(grid: &UnstructuredGrid, splits: usize) -> Result<Unstructur
         out.cell(&source);
     }
     Ok(out.into_grid())
+}
+
+/// The least common multiple of `a` and `b` (both positive).
+fn lcm(a: usize, b: usize) -> usize {
+    let (mut x, mut y) = (a, b);
+    while y != 0 {
+        (x, y) = (y, x % y);
+    }
+    a / x * b
 }
 
 /// The cell type of a grid of Q9 or H27 cells ([`grid_cell_type`]'s checks) whose
@@ -125,11 +147,17 @@ struct Source<'a> {
 /// The refined grid being built.
 struct Refinement {
     cell_type: CellType,
-    splits: usize,
+    /// Splits per local direction.
+    splits: [usize; 3],
+    /// Twice the least common multiple of the splits: a point's coordinate along a parent edge
+    /// is an integer multiple of `1 / denominator`.
+    denominator: usize,
     /// A new node's key: the parent's corner nodes with the integer weights of the point in
-    /// their multilinear combination — the same from every cell that shares the point,
-    /// whatever its orientation.
-    ids: HashMap<Vec<(usize, usize)>, u32>,
+    /// their multilinear combination (in units of `1 / denominator^d`) — the same from every
+    /// cell that shares the point, whatever its orientation.
+    ids: HashMap<Vec<(usize, u64)>, u32>,
+    /// Per parent edge (its two corner nodes, in order): its splits and the first cell's index.
+    edges: HashMap<(usize, usize), (usize, usize)>,
     points: Vec<f64>,
     mask: Option<Vec<f64>>,
     moved: Option<Vec<f64>>,
@@ -137,43 +165,77 @@ struct Refinement {
 }
 
 impl Refinement {
+    /// Records the splits of the cell's edges (its lattice nodes `nodes`); an error where an
+    /// edge was split differently by an earlier cell.
+    fn check_edges(&mut self, nodes: &[usize]) -> Result<()> {
+        let d = self.cell_type.dimension();
+        let cell = self.connectivity.len() / self.cell_type.node_count() / self.children();
+        for k in 0..d {
+            for corner in (0..1usize << d).filter(|c| c >> k & 1 == 0) {
+                let [a, b] = [corner, corner | 1 << k].map(|c| nodes[corner_lattice(c, d)]);
+                let edge = (a.min(b), a.max(b));
+                let (splits, first) = *self.edges.entry(edge).or_insert((self.splits[k], cell));
+                if splits != self.splits[k] {
+                    return Err(Error::invalid(format!(
+                        "the edge between nodes {} and {} is divided into {splits} part(s) by \
+                         cell {first} and {} by cell {cell}: their local axes do not line up \
+                         (use the same splits in every direction)",
+                        edge.0, edge.1, self.splits[k]
+                    )));
+                }
+            }
+        }
+        Ok(())
+    }
+
+    /// Children per parent cell.
+    fn children(&self) -> usize {
+        self.splits[..self.cell_type.dimension()].iter().product()
+    }
+
+    /// Fine lattice points per direction, `2 s + 1`.
+    fn fine_radix(&self) -> [usize; 3] {
+        self.splits.map(|s| 2 * s + 1)
+    }
+
     /// Adds the children of one cell.
     fn cell(&mut self, source: &Source<'_>) {
         let d = self.cell_type.dimension();
-        let n = 2 * self.splits + 1;
-        let fine: Vec<u32> = (0..n.pow(d as u32))
+        let n = self.fine_radix();
+        let fine: Vec<u32> = (0..n[..d].iter().product())
             .map(|f| self.node(source, &digits(f, n, d)))
             .collect();
         let lattice = self.cell_type.lattice();
-        for child in 0..self.splits.pow(d as u32) {
+        for child in 0..self.children() {
             let corner = digits(child, self.splits, d);
             for &l in lattice {
-                let local = digits(l, 3, d);
+                let local = digits(l, [3; 3], d);
                 let index = (0..d)
                     .rev()
-                    .fold(0, |acc, k| acc * n + 2 * corner[k] + local[k]);
+                    .fold(0, |acc, k| acc * n[k] + 2 * corner[k] + local[k]);
                 self.connectivity.push(fine[index] as i64);
             }
         }
     }
 
-    /// The id of the point at fine lattice index `at` (per direction in `0..=2s`, the first `d`
-    /// used) of the cell, created on first sight.
+    /// The id of the point at fine lattice index `at` (per direction `k` in `0..=2 s_k`, the
+    /// first `d` used) of the cell, created on first sight.
     fn node(&mut self, source: &Source<'_>, at: &[usize; 3]) -> u32 {
         let d = self.cell_type.dimension();
-        let s = self.splits;
-        let mut key: Vec<(usize, usize)> = (0..1usize << d)
+        // The point's coordinate along axis k in units of 1/denominator.
+        let unit: Vec<u64> = (0..d)
+            .map(|k| (at[k] * (self.denominator / (2 * self.splits[k]))) as u64)
+            .collect();
+        let whole = self.denominator as u64;
+        let mut key: Vec<(usize, u64)> = (0..1usize << d)
             .map(|corner| {
                 let weight = (0..d)
                     .map(|k| match corner >> k & 1 {
-                        0 => 2 * s - at[k],
-                        _ => at[k],
+                        0 => whole - unit[k],
+                        _ => unit[k],
                     })
                     .product();
-                let lattice = (0..d)
-                    .rev()
-                    .fold(0, |acc, k| acc * 3 + 2 * (corner >> k & 1));
-                (source.nodes[lattice], weight)
+                (source.nodes[corner_lattice(corner, d)], weight)
             })
             .filter(|&(_, w)| w > 0)
             .collect();
@@ -190,13 +252,14 @@ impl Refinement {
     /// Appends the point at fine index `at`: position, `moved` and mask from the cell's nodes.
     fn add_point(&mut self, source: &Source<'_>, at: &[usize; 3]) {
         let d = self.cell_type.dimension();
-        let s = self.splits;
-        let basis: Vec<[f64; 3]> = at[..d].iter().map(|&i| quadratic_basis(i, s)).collect();
+        let basis: Vec<[f64; 3]> = (0..d)
+            .map(|k| quadratic_basis(at[k], self.splits[k]))
+            .collect();
         let mut position = [0.0; 3];
         let mut moved = [0.0; 3];
         let mut bits = 7u8;
         for (l, &node) in source.nodes.iter().enumerate() {
-            let local = digits(l, 3, d);
+            let local = digits(l, [3; 3], d);
             let weight: f64 = (0..d).map(|k| basis[k][local[k]]).product();
             if weight == 0.0 {
                 continue;
@@ -252,15 +315,23 @@ fn array(name: &str, components: usize, values: Vec<f64>) -> DataArray {
     }
 }
 
-/// The `d` base-`n` digits of `index`, least significant first.
-fn digits(index: usize, n: usize, d: usize) -> [usize; 3] {
+/// The first `d` digits of `index` in the mixed radix `n` (digit `k` in `0..n[k]`), least
+/// significant first.
+fn digits(index: usize, n: [usize; 3], d: usize) -> [usize; 3] {
     let mut out = [0; 3];
     let mut rest = index;
-    for digit in out.iter_mut().take(d) {
+    for (digit, n) in out.iter_mut().zip(n).take(d) {
         *digit = rest % n;
         rest /= n;
     }
     out
+}
+
+/// The lattice index (`i + 3j + 9k`) of corner `corner` (bit `k`: the far end along axis `k`).
+fn corner_lattice(corner: usize, d: usize) -> usize {
+    (0..d)
+        .rev()
+        .fold(0, |acc, k| acc * 3 + 2 * (corner >> k & 1))
 }
 
 /// The three 1D quadratic Lagrange functions (nodes −1, 0, 1) at fine index `i` of `0..=2s`
@@ -320,7 +391,7 @@ mod tests {
         for c in 0..cells {
             let (ci, cj, ck) = (c % n[0], (c / n[0]) % n[1], c / (n[0] * n[1]));
             for &l in cell_type.lattice() {
-                let mut local = digits(l, 3, d);
+                let mut local = digits(l, [3; 3], d);
                 if turned.contains(&c) {
                     local[0] = 2 - local[0];
                     local[1] = 2 - local[1];
@@ -400,6 +471,63 @@ mod tests {
             p
         };
         assert_eq!(sorted(&once.points), sorted(&grid.points));
+    }
+
+    /// Splits per direction: the point and cell counts of the structured grid so refined, every
+    /// point on the parent map's lattice of those splits, the cells valid; cells turned half a
+    /// turn (axes reversed, still lined up) share their faces' new nodes.
+    #[test]
+    fn h27_refinement_by_direction_keeps_the_geometry() {
+        let grid = structured([2, 1, 1], 3, curved, affine, &[1]);
+        let fine = refined_grid_by(&grid, [2, 1, 3]).unwrap();
+        assert_eq!(fine.point_count(), 9 * 3 * 7);
+        assert_eq!(fine.types.len(), 2 * 2 * 3);
+        assert_eq!(
+            Mesh::from_grid(&fine)
+                .unwrap()
+                .invalid_cell_count()
+                .unwrap(),
+            0
+        );
+        for x in fine.points.chunks(3) {
+            let v = x[1] - 0.1 * x[0] * x[0];
+            let u = [x[0], v, x[2] - 0.05 * v * v];
+            for (t, n) in u.iter().zip([4.0, 2.0, 6.0]) {
+                assert!((t * n - (t * n).round()).abs() < 1e-12, "{x:?}");
+            }
+        }
+        let uniform = refined_grid_by(&grid, [2, 2, 2]).unwrap();
+        assert_eq!(uniform.points, refined_grid(&grid, 2).unwrap().points);
+    }
+
+    /// A cell turned a quarter turn has its first axis along its neighbour's second: splits
+    /// that differ between those axes are refused, naming the edge; equal ones are not.
+    #[test]
+    fn refinement_by_direction_refuses_axes_that_do_not_line_up() {
+        let mut grid = structured([2, 1, 1], 2, curved, affine, &[]);
+        let lattice = CellType::Quad9.lattice();
+        let old: Vec<i64> = grid.connectivity[9..18].to_vec();
+        let by_local = |i: usize, j: usize| {
+            let at = lattice.iter().position(|&l| l == i + 3 * j).unwrap();
+            old[at]
+        };
+        for (slot, &l) in lattice.iter().enumerate() {
+            let (i, j) = (l % 3, l / 3);
+            grid.connectivity[9 + slot] = by_local(j, 2 - i);
+        }
+        assert_eq!(
+            Mesh::from_grid(&grid)
+                .unwrap()
+                .invalid_cell_count()
+                .unwrap(),
+            0
+        );
+        let error = refined_grid_by(&grid, [2, 1, 1]).unwrap_err().to_string();
+        assert!(
+            error.contains("into 1 part(s) by cell 0 and 2 by cell 1"),
+            "{error}"
+        );
+        assert!(refined_grid_by(&grid, [3, 3, 1]).is_ok());
     }
 
     #[test]
