@@ -30,6 +30,7 @@ use super::lattice;
 use super::problem::Problem;
 use super::small_matrix::Vector;
 use super::sparse::{CholeskyPattern, Coordinates, Factor};
+use super::spectrum::largest_eigenvalue;
 
 /// Stop coarsening below this many unknowns (then factor the level, sparse).
 const COARSEST: usize = 5_000;
@@ -176,7 +177,8 @@ impl Amg {
                     let (mut level, coarse) =
                         Level::new(pool, blocks, (ap, p), (inverse_diagonal, 0.0));
                     let apply = |x: &[f64], y: &mut [f64]| level.a.apply(pool, x, y);
-                    level.lambda = spectral_radius(level.a.size(), apply, &level.inverse_diagonal);
+                    level.lambda =
+                        largest_eigenvalue(level.a.size(), apply, &level.inverse_diagonal);
                     levels.push(level);
                     (coarse, grouping, null_space)
                 }
@@ -206,7 +208,7 @@ impl Amg {
             }
             let inverse_diagonal = inverses(a.diagonal());
             let apply = |x: &[f64], y: &mut [f64]| a.apply(pool, x, y);
-            let lambda = spectral_radius(a.rows(), apply, &inverse_diagonal);
+            let lambda = largest_eigenvalue(a.rows(), apply, &inverse_diagonal);
             let p = match a.stored() <= SMOOTHING_DENSITY * a.rows() {
                 true => smooth_prolongator(pool, &a, &inverse_diagonal, lambda, &tentative),
                 false => tentative,
@@ -444,26 +446,6 @@ fn inverses(diagonal: Vec<f64>) -> Vec<f64> {
         .iter()
         .map(|&d| if d > 0.0 { 1.0 / d } else { 0.0 })
         .collect()
-}
-
-/// `λ_max(D⁻¹A)` by 20 power iterations from a fixed start, with a 10% margin.
-fn spectral_radius(n: usize, apply: impl Fn(&[f64], &mut [f64]), inverse_diagonal: &[f64]) -> f64 {
-    let mut v: Vec<f64> = (0..n)
-        .map(|i| 1.0 + ((i * 7919) % 13) as f64 / 13.0)
-        .collect();
-    let mut w = vec![0.0; n];
-    let mut lambda = 1.0;
-    for _ in 0..20 {
-        let norm = v.iter().map(|x| x * x).sum::<f64>().sqrt();
-        v.iter_mut().for_each(|x| *x /= norm);
-        apply(&v, &mut w);
-        for (wi, d) in w.iter_mut().zip(inverse_diagonal) {
-            *wi *= d;
-        }
-        lambda = w.iter().map(|x| x * x).sum::<f64>().sqrt();
-        std::mem::swap(&mut v, &mut w);
-    }
-    1.1 * lambda
 }
 
 /// `P = (I − ω D⁻¹A) P_tent` with `ω = 4/(3λ)`.

@@ -27,6 +27,7 @@ pub mod problem;
 pub mod small_matrix;
 pub mod solver;
 pub mod sparse;
+mod spectrum;
 pub mod stationary;
 mod supernodal;
 pub mod sweep;
