@@ -1271,9 +1271,9 @@ typedef struct {
  * the optimum (the linearised response of the mesh to the motion) and corrected by Newton's
  * method; the sweeps are the fallback where a step cannot be made (e.g. a tangled start). With
  * `IGAPARAM_PLACEMENT_CURRENT` (untangling in place): 3 sweeps (more while cells stay invalid),
- * then Newton's method to the stationarity tolerance (1e-8 when none is asked for). A Hessian
- * whose storage cannot be allocated (past the machine's memory) is refused with
- * `IGAPARAM_STATUS_LIMIT_EXCEEDED`.
+ * then Newton's method to the stationarity tolerance (1e-8 when none is asked for). A Hessian,
+ * or a multigrid preconditioner beside it, whose storage cannot be allocated (past the
+ * machine's memory) is refused with `IGAPARAM_STATUS_LIMIT_EXCEEDED`.
  */
 #define IGAPARAM_METHOD_NEWTON 2
 

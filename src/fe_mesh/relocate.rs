@@ -55,8 +55,9 @@ pub enum Method {
     /// the sweeps are the fallback where a step cannot be made (e.g. a tangled start). With
     /// [`Placement::Current`] (untangling in place): 3 sweeps (more while cells stay invalid),
     /// then Newton's method to the stationarity tolerance
-    /// ([`DEFAULT_NEWTON_TOLERANCE`] when none is asked for). A Hessian whose storage cannot be
-    /// allocated (past the machine's memory) is refused ([`ErrorKind::LimitExceeded`]).
+    /// ([`DEFAULT_NEWTON_TOLERANCE`] when none is asked for). A Hessian, or a multigrid
+    /// preconditioner beside it, whose storage cannot be allocated (past the machine's memory) is
+    /// refused ([`ErrorKind::LimitExceeded`]).
     Newton,
 }
 

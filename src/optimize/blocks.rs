@@ -242,24 +242,32 @@ fn coupling<const D: usize>(problem: &Problem<D>, c: usize, couples: &mut [bool]
 
 /// `count` zero blocks, or a refusal naming the sweeps where they cannot be allocated: a Hessian
 /// larger than the machine's memory and swap (several million quadratic solid nodes; the sweeps
-/// keep none) would otherwise abort the process. The request is tried first, then made zeroed
-/// by the allocator (fresh pages, untouched: the evaluation stores its zeros in order, see
+/// keep none) would otherwise abort the process. The request is tried first
+/// ([`memory_probe`]), then made zeroed by the allocator (fresh pages, untouched: the evaluation
+/// stores its zeros in order, see
 /// [`GlobalObjective::evaluate_into`](super::global::GlobalObjective::evaluate_into)).
 fn zero_blocks<const D: usize>(count: usize) -> Result<Vec<Matrix<D>>> {
-    let mut probe: Vec<Matrix<D>> = Vec::new();
-    probe.try_reserve_exact(count).map_err(|_| {
-        let values = count.saturating_mul(D * D);
+    let values = count.saturating_mul(D * D);
+    let bytes = count.saturating_mul(std::mem::size_of::<Matrix<D>>());
+    memory_probe(bytes, &format!("a Hessian of {values} values"))?;
+    Ok(vec![[[0.0; D]; D]; count])
+}
+
+/// Whether `bytes` can be allocated now, found by reserving them and releasing them at once (no
+/// page is touched); where not, a refusal naming `what` and the sweeps, which keep no Hessian: an
+/// allocation past the machine's memory and swap would abort the process.
+pub(super) fn memory_probe(bytes: usize, what: &str) -> Result<()> {
+    let mut probe: Vec<u8> = Vec::new();
+    probe.try_reserve_exact(bytes).map_err(|_| {
         Error::new(
             ErrorKind::LimitExceeded,
             format!(
-                "not enough memory for a Hessian of {values} values ({:.1} GB): relocate by the \
-                 sweeps (method SWEEPS), which keep none",
-                values as f64 * 8e-9
+                "not enough memory for {what} ({:.1} GB): relocate by the sweeps (method \
+                 SWEEPS), which keep none",
+                bytes as f64 * 1e-9
             ),
         )
-    })?;
-    drop(probe);
-    Ok(vec![[[0.0; D]; D]; count])
+    })
 }
 
 /// A symmetric matrix over node coordinates, in the blocks of a [`BlockLayout`].
@@ -338,5 +346,9 @@ mod tests {
         assert_eq!(e.kind, ErrorKind::LimitExceeded);
         assert!(e.message.contains("method SWEEPS"), "{}", e.message);
         assert_eq!(zero_blocks::<2>(3).unwrap(), vec![[[0.0; 2]; 2]; 3]);
+        let e = memory_probe(usize::MAX / 2, "the multigrid").unwrap_err();
+        assert_eq!(e.kind, ErrorKind::LimitExceeded);
+        assert!(e.message.contains("for the multigrid ("), "{}", e.message);
+        assert!(memory_probe(1 << 20, "a megabyte").is_ok());
     }
 }

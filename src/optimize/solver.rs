@@ -11,7 +11,7 @@ use std::sync::Arc;
 use rayon::ThreadPool;
 
 use super::amg::Amg;
-use super::blocks::{BlockLayout, BlockMatrix};
+use super::blocks::{memory_probe, BlockLayout, BlockMatrix};
 use super::cg::{conjugate_gradients, SolveStats, Stop};
 use super::small_matrix::{inverse, mul_vec, Matrix, Vector};
 use super::sparse::{Factor, FreeHessian};
@@ -132,12 +132,20 @@ impl<const D: usize> Preconditioner<D> {
             Some(analysis) => analysis
                 .factorize(hessian, first)?
                 .map(Preconditioner::Direct),
-            None => Some(
-                match Amg::new(pool, problem, layout, hessian, &setup.free, x) {
-                    Some(amg) => Preconditioner::Multigrid(Box::new(amg)),
-                    None => Preconditioner::BlockJacobi(block_jacobi(setup, layout, hessian)),
-                },
-            ),
+            None => {
+                // The hierarchy's arrays, made while the Hessian is kept, add about a quarter
+                // of its size at their peak (the 812,040-node wing: 0.86 GB beside 3.7 GB);
+                // a third is probed first, so that a setup past the machine's memory is refused
+                // rather than aborted midway.
+                let bytes = std::mem::size_of_val(&hessian.blocks[..]) / 3;
+                memory_probe(bytes, "the multigrid preconditioner")?;
+                Some(
+                    match Amg::new(pool, problem, layout, hessian, &setup.free, x) {
+                        Some(amg) => Preconditioner::Multigrid(Box::new(amg)),
+                        None => Preconditioner::BlockJacobi(block_jacobi(setup, layout, hessian)),
+                    },
+                )
+            }
         })
     }
 
