@@ -6,6 +6,7 @@
 
 pub mod boundary;
 pub mod capi;
+mod diagnostics;
 pub mod domain;
 pub mod error;
 pub mod fe_mesh;

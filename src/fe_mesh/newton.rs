@@ -38,7 +38,12 @@ impl Mesh {
         problem: &Problem<D>,
     ) -> Arc<BlockLayout> {
         self.layout
-            .get_or_insert_with(|| Arc::new(BlockLayout::new(pool, problem)))
+            .get_or_insert_with(|| {
+                let layout = BlockLayout::new(pool, problem);
+                let blocks = layout.block_count();
+                crate::diagnostics::note(|| format!("Hessian layout: {blocks} node blocks"));
+                Arc::new(layout)
+            })
             .clone()
     }
 

@@ -229,10 +229,28 @@ impl Mesh {
     ) -> Result<RelocateReport> {
         options.validate()?;
         let pool = crate::threads::pool(options.threads)?;
-        match self.dimension() {
+        crate::diagnostics::note(|| {
+            format!(
+                "relocation: {} nodes, {} cells, {:?}, {:?}",
+                self.node_count(),
+                self.cell_count(),
+                options.method,
+                options.placement
+            )
+        });
+        let report = match self.dimension() {
             2 => self.relocate_d::<2>(&pool, options, progress),
             _ => self.relocate_d::<3>(&pool, options, progress),
-        }
+        };
+        crate::diagnostics::note(|| match &report {
+            Ok(r) => format!(
+                "relocation: done in {:.3} s, {} sweeps, {} Newton iterations, {} invalid, \
+                 min q {:.3}",
+                r.seconds, r.sweeps, r.newton_iterations, r.invalid_after, r.min_quality
+            ),
+            Err(e) => format!("relocation: failed ({e})"),
+        });
+        report
     }
 
     fn relocate_d<const D: usize>(

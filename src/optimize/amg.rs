@@ -124,18 +124,47 @@ impl Level {
     }
 }
 
+/// The finest level of quadratic cells, its rows `fine` of `hessian`, `p` the prolongator from
+/// their corners, and the next level's operator. The finest operator is read from the block
+/// Hessian (no copy in compressed rows: on the wing, 720 MB); its smoother's operator is by node
+/// blocks in bfloat16, the largest eigenvalue estimated with it. The corner prolongator is not
+/// smoothed.
+fn corner_level<const D: usize>(
+    pool: &ThreadPool,
+    (layout, hessian): (&BlockLayout, &BlockMatrix<D>),
+    fine: &FineRows<'_, D>,
+    p: Csr,
+) -> (Level, Csr) {
+    let inverse_diagonal = inverses(fine.diagonal());
+    let (sizes, nodes) = fine.nodes();
+    let entries = |g: usize| fine.node_entries(nodes[g]);
+    let ap = Csr::grouped_product_of::<D, _>(pool, &sizes, entries, &p);
+    crate::diagnostics::note(|| format!("multigrid: A P, {} stored", ap.stored()));
+    let coordinates = &fine.coordinates;
+    let blocks = || Operator::Blocks(BlockRows::new(pool, layout, hessian, coordinates));
+    let (mut level, coarse) = Level::new(pool, blocks, (ap, p), (inverse_diagonal, 0.0));
+    crate::diagnostics::note(|| {
+        let stored = coarse.stored();
+        format!("multigrid: P^T A P, {stored} stored, and the smoother's node blocks")
+    });
+    let apply = |x: &[f64], y: &mut [f64]| level.a.apply(pool, x, y);
+    level.lambda = largest_eigenvalue(level.a.size(), apply, &level.inverse_diagonal);
+    crate::diagnostics::note(|| format!("multigrid: smoother's bound {:e}", level.lambda));
+    (level, coarse)
+}
+
 /// The sparse Cholesky factor of the coarsest operator `a`; `None` where it is not positive
 /// definite.
 fn coarsest_factor(a: &Csr) -> Option<(CholeskyPattern, Factor)> {
     let (pattern, positions) = CholeskyPattern::of_csr(a).ok()?;
-    if std::env::var_os("IGAPARAM_DEBUG").is_some() {
-        eprintln!(
-            "coarsest: {} unknowns, {} stored, factor {}",
+    crate::diagnostics::note(|| {
+        format!(
+            "multigrid: coarsest level, {} unknowns, {} stored, factor {}",
             a.rows(),
             a.stored(),
             pattern.factor_size()
-        );
-    }
+        )
+    });
     let factor = pattern
         .factorize(positions.iter().map(|&p| a.value[p]).collect(), 0)
         .ok()??;
@@ -163,22 +192,14 @@ impl Amg {
         let (mut a, mut grouping, mut null_space) =
             match corner_prolongator(pool, problem, &fine, x) {
                 Some((p, grouping, null_space)) => {
-                    // The finest operator is read from the block Hessian (no copy in
-                    // compressed rows: on the wing, 720 MB); its smoother's operator is by node
-                    // blocks in bfloat16, the largest eigenvalue estimated with it. The
-                    // corner prolongator is not smoothed.
-                    let inverse_diagonal = inverses(fine.diagonal());
-                    let (sizes, nodes) = fine.nodes();
-                    let entries = |g: usize| fine.node_entries(nodes[g]);
-                    let ap = Csr::grouped_product_of::<D, _>(pool, &sizes, entries, &p);
-                    let coordinates = &fine.coordinates;
-                    let blocks =
-                        || Operator::Blocks(BlockRows::new(pool, layout, hessian, coordinates));
-                    let (mut level, coarse) =
-                        Level::new(pool, blocks, (ap, p), (inverse_diagonal, 0.0));
-                    let apply = |x: &[f64], y: &mut [f64]| level.a.apply(pool, x, y);
-                    level.lambda =
-                        largest_eigenvalue(level.a.size(), apply, &level.inverse_diagonal);
+                    crate::diagnostics::note(|| {
+                        format!(
+                            "multigrid: corner prolongator, {} unknowns -> {}",
+                            p.rows(),
+                            p.columns
+                        )
+                    });
+                    let (level, coarse) = corner_level(pool, (layout, hessian), &fine, p);
                     levels.push(level);
                     (coarse, grouping, null_space)
                 }
@@ -192,17 +213,18 @@ impl Amg {
             let aggregates = aggregate(&a, &grouping);
             let (tentative, coarse_grouping, coarse_null) =
                 tentative_prolongator(&grouping, &aggregates, &null_space, modes);
-            if std::env::var_os("IGAPARAM_DEBUG").is_some() {
-                eprintln!(
-                    "level {}: {} unknowns, {} stored, {} groups -> {} coarse ({:?})",
+            crate::diagnostics::note(|| {
+                format!(
+                    "multigrid: level {}, {} unknowns, {} stored, {} groups -> {} coarse \
+                     (aggregated in {:?})",
                     levels.len(),
                     a.rows(),
                     a.stored(),
                     grouping.count(),
                     tentative.columns,
                     clock.elapsed()
-                );
-            }
+                )
+            });
             if tentative.columns as f64 > 0.8 * a.rows() as f64 {
                 break;
             }

@@ -128,7 +128,7 @@ impl<const D: usize> Preconditioner<D> {
         (x, first): (&[Vector<D>], usize),
     ) -> Result<Option<Self>> {
         let layout = &setup.layout;
-        Ok(match &setup.direct {
+        let made = match &setup.direct {
             Some(analysis) => analysis
                 .factorize(hessian, first)?
                 .map(Preconditioner::Direct),
@@ -146,7 +146,16 @@ impl<const D: usize> Preconditioner<D> {
                     },
                 )
             }
-        })
+        };
+        crate::diagnostics::note(|| match &made {
+            Some(Preconditioner::Direct(_)) => "preconditioner: Cholesky factor".into(),
+            Some(Preconditioner::Multigrid(amg)) => {
+                format!("preconditioner: multigrid, {} levels", amg.level_count())
+            }
+            Some(Preconditioner::BlockJacobi(_)) => "preconditioner: block Jacobi".into(),
+            None => "preconditioner: none (the factorisation failed)".into(),
+        });
+        Ok(made)
     }
 
     /// CG iterations this preconditioner gets, made at an earlier state, before a fresh one is

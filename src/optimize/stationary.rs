@@ -165,6 +165,7 @@ pub fn minimise<const D: usize>(
     // A nearby state's preconditioner; the last solver's Hessian for the next evaluation.
     let (mut preconditioner, mut spare) = lagged.map_or((None, None), Lagged::into_parts);
     let mut eval = objective.evaluate_into(pool, x, true, &mut spare)?;
+    crate::diagnostics::note(|| format!("newton: F {} and its Hessian evaluated", eval.value));
     if !eval.value.is_finite() {
         return Ok((stats, None));
     }
@@ -234,14 +235,14 @@ fn retire<const D: usize>(
     None
 }
 
-/// With `IGAPARAM_DEBUG` set, a line per Newton iteration on standard error.
+/// A diagnostic line per Newton iteration ([`crate::diagnostics`]).
 fn trace(stats: &StationaryStats, value: f64, solved: &SolveStats, lagged: bool) {
-    if std::env::var_os("IGAPARAM_DEBUG").is_some() {
-        eprintln!(
+    crate::diagnostics::note(|| {
+        format!(
             "newton {} g {:e} F {value} solve {solved:?} lagged {lagged}",
             stats.iterations, stats.gradient_norm
-        );
-    }
+        )
+    });
 }
 
 /// What the iterations of [`minimise`] share.
@@ -435,12 +436,12 @@ fn line_search<const D: usize>(
             Some(e) => e.value,
             None => objective.value(pool, &trial),
         };
-        if std::env::var_os("IGAPARAM_DEBUG").is_some() {
-            eprintln!(
+        crate::diagnostics::note(|| {
+            format!(
                 "  alpha {alpha:e} value {value} (F {} slope {slope:e})",
                 eval.value
-            );
-        }
+            )
+        });
         if value.is_finite() {
             let mut derivatives = || match full.take() {
                 Some(e) => Ok(e),
