@@ -56,8 +56,9 @@ pub enum Method {
     /// [`Placement::Current`] (untangling in place): 3 sweeps (more while cells stay invalid),
     /// then Newton's method to the stationarity tolerance
     /// ([`DEFAULT_NEWTON_TOLERANCE`] when none is asked for). A Hessian, or a multigrid
-    /// preconditioner beside it, whose storage cannot be allocated (past the machine's memory) is
-    /// refused ([`ErrorKind::LimitExceeded`]).
+    /// preconditioner beside it, whose storage cannot be reserved (past an address-space limit,
+    /// strict overcommit's commit limit, or the machine's memory and swap) is refused
+    /// ([`ErrorKind::LimitExceeded`]).
     Newton,
 }
 

@@ -255,10 +255,16 @@ fn zero_blocks<const D: usize>(count: usize) -> Result<Vec<Matrix<D>>> {
 
 /// Whether `bytes` can be allocated now, found by reserving them and releasing them at once (no
 /// page is touched); where not, a refusal naming `what` and the sweeps, which keep no Hessian: an
-/// allocation past the machine's memory and swap would abort the process.
+/// allocation past the machine's memory and swap would abort the process. A reservation fails
+/// where it exceeds an address-space limit (`ulimit -v`), the commit limit under strict
+/// overcommit, or (Linux's default) the machine's memory and swap on its own; memory that other
+/// allocations or a container's limit take is not seen until pages are touched.
 pub(super) fn memory_probe(bytes: usize, what: &str) -> Result<()> {
     let mut probe: Vec<u8> = Vec::new();
-    probe.try_reserve_exact(bytes).map_err(|_| {
+    // Seen from outside, so that the compiler cannot drop the reservation as unused.
+    let reserved = std::hint::black_box(&mut probe).try_reserve_exact(bytes);
+    std::hint::black_box(probe.as_ptr());
+    reserved.map_err(|_| {
         Error::new(
             ErrorKind::LimitExceeded,
             format!(

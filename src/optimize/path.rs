@@ -112,7 +112,10 @@ pub fn follow<const D: usize>(
         let invalid = predicted
             .as_ref()
             .map_or(usize::MAX, |x| invalid_cells(pool, problem, x).len());
-        crate::diagnostics::note(|| format!("path: step to {t}, predicted, {invalid} invalid"));
+        crate::diagnostics::note(|| match invalid {
+            usize::MAX => format!("path: step to {t}, no prediction (its solve failed)"),
+            _ => format!("path: step to {t}, predicted, {invalid} invalid"),
+        });
         if outcome.steps == 0 && schedule.first() {
             outcome.first_invalid = invalid;
         }

@@ -119,7 +119,8 @@ impl<const D: usize> Preconditioner<D> {
     /// needed, the shifts tried from level `first`: see [`Preconditioner::next_shift`]) when the
     /// setup is direct, else multigrid (block Jacobi where the multigrid's coarsest level is not
     /// positive definite). `None` when the factorisation fails (a non-finite or non-positive
-    /// diagonal).
+    /// diagonal); refused ([`crate::ErrorKind::LimitExceeded`]) where the multigrid's memory
+    /// cannot be reserved (probed before its setup).
     pub fn new(
         pool: &ThreadPool,
         problem: &super::Problem<D>,

@@ -128,7 +128,8 @@ mod tests {
 
     /// The 1D Laplacian, whose Jacobi-scaled largest eigenvalue is `1 + cos(π/(n+1))`: the
     /// bisection finds it from the tridiagonal matrix itself to round-off, and the estimate lies
-    /// between 0.97 and 1 times it (before the margin), above the power method's 20 iterations.
+    /// between 0.97 and 1 times it (before the margin), above the power method's 20 iterations;
+    /// so too with an uneven diagonal.
     #[test]
     fn the_estimate_bounds_the_largest_eigenvalue_closely() {
         let n = 400;
@@ -158,6 +159,19 @@ mod tests {
         assert!(
             estimate >= power,
             "{estimate} against the power method's {power}"
+        );
+        // A varying diagonal: the Jacobi scaling is uneven; the exact value from the scaled
+        // tridiagonal matrix by the bisection checked above.
+        let diagonal: Vec<f64> = (0..n).map(|i| 2.0 + (i % 7) as f64 / 7.0).collect();
+        let inverse: Vec<f64> = diagonal.iter().map(|d| 1.0 / d).collect();
+        let betas: Vec<f64> = (0..n - 1)
+            .map(|i| -(inverse[i] * inverse[i + 1]).sqrt())
+            .collect();
+        let exact = tridiagonal_largest(&vec![1.0; n], &betas);
+        let estimate = largest_eigenvalue(n, tridiagonal(&diagonal), &inverse) / 1.1;
+        assert!(
+            estimate <= exact * (1.0 + 1e-12) && estimate >= 0.97 * exact,
+            "{estimate} against {exact}"
         );
     }
 

@@ -1127,8 +1127,9 @@ METHOD_SWEEPS = 1
 # method; the sweeps are the fallback where a step cannot be made (e.g. a tangled start). With
 # `IGAPARAM_PLACEMENT_CURRENT` (untangling in place): 3 sweeps (more while cells stay invalid),
 # then Newton's method to the stationarity tolerance (1e-8 when none is asked for). A Hessian,
-# or a multigrid preconditioner beside it, whose storage cannot be allocated (past the
-# machine's memory) is refused with `IGAPARAM_STATUS_LIMIT_EXCEEDED`.
+# or a multigrid preconditioner beside it, whose storage cannot be reserved (past an
+# address-space limit, strict overcommit's commit limit, or the machine's memory and swap) is
+# refused with `IGAPARAM_STATUS_LIMIT_EXCEEDED`.
 METHOD_NEWTON = 2
 
 # Interpolation at the Greville points (least squares when that system is singular or badly
