@@ -125,7 +125,12 @@ const SHIFTS: [f64; 4] = [1e-2, 1e-1, 1.0, 10.0];
 
 /// A numeric factorisation `D^{-1/2} A D^{-1/2} = L Lᵀ`, possibly of a modified matrix.
 pub struct Factor {
-    values: Vec<f64>,
+    /// The factor's values, computed in double precision and kept in single: it serves as CG's
+    /// preconditioner (and a modified Newton step), where its 10⁻⁷ relative error costs at most
+    /// an iteration, and its solves stream it from memory, half the bytes. The 17,940-node
+    /// refined airfoil: 1.16–1.23 → 1.02–1.03 s, peak 180 → 140 MB; 96,740 nodes: 965 → 755
+    /// MB, the same iterations to a Newton step or two (runs alternated).
+    values: Vec<f32>,
     /// `1 / L_jj` per column ([`supernodal::reciprocal_diagonal`]).
     inverse: Vec<f64>,
     /// `D^{-1/2}`, per unknown.
@@ -189,7 +194,8 @@ impl CholeskyPattern {
         Ok((CholeskyPattern::new(a.rows(), col_ptr, row_idx)?, positions))
     }
 
-    /// Number of stored values of the Cholesky factor (memory: 8 bytes each).
+    /// Number of stored values of the Cholesky factor (memory: 8 bytes each while it is
+    /// computed, 4 kept).
     pub fn factor_size(&self) -> usize {
         self.symbolic.len_val()
     }
@@ -220,6 +226,7 @@ impl CholeskyPattern {
                 }
             }
             if let Some(l) = self.try_factorize(&values)? {
+                let l: Vec<f32> = l.iter().map(|&v| v as f32).collect();
                 let inverse = self.supernodal().map_or(Vec::new(), |symbolic| {
                     supernodal::reciprocal_diagonal(symbolic, &l)
                 });
@@ -336,7 +343,7 @@ impl FreeHessian {
         &self.coordinates
     }
 
-    /// Number of stored values of the Cholesky factor (memory: 8 bytes each).
+    /// Number of stored values of the Cholesky factor ([`CholeskyPattern::factor_size`]).
     pub fn factor_size(&self) -> usize {
         self.pattern.factor_size()
     }
@@ -399,7 +406,8 @@ mod tests {
         (n, col_ptr, row_idx, values)
     }
 
-    /// The supernodal solve gives faer's solution to round-off and a residual at round-off.
+    /// The supernodal solve gives faer's solution with the same factor to round-off, and a
+    /// residual at the single-precision factor's round-off.
     #[test]
     fn the_supernodal_solve_agrees_with_faer() {
         for (m, dropped) in [(12, 0), (9, 1), (5, 3)] {
@@ -417,7 +425,8 @@ mod tests {
         // faer's own solve of the scaled system.
         let mut y: Vec<f64> = b.iter().zip(&factor.scale).map(|(b, s)| b * s).collect();
         let stack = pattern.symbolic.solve_in_place_scratch::<f64>(1, Par::Seq);
-        LltRef::new(&pattern.symbolic, &factor.values).solve_in_place_with_conj(
+        let stored: Vec<f64> = factor.values.iter().map(|&v| f64::from(v)).collect();
+        LltRef::new(&pattern.symbolic, &stored).solve_in_place_with_conj(
             Conj::No,
             MatMut::from_column_major_slice_mut(&mut y, n, 1),
             Par::Seq,
@@ -442,8 +451,10 @@ mod tests {
             }
         }
         let norm = |v: &[f64]| v.iter().map(|v| v * v).sum::<f64>().sqrt();
+        // The factor kept in single precision: a residual at its round-off (this matrix is well
+        // conditioned).
         assert!(
-            norm(&r) <= 1e-13 * norm(&b),
+            norm(&r) <= 1e-6 * norm(&b),
             "residual {}",
             norm(&r) / norm(&b)
         );
