@@ -60,6 +60,15 @@ impl Error {
     pub fn io(message: impl Into<String>) -> Self {
         Self::new(ErrorKind::Io, message)
     }
+
+    /// The error with `hint` (what the caller can do about it) after its message, where it is
+    /// of kind `kind`; else unchanged.
+    pub fn hinted(mut self, kind: ErrorKind, hint: &str) -> Self {
+        if self.kind == kind {
+            self.message = format!("{}; {hint}", self.message);
+        }
+        self
+    }
 }
 
 impl fmt::Display for Error {
@@ -81,5 +90,24 @@ pub fn check_finite(what: &str, values: &[f64]) -> Result<()> {
             ErrorKind::NotFinite,
             format!("{what}[{i}] is {}, every value must be finite", values[i]),
         )),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A hint follows the message of an error of its kind only.
+    #[test]
+    fn a_hint_is_added_to_its_kind_only() {
+        let e = Error::new(ErrorKind::LimitExceeded, "no room")
+            .hinted(ErrorKind::LimitExceeded, "try less");
+        assert_eq!(e.message, "no room; try less");
+        assert_eq!(
+            Error::invalid("bad")
+                .hinted(ErrorKind::LimitExceeded, "try less")
+                .message,
+            "bad"
+        );
     }
 }

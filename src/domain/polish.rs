@@ -21,7 +21,7 @@ use rayon::ThreadPool;
 use super::build::Domain;
 use super::cube_map::CubeMap;
 use super::options::DomainOptions;
-use crate::error::Result;
+use crate::error::{ErrorKind, Result};
 use crate::optimize::blocks::BlockLayout;
 use crate::optimize::solver::SolverSetup;
 use crate::optimize::stationary::{self, StationaryOptions, StationaryStats};
@@ -59,8 +59,15 @@ impl<const D: usize, B: CubeMap<D>> Domain<D, B> {
             // The solver is not kept.
             exact_solver: false,
         };
-        let (stats, _) =
-            stationary::minimise(pool, &problem, &setup, &mut x, &newton, None, progress)?;
+        let (stats, _) = stationary::minimise(
+            pool, &problem, &setup, &mut x, &newton, None, progress,
+        )
+        .map_err(|e| {
+            e.hinted(
+                ErrorKind::LimitExceeded,
+                "the polish needs it (stationarity_tolerance 0 leaves it out)",
+            )
+        })?;
         // Every accepted step lowered F, which is finite only on a valid mesh.
         debug_assert!(invalid_cells(pool, &problem, &x).is_empty());
         self.quality = QualitySummary::of(pool, &problem, &x).quality;

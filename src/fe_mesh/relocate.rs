@@ -105,6 +105,11 @@ pub struct RelocateOptions {
     pub method: Method,
 }
 
+/// What a relocation refused for lack of memory (the only limit it has: a Hessian's or a
+/// multigrid's storage) can do instead.
+const WITHOUT_HESSIAN: &str =
+    "the sweeps alone (method SWEEPS, stationarity_tolerance 0) keep no Hessian";
+
 /// Where the Newton method stops when no stationarity tolerance is asked for.
 pub const DEFAULT_NEWTON_TOLERANCE: f64 = 1e-8;
 
@@ -242,7 +247,8 @@ impl Mesh {
         let report = match self.dimension() {
             2 => self.relocate_d::<2>(&pool, options, progress),
             _ => self.relocate_d::<3>(&pool, options, progress),
-        };
+        }
+        .map_err(|e| e.hinted(ErrorKind::LimitExceeded, WITHOUT_HESSIAN));
         crate::diagnostics::note(|| match &report {
             Ok(r) => format!(
                 "relocation: done in {:.3} s, {} sweeps, {} Newton iterations, {} invalid, \

@@ -240,9 +240,9 @@ fn coupling<const D: usize>(problem: &Problem<D>, c: usize, couples: &mut [bool]
     }
 }
 
-/// `count` zero blocks, or a refusal naming the sweeps where they cannot be allocated: a Hessian
-/// larger than the machine's memory and swap (several million quadratic solid nodes; the sweeps
-/// keep none) would otherwise abort the process. The request is tried first
+/// `count` zero blocks, or a refusal where they cannot be allocated: a Hessian larger than the
+/// machine's memory and swap (several million quadratic solid nodes) would otherwise abort the
+/// process. The request is tried first
 /// ([`memory_probe`]), then made zeroed by the allocator (fresh pages, untouched: the evaluation
 /// stores its zeros in order, see
 /// [`GlobalObjective::evaluate_into`](super::global::GlobalObjective::evaluate_into)).
@@ -254,7 +254,8 @@ fn zero_blocks<const D: usize>(count: usize) -> Result<Vec<Matrix<D>>> {
 }
 
 /// Whether `bytes` can be allocated now, found by reserving them and releasing them at once (no
-/// page is touched); where not, a refusal naming `what` and the sweeps, which keep no Hessian: an
+/// page is touched); where not, a refusal ([`ErrorKind::LimitExceeded`]) naming `what`, to which
+/// each caller adds what can be done instead (relocation: the sweeps, which keep no Hessian): an
 /// allocation past the machine's memory and swap would abort the process. A reservation fails
 /// where it exceeds an address-space limit (`ulimit -v`), the commit limit under strict
 /// overcommit, or (Linux's default) the machine's memory and swap on its own; memory that other
@@ -268,8 +269,7 @@ pub(super) fn memory_probe(bytes: usize, what: &str) -> Result<()> {
         Error::new(
             ErrorKind::LimitExceeded,
             format!(
-                "not enough memory for {what} ({:.1} GB): relocate by the sweeps (method \
-                 SWEEPS), which keep none",
+                "not enough memory for {what} ({:.1} GB)",
                 bytes as f64 * 1e-9
             ),
         )
@@ -345,12 +345,12 @@ impl<const D: usize> BlockMatrix<D> {
 mod tests {
     use super::*;
 
-    /// A Hessian whose storage cannot be had is refused with the sweeps named, not an abort.
+    /// A Hessian whose storage cannot be had is refused, not an abort.
     #[test]
     fn a_hessian_past_memory_is_refused() {
         let e = zero_blocks::<3>(usize::MAX / 64).unwrap_err();
         assert_eq!(e.kind, ErrorKind::LimitExceeded);
-        assert!(e.message.contains("method SWEEPS"), "{}", e.message);
+        assert!(e.message.contains("for a Hessian of "), "{}", e.message);
         assert_eq!(zero_blocks::<2>(3).unwrap(), vec![[[0.0; 2]; 2]; 3]);
         let e = memory_probe(usize::MAX / 2, "the multigrid").unwrap_err();
         assert_eq!(e.kind, ErrorKind::LimitExceeded);

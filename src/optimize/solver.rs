@@ -150,7 +150,9 @@ impl<const D: usize> Preconditioner<D> {
             }
         };
         crate::diagnostics::note(|| match &made {
-            Some(Preconditioner::Direct(_)) => "preconditioner: Cholesky factor".into(),
+            Some(Preconditioner::Direct(f)) => {
+                format!("preconditioner: Cholesky factor, shift level {}", f.level)
+            }
             Some(Preconditioner::Multigrid(amg)) => {
                 format!("preconditioner: multigrid, {} levels", amg.level_count())
             }
@@ -176,9 +178,12 @@ impl<const D: usize> Preconditioner<D> {
     /// The shift level a factor of a nearby state's indefinite Hessian starts from: one below
     /// this factor's (the shift that state's matrix needed; the smallest shift that works
     /// matters: starting from this factor's level itself, the 96,740-node refined airfoil took
-    /// 187 Newton iterations instead of 40), at least the smallest shift.
+    /// 187 Newton iterations instead of 40), at least the smallest shift — but this factor's
+    /// own level where the one below was just too small for it: the level below is tried every
+    /// other factorisation, not at each (a failed factorisation costs about a successful one).
     pub fn next_shift(&self) -> usize {
         match self {
+            Preconditioner::Direct(f) if f.first < f.level => f.level,
             Preconditioner::Direct(f) => f.level.saturating_sub(1).max(1),
             _ => 0,
         }
@@ -378,4 +383,29 @@ fn block_jacobi<const D: usize>(
             })
         })
         .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::optimize::sparse::CholeskyPattern;
+
+    /// The level below a factor's shift is tried every other factorisation: not right after it
+    /// was too small, again after a factorisation that started at its own level.
+    #[test]
+    fn the_level_below_is_tried_every_other_time() {
+        // [[1, 3], [3, 1]] (eigenvalues 4 and −2): positive definite from a shift of 10 only.
+        let pattern = CholeskyPattern::new(2, vec![0, 2, 3], vec![0, 1, 1]).unwrap();
+        let factor = |first| {
+            pattern
+                .factorize(vec![1.0, 3.0, 1.0], first)
+                .unwrap()
+                .unwrap()
+        };
+        let below_failed = Preconditioner::<2>::Direct(factor(3));
+        assert_eq!(below_failed.next_shift(), 4);
+        let started_there = Preconditioner::<2>::Direct(factor(4));
+        assert!(started_there.modified());
+        assert_eq!(started_there.next_shift(), 3);
+    }
 }

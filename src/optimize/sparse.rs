@@ -22,7 +22,7 @@ use super::blocks::{BlockLayout, BlockMatrix};
 use super::csr::Csr;
 use super::problem::Problem;
 use super::supernodal;
-use crate::error::{Error, Result};
+use crate::error::{Error, ErrorKind, Result};
 
 /// Marks a coordinate that is not free.
 const NONE: u32 = u32::MAX;
@@ -138,6 +138,8 @@ pub struct Factor {
     /// The shift of the diagonal: 0 for none, else `SHIFTS[level - 1]` (the matrix was not
     /// positive definite).
     pub level: usize,
+    /// The level tried first (below `level`: the shifts from there to `level` were too small).
+    pub first: usize,
 }
 
 impl Factor {
@@ -225,33 +227,44 @@ impl CholeskyPattern {
                     values[p] = 1.0 + shift;
                 }
             }
-            if let Some(l) = self.try_factorize(&values)? {
-                let l: Vec<f32> = l.iter().map(|&v| v as f32).collect();
-                let inverse = self.supernodal().map_or(Vec::new(), |symbolic| {
-                    supernodal::reciprocal_diagonal(symbolic, &l)
-                });
-                return Ok(Some(Factor {
-                    values: l,
-                    inverse,
-                    scale,
-                    level: i,
-                }));
-            }
+            let Some(l) = self.try_factorize(&values)? else {
+                crate::diagnostics::note(|| format!("factor: shift level {i} too small"));
+                continue;
+            };
+            let l: Vec<f32> = l.iter().map(|&v| v as f32).collect();
+            let inverse = self.supernodal().map_or(Vec::new(), |symbolic| {
+                supernodal::reciprocal_diagonal(symbolic, &l)
+            });
+            return Ok(Some(Factor {
+                values: l,
+                inverse,
+                scale,
+                level: i,
+                first,
+            }));
         }
         Ok(None)
     }
 
     fn try_factorize(&self, values: &[f64]) -> Result<Option<Vec<f64>>> {
         let mut l = Vec::new();
-        l.try_reserve_exact(self.symbolic.len_val())
-            .map_err(|_| Error::invalid("not enough memory for a Cholesky factor"))?;
+        l.try_reserve_exact(self.symbolic.len_val()).map_err(|_| {
+            Error::new(
+                ErrorKind::LimitExceeded,
+                "not enough memory for a Cholesky factor",
+            )
+        })?;
         l.resize(self.symbolic.len_val(), 0.0);
         let matrix = SparseColMatRef::new(self.structure.rb(), values);
         let scratch = self
             .symbolic
             .factorize_numeric_llt_scratch::<f64>(Par::Seq, Default::default());
-        let mut buffer = MemBuffer::try_new(scratch)
-            .map_err(|_| Error::invalid("not enough memory to factorise a matrix"))?;
+        let mut buffer = MemBuffer::try_new(scratch).map_err(|_| {
+            Error::new(
+                ErrorKind::LimitExceeded,
+                "not enough memory to factorise a matrix",
+            )
+        })?;
         let result = self.symbolic.factorize_numeric_llt(
             &mut l,
             matrix,
