@@ -277,7 +277,7 @@ impl Amg {
     fn cycle(&self, pool: &ThreadPool, level: usize, b: &[f64]) -> Vec<f64> {
         let Some(l) = self.levels.get(level) else {
             let mut x = b.to_vec();
-            self.coarsest.0.solve(&self.coarsest.1, &mut x);
+            self.coarsest.0.solve(pool, &self.coarsest.1, &mut x);
             return x;
         };
         // Pre-smoothing from zero keeps the residual up to date, post-smoothing starts from the

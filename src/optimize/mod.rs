@@ -29,6 +29,7 @@ pub mod solver;
 pub mod sparse;
 mod spectrum;
 pub mod stationary;
+mod subtrees;
 mod supernodal;
 pub mod sweep;
 pub mod team;

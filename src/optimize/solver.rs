@@ -150,9 +150,11 @@ impl<const D: usize> Preconditioner<D> {
             }
         };
         crate::diagnostics::note(|| match &made {
-            Some(Preconditioner::Direct(f)) => {
-                format!("preconditioner: Cholesky factor, shift level {}", f.level)
-            }
+            Some(Preconditioner::Direct(f)) => format!(
+                "preconditioner: Cholesky factor, shift level {}, {} values",
+                f.level,
+                setup.direct.as_ref().map_or(0, |a| a.factor_size())
+            ),
             Some(Preconditioner::Multigrid(amg)) => {
                 format!("preconditioner: multigrid, {} levels", amg.level_count())
             }
@@ -210,7 +212,7 @@ impl<const D: usize> Preconditioner<D> {
                         }
                     }
                 }
-                analysis.solve(factor, &mut flat);
+                analysis.solve(pool, factor, &mut flat);
                 let mut z = vec![[0.0; D]; r.len()];
                 for (v, zv) in z.iter_mut().enumerate() {
                     for (k, value) in zv.iter_mut().enumerate() {

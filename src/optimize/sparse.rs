@@ -17,11 +17,13 @@ use faer::sparse::linalg::cholesky::{
 use faer::sparse::linalg::SupernodalThreshold;
 use faer::sparse::{SparseColMatRef, SymbolicSparseColMat};
 use faer::{Par, Side};
+use rayon::ThreadPool;
 
 use super::blocks::{BlockLayout, BlockMatrix};
 use super::csr::Csr;
 use super::problem::Problem;
-use super::supernodal;
+use super::subtrees::{self, Split};
+use super::supernodal::{self, FactorRef};
 use crate::error::{Error, ErrorKind, Result};
 
 /// Marks a coordinate that is not free.
@@ -110,6 +112,8 @@ pub struct CholeskyPattern {
     /// Position of each column's diagonal value.
     diagonal: Vec<usize>,
     symbolic: SymbolicCholesky<usize>,
+    /// The split of the factor's solves into two parallel parts (none for a small factor).
+    split: Option<Split>,
 }
 
 /// The structure of `H_ff` (lower triangle, columns by free coordinate) and its symbolic
@@ -170,11 +174,15 @@ impl CholeskyPattern {
             },
         )
         .map_err(|e| Error::invalid(format!("cannot analyse the matrix's structure: {e:?}")))?;
-        Ok(CholeskyPattern {
+        let mut pattern = CholeskyPattern {
             structure,
             diagonal,
             symbolic,
-        })
+            split: None,
+        };
+        let split = |symbolic| Split::new(symbolic, subtrees::SMALLEST);
+        pattern.split = pattern.supernodal().and_then(split);
+        Ok(pattern)
     }
 
     /// The pattern of a symmetric matrix stored in full compressed rows (its upper triangle by
@@ -286,8 +294,9 @@ impl CholeskyPattern {
         }
     }
 
-    /// Solves with the factored (possibly modified) matrix in place.
-    pub fn solve(&self, factor: &Factor, b: &mut [f64]) {
+    /// Solves with the factored (possibly modified) matrix in place, on two threads of `pool`
+    /// where the factor is large enough (the same result on one).
+    pub fn solve(&self, pool: &ThreadPool, factor: &Factor, b: &mut [f64]) {
         let Some(symbolic) = self.supernodal() else {
             return;
         };
@@ -298,7 +307,12 @@ impl CholeskyPattern {
         let mut x: Vec<f64> = (0..b.len())
             .map(|i| b[order(i)] * factor.scale[order(i)])
             .collect();
-        supernodal::solve(symbolic, (&factor.values, &factor.inverse), &mut x);
+        let values = FactorRef {
+            symbolic,
+            values: &factor.values,
+            inverse: &factor.inverse,
+        };
+        supernodal::solve(pool, values, self.split.as_ref(), &mut x);
         for (i, v) in b.iter_mut().enumerate() {
             *v = x[position(i)] * factor.scale[i];
         }
@@ -377,8 +391,8 @@ impl FreeHessian {
     }
 
     /// Solves with a factor of `H_ff` in place (`b` over the free coordinates).
-    pub fn solve(&self, factor: &Factor, b: &mut [f64]) {
-        self.pattern.solve(factor, b);
+    pub fn solve(&self, pool: &ThreadPool, factor: &Factor, b: &mut [f64]) {
+        self.pattern.solve(pool, factor, b);
     }
 }
 
@@ -420,21 +434,36 @@ mod tests {
     }
 
     /// The supernodal solve gives faer's solution with the same factor to round-off, and a
-    /// residual at the single-precision factor's round-off.
+    /// residual at the single-precision factor's round-off, whole and split in two parts (here
+    /// whatever the factor's size), with the same result on one thread as on two.
     #[test]
     fn the_supernodal_solve_agrees_with_faer() {
-        for (m, dropped) in [(12, 0), (9, 1), (5, 3)] {
-            check_solve(grid_matrix(m, dropped));
+        for (m, dropped) in [(12, 0), (9, 1), (5, 3), (40, 0), (33, 5)] {
+            let matrix = grid_matrix(m, dropped);
+            let (n, col_ptr, row_idx, _) = matrix.clone();
+            let mut pattern = CholeskyPattern::new(n, col_ptr, row_idx).unwrap();
+            assert!(pattern.split.is_none(), "{m}");
+            check_solve(&pattern, matrix.clone());
+            pattern.split = pattern.supernodal().and_then(|s| Split::new(s, 0));
+            assert_eq!(pattern.split.is_some(), m >= 9, "{m}");
+            check_solve(&pattern, matrix);
         }
     }
 
-    fn check_solve((n, col_ptr, row_idx, values): (usize, Vec<usize>, Vec<usize>, Vec<f64>)) {
-        let pattern = CholeskyPattern::new(n, col_ptr.clone(), row_idx.clone()).unwrap();
+    fn check_solve(
+        pattern: &CholeskyPattern,
+        (n, col_ptr, row_idx, values): (usize, Vec<usize>, Vec<usize>, Vec<f64>),
+    ) {
         let factor = pattern.factorize(values.clone(), 0).unwrap().unwrap();
         assert!(!factor.modified());
         let b: Vec<f64> = (0..n).map(|i| ((i * 7919) % 101) as f64 - 50.0).collect();
-        let mut x = b.clone();
-        pattern.solve(&factor, &mut x);
+        let solved = |threads| {
+            let mut x = b.clone();
+            pattern.solve(&crate::threads::pool(threads).unwrap(), &factor, &mut x);
+            x
+        };
+        let x = solved(2);
+        assert_eq!(x, solved(1));
         // faer's own solve of the scaled system.
         let mut y: Vec<f64> = b.iter().zip(&factor.scale).map(|(b, s)| b * s).collect();
         let stack = pattern.symbolic.solve_in_place_scratch::<f64>(1, Par::Seq);

@@ -15,17 +15,23 @@
 //! a supernode's columns, and sum the backward pass's dot products by four partial sums: together
 //! 198–203 → 188–194 µs a solve of that Hessian (warm relocation steps, alternated runs, in a
 //! slower hour than the figures above). The values are single precision (`sparse::Factor`),
-//! the arithmetic double: the airfoil's warm loop steps 6.2–6.5 → 6.0–6.2 ms.
+//! the arithmetic double: the airfoil's warm loop steps 6.2–6.5 → 6.0–6.2 ms. A factor of a
+//! million values or more is solved in two parts on two threads (`subtrees.rs`).
 
 use faer::sparse::linalg::cholesky::supernodal::SymbolicSupernodalCholesky;
+use rayon::ThreadPool;
+
+use super::subtrees::{Part, Split};
 
 /// One supernode: its first column, its columns' count, its pattern (the rows below its
-/// diagonal block) and its values (column-major, `columns + pattern.len()` rows).
+/// diagonal block), both in the numbering of the vector solved, its values (column-major,
+/// `columns + pattern.len()` rows) and the reciprocals of its diagonal values.
 struct Supernode<'a> {
     start: usize,
     columns: usize,
     pattern: &'a [usize],
     values: &'a [f32],
+    inverse: &'a [f64],
 }
 
 impl Supernode<'_> {
@@ -39,19 +45,42 @@ impl Supernode<'_> {
     }
 }
 
-/// The supernodes of the factor with structure `symbolic` and values `values`.
-fn supernodes<'a>(
-    symbolic: &'a SymbolicSupernodalCholesky<usize>,
-    values: &'a [f32],
-) -> impl DoubleEndedIterator<Item = Supernode<'a>> {
-    let (begin, end) = (symbolic.supernode_begin(), symbolic.supernode_end());
-    let pointers = symbolic.col_ptr_for_val();
-    (0..symbolic.n_supernodes()).map(move |s| Supernode {
-        start: begin[s],
-        columns: end[s] - begin[s],
-        pattern: symbolic.supernode(s).pattern(),
-        values: &values[pointers[s]..pointers[s + 1]],
-    })
+/// A factor: its structure, its values and the reciprocals of its diagonal values.
+#[derive(Clone, Copy)]
+pub struct FactorRef<'a> {
+    /// The structure.
+    pub symbolic: &'a SymbolicSupernodalCholesky<usize>,
+    /// The values, in faer's layout.
+    pub values: &'a [f32],
+    /// [`reciprocal_diagonal`] of the values.
+    pub inverse: &'a [f64],
+}
+
+impl<'a> FactorRef<'a> {
+    /// Supernode `s`, in the factor's own numbering.
+    fn supernode(&self, s: usize) -> Supernode<'a> {
+        let (begin, end) = (
+            self.symbolic.supernode_begin(),
+            self.symbolic.supernode_end(),
+        );
+        let pointers = self.symbolic.col_ptr_for_val();
+        Supernode {
+            start: begin[s],
+            columns: end[s] - begin[s],
+            pattern: self.symbolic.supernode(s).pattern(),
+            values: &self.values[pointers[s]..pointers[s + 1]],
+            inverse: &self.inverse[begin[s]..end[s]],
+        }
+    }
+
+    /// The supernodes of `part`, in its local numbering.
+    fn part_nodes(self, part: &'a Part) -> impl DoubleEndedIterator<Item = Supernode<'a>> {
+        (0..part.nodes.len()).map(move |i| Supernode {
+            start: part.starts[i],
+            pattern: &part.rows[part.pointers[i]..part.pointers[i + 1]],
+            ..self.supernode(part.nodes[i])
+        })
+    }
 }
 
 /// `1 / L_jj` for every column `j` of the factor with structure `symbolic` and values `values`.
@@ -59,28 +88,87 @@ pub fn reciprocal_diagonal(
     symbolic: &SymbolicSupernodalCholesky<usize>,
     values: &[f32],
 ) -> Vec<f64> {
-    supernodes(symbolic, values)
-        .flat_map(|node| (0..node.columns).map(move |j| 1.0 / f64::from(node.column(j).0[0])))
+    let pointers = symbolic.col_ptr_for_val();
+    let (begin, end) = (symbolic.supernode_begin(), symbolic.supernode_end());
+    (0..symbolic.n_supernodes())
+        .flat_map(|s| {
+            let rows = end[s] - begin[s] + symbolic.supernode(s).pattern().len();
+            let values = &values[pointers[s]..pointers[s + 1]];
+            (0..end[s] - begin[s]).map(move |j| 1.0 / f64::from(values[j * rows + j]))
+        })
         .collect()
 }
 
-/// Solves `L Lᵀ x = b` in place (`x` holds `b` on entry), `L` given by `symbolic`, `values` and
-/// its [`reciprocal_diagonal`] `inverse`, the unknowns in the factor's own order.
-pub fn solve(
-    symbolic: &SymbolicSupernodalCholesky<usize>,
-    (values, inverse): (&[f32], &[f64]),
-    x: &mut [f64],
-) {
+/// Solves `L Lᵀ x = b` in place (`x` holds `b` on entry), the unknowns in the factor's own
+/// order; with `split`, its two parts on two threads of `pool` where it has them (the same
+/// result on one).
+pub fn solve(pool: &ThreadPool, factor: FactorRef<'_>, split: Option<&Split>, x: &mut [f64]) {
+    let mut below = Vec::new();
+    let Some(split) = split else {
+        let all = (0..factor.symbolic.n_supernodes()).map(|s| factor.supernode(s));
+        forward(all.clone(), x, &mut below);
+        backward(all.rev(), x, &mut below);
+        return;
+    };
+    let top = &split.top_columns;
+    let [a, b] = &split.parts;
+    let parts = pool.join(
+        || forward_part(factor, a, top, x),
+        || forward_part(factor, b, top, x),
+    );
+    let updates = [parts.0, parts.1];
+    for (part, local) in split.parts.iter().zip(&updates) {
+        for (&c, v) in part.columns.iter().zip(local) {
+            x[c] = *v;
+        }
+    }
+    // The top's unknowns less the parts' updates, part by part (a fixed order).
+    for (j, &c) in top.iter().enumerate() {
+        let [a, b] = [0, 1].map(|p| updates[p][split.parts[p].columns.len() + j]);
+        x[c] = (x[c] + a) + b;
+    }
+    let top_nodes = split.top.iter().map(|&s| factor.supernode(s));
+    forward(top_nodes.clone(), x, &mut below);
+    backward(top_nodes.rev(), x, &mut below);
+    let parts = pool.join(
+        || backward_part(factor, a, top, x),
+        || backward_part(factor, b, top, x),
+    );
+    for (part, local) in split.parts.iter().zip([parts.0, parts.1]) {
+        for (&c, v) in part.columns.iter().zip(local) {
+            x[c] = v;
+        }
+    }
+}
+
+/// The forward pass of `part` on a copy of its columns of `x`: its columns solved, followed by
+/// its (negated) updates of the `top` columns.
+fn forward_part(factor: FactorRef<'_>, part: &Part, top: &[usize], x: &[f64]) -> Vec<f64> {
+    let mut local: Vec<f64> = part.columns.iter().map(|&c| x[c]).collect();
+    local.resize(part.columns.len() + top.len(), 0.0);
+    forward(factor.part_nodes(part), &mut local, &mut Vec::new());
+    local
+}
+
+/// The backward pass of `part` on a copy of its columns of `x` and of the (solved) `top`
+/// columns: its columns solved.
+fn backward_part(factor: FactorRef<'_>, part: &Part, top: &[usize], x: &[f64]) -> Vec<f64> {
+    let mut local: Vec<f64> = part.columns.iter().chain(top).map(|&c| x[c]).collect();
+    backward(factor.part_nodes(part).rev(), &mut local, &mut Vec::new());
+    local.truncate(part.columns.len());
+    local
+}
+
+/// `L y = b` over `nodes` (in order): a supernode's unknowns are final once the supernodes
+/// before it are applied.
+fn forward<'a>(nodes: impl Iterator<Item = Supernode<'a>>, x: &mut [f64], below: &mut Vec<f64>) {
     // The pattern rows of a supernode's product, in contiguous storage so that the loops over a
     // column run over contiguous arrays; the columns go by pairs, one pass over it for two.
-    let mut below = Vec::new();
-    // L y = b: a supernode's unknowns are final once the supernodes before it are applied.
-    for node in supernodes(symbolic, values) {
+    for node in nodes {
         let top = &mut x[node.start..node.start + node.columns];
-        let inverse = &inverse[node.start..node.start + node.columns];
         for j in 0..node.columns {
             let (block, _) = node.column(j);
-            let xj = top[j] * inverse[j];
+            let xj = top[j] * node.inverse[j];
             top[j] = xj;
             for (xi, l) in top[j + 1..].iter_mut().zip(&block[1..]) {
                 *xi -= f64::from(*l) * xj;
@@ -98,31 +186,34 @@ pub fn solve(
                 *s += f64::from(*a) * xa + f64::from(*b) * xb;
             }
         }
-        for (&i, b) in node.pattern.iter().zip(&below) {
+        for (&i, b) in node.pattern.iter().zip(below.iter()) {
             x[i] -= b;
         }
     }
-    // Lᵀ x = y: a supernode's unknowns need those of the supernodes after it, final by then.
-    for node in supernodes(symbolic, values).rev() {
+}
+
+/// `Lᵀ x = y` over `nodes` (in reverse order): a supernode's unknowns need those of the
+/// supernodes after it, final by then.
+fn backward<'a>(nodes: impl Iterator<Item = Supernode<'a>>, x: &mut [f64], below: &mut Vec<f64>) {
+    for node in nodes {
         below.clear();
         below.extend(node.pattern.iter().map(|&i| x[i]));
         let top = &mut x[node.start..node.start + node.columns];
-        let inverse = &inverse[node.start..node.start + node.columns];
         for j in (0..node.columns).step_by(2) {
             let (_, a) = node.column(j);
             match j + 1 < node.columns {
                 true => {
-                    let [da, db] = dots([a, node.column(j + 1).1], &below);
+                    let [da, db] = dots([a, node.column(j + 1).1], below);
                     top[j] -= da;
                     top[j + 1] -= db;
                 }
-                false => top[j] -= dots([a], &below)[0],
+                false => top[j] -= dots([a], below)[0],
             }
         }
         for j in (0..node.columns).rev() {
             let (block, _) = node.column(j);
             let [after] = dots([&block[1..]], &top[j + 1..]);
-            top[j] = (top[j] - after) * inverse[j];
+            top[j] = (top[j] - after) * node.inverse[j];
         }
     }
 }
