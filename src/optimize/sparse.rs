@@ -402,10 +402,13 @@ mod tests {
     use faer::sparse::linalg::cholesky::LltRef;
     use faer::{Conj, MatMut};
 
+    /// A matrix's size and its lower triangle by columns: pointers, rows, values.
+    type Matrix = (usize, Vec<usize>, Vec<usize>, Vec<f64>);
+
     /// The lower triangle by columns of a symmetric positive definite matrix with the structure
     /// of a 2D grid's stiffness (two unknowns per node, nine-point coupling), entries from a
     /// fixed pseudo-random sequence; the last `dropped` unknowns left out (odd sizes).
-    fn grid_matrix(m: usize, dropped: usize) -> (usize, Vec<usize>, Vec<usize>, Vec<f64>) {
+    fn grid_matrix(m: usize, dropped: usize) -> Matrix {
         let mut seed = 12345u64;
         let mut random = move || {
             seed = seed
@@ -438,22 +441,32 @@ mod tests {
     /// whatever the factor's size), with the same result on one thread as on two.
     #[test]
     fn the_supernodal_solve_agrees_with_faer() {
-        for (m, dropped) in [(12, 0), (9, 1), (5, 3), (40, 0), (33, 5)] {
-            let matrix = grid_matrix(m, dropped);
+        let grids = [(12, 0), (9, 1), (5, 3), (40, 0), (33, 5)].map(|(m, d)| grid_matrix(m, d));
+        // Two grids side by side: a forest of two trees.
+        let forest = [block_diagonal(&grids[1], &grids[4])];
+        for matrix in grids.into_iter().chain(forest) {
             let (n, col_ptr, row_idx, _) = matrix.clone();
             let mut pattern = CholeskyPattern::new(n, col_ptr, row_idx).unwrap();
-            assert!(pattern.split.is_none(), "{m}");
+            assert!(pattern.split.is_none(), "{n}");
             check_solve(&pattern, matrix.clone());
             pattern.split = pattern.supernodal().and_then(|s| Split::new(s, 0));
-            assert_eq!(pattern.split.is_some(), m >= 9, "{m}");
+            assert_eq!(pattern.split.is_some(), n >= 2 * 9 * 9 - 1, "{n}");
             check_solve(&pattern, matrix);
         }
     }
 
-    fn check_solve(
-        pattern: &CholeskyPattern,
-        (n, col_ptr, row_idx, values): (usize, Vec<usize>, Vec<usize>, Vec<f64>),
-    ) {
+    /// The matrix with `a` and `b` on its diagonal (lower triangles by columns).
+    fn block_diagonal(a: &Matrix, b: &Matrix) -> Matrix {
+        let (mut col_ptr, mut row_idx, mut values) = (a.1.clone(), a.2.clone(), a.3.clone());
+        for j in 0..b.0 {
+            row_idx.extend(b.2[b.1[j]..b.1[j + 1]].iter().map(|i| i + a.0));
+            values.extend_from_slice(&b.3[b.1[j]..b.1[j + 1]]);
+            col_ptr.push(row_idx.len());
+        }
+        (a.0 + b.0, col_ptr, row_idx, values)
+    }
+
+    fn check_solve(pattern: &CholeskyPattern, (n, col_ptr, row_idx, values): Matrix) {
         let factor = pattern.factorize(values.clone(), 0).unwrap().unwrap();
         assert!(!factor.modified());
         let b: Vec<f64> = (0..n).map(|i| ((i * 7919) % 101) as f64 - 50.0).collect();
