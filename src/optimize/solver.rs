@@ -17,8 +17,8 @@ use super::small_matrix::{inverse, mul_vec, Matrix, Vector};
 use super::sparse::{Factor, FreeHessian};
 use crate::error::Result;
 
-/// Largest factor (stored values) the direct solver is used for: 3·10⁷ values, 240 MB while
-/// it is computed, 120 MB kept.
+/// Largest factor (stored values) the direct solver is used for: 3·10⁷ values, 360 MB while
+/// it is computed and rounded to single precision, 120 MB kept.
 const DIRECT_FACTOR_LIMIT: usize = 30_000_000;
 
 /// Largest number of free coordinates of a 3D mesh whose factor is tried at all (the analysis of

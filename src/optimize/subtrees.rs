@@ -9,9 +9,10 @@
 //! are summed per part, then added part by part in a fixed order.
 //!
 //! The subtrees are chosen greedily (Geist and Ng's scheme): starting from the roots, the
-//! heaviest subtree of the frontier is replaced by its children while that lowers the estimated
-//! time, the larger part's work plus the top's, the frontier's subtrees dealt to the two parts,
-//! heaviest first, each to the lighter part. Work is counted in factor values.
+//! heaviest subtree of the frontier is replaced by its children, up to 64 times or a leaf; of
+//! the frontiers met, the one of the least estimated time is kept: the larger part's work plus
+//! the top's, the frontier's subtrees dealt to the two parts, heaviest first, each to the
+//! lighter part. Work is counted in factor values.
 
 use faer::sparse::linalg::cholesky::supernodal::SymbolicSupernodalCholesky;
 
@@ -20,8 +21,8 @@ use faer::sparse::linalg::cholesky::supernodal::SymbolicSupernodalCholesky;
 /// machine). Measured on the refined airfoil, runs alternated: its 2,060-node mesh (a factor of
 /// 198,152 values) made warm loop steps slower split, 5.4–6.0 → 7.8–7.9 ms; 8,040 nodes
 /// (1,076,840 values) relocate in 0.17–0.20 s against 0.20–0.21 s whole, 17,940 nodes (2.9
-/// million) in 0.79–0.81 s against 0.89–1.02 s, 96,740 nodes in 25.4–26.1 s against 28.3–29.1 s,
-/// the same iterations.
+/// million) in 0.84–0.85 s against 1.01–1.03 s, 96,740 nodes in 25.4–26.1 s against 28.3–29.1
+/// s, the same iterations.
 pub(super) const SMALLEST: usize = 1_000_000;
 
 /// Frontier expansions tried.
@@ -58,8 +59,8 @@ pub struct Split {
     pub top_columns: Vec<usize>,
 }
 
-/// The tree of supernodes: each one's parent and children, and the factor values of each
-/// subtree.
+/// The tree of supernodes: each one's parent and children, the factor values of each subtree,
+/// and the supernode of each column (`owner`).
 struct Tree {
     parent: Vec<Option<usize>>,
     children: Vec<Vec<usize>>,
@@ -119,6 +120,9 @@ impl Split {
     /// as fast: fewer than `smallest` values ([`SMALLEST`] but in tests), or a tree without two
     /// balanced subtrees.
     pub fn new(symbolic: &SymbolicSupernodalCholesky<usize>, smallest: usize) -> Option<Self> {
+        if symbolic.len_val() < smallest {
+            return None;
+        }
         let tree = Tree::new(symbolic)?;
         let count = tree.parent.len();
         let mut frontier: Vec<usize> = (0..count).filter(|&s| tree.parent[s].is_none()).collect();
@@ -170,6 +174,17 @@ impl Split {
         }
         let (begin, end) = (symbolic.supernode_begin(), symbolic.supernode_end());
         let top: Vec<usize> = (0..count).filter(|&s| assigned[s] == TOP).collect();
+        // The top's patterns stay in the top (its supernodes' ancestors), as the solve assumes.
+        let above = |s: usize| {
+            symbolic
+                .supernode(s)
+                .pattern()
+                .iter()
+                .all(|&r| assigned[tree.owner[r]] == TOP)
+        };
+        if !top.iter().all(|&s| above(s)) {
+            return None;
+        }
         let top_columns: Vec<usize> = top.iter().flat_map(|&s| begin[s]..end[s]).collect();
         let mut local = vec![0; tree.owner.len()];
         let part = |p: usize, local: &mut Vec<usize>| {

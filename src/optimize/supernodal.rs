@@ -16,7 +16,8 @@
 //! 198–203 → 188–194 µs a solve of that Hessian (warm relocation steps, alternated runs, in a
 //! slower hour than the figures above). The values are single precision (`sparse::Factor`),
 //! the arithmetic double: the airfoil's warm loop steps 6.2–6.5 → 6.0–6.2 ms. A factor of a
-//! million values or more is solved in two parts on two threads (`subtrees.rs`).
+//! million values or more whose tree has two balanced parts is solved in two parts on two
+//! threads (`subtrees.rs`).
 
 use faer::sparse::linalg::cholesky::supernodal::SymbolicSupernodalCholesky;
 use rayon::ThreadPool;
@@ -117,15 +118,11 @@ pub fn solve(pool: &ThreadPool, factor: FactorRef<'_>, split: Option<&Split>, x:
         || forward_part(factor, b, top, x),
     );
     let updates = [parts.0, parts.1];
-    for (part, local) in split.parts.iter().zip(&updates) {
-        for (&c, v) in part.columns.iter().zip(local) {
-            x[c] = *v;
-        }
-    }
+    write_back(split, &updates, x);
     // The top's unknowns less the parts' updates, part by part (a fixed order).
     for (j, &c) in top.iter().enumerate() {
-        let [a, b] = [0, 1].map(|p| updates[p][split.parts[p].columns.len() + j]);
-        x[c] = (x[c] + a) + b;
+        let [da, db] = [0, 1].map(|p| updates[p][split.parts[p].columns.len() + j]);
+        x[c] = (x[c] + da) + db;
     }
     let top_nodes = split.top.iter().map(|&s| factor.supernode(s));
     forward(top_nodes.clone(), x, &mut below);
@@ -134,9 +131,14 @@ pub fn solve(pool: &ThreadPool, factor: FactorRef<'_>, split: Option<&Split>, x:
         || backward_part(factor, a, top, x),
         || backward_part(factor, b, top, x),
     );
-    for (part, local) in split.parts.iter().zip([parts.0, parts.1]) {
+    write_back(split, &[parts.0, parts.1], x);
+}
+
+/// Each part's own columns of `x` from the first values of its local vector.
+fn write_back(split: &Split, locals: &[Vec<f64>; 2], x: &mut [f64]) {
+    for (part, local) in split.parts.iter().zip(locals) {
         for (&c, v) in part.columns.iter().zip(local) {
-            x[c] = v;
+            x[c] = *v;
         }
     }
 }
@@ -160,10 +162,10 @@ fn backward_part(factor: FactorRef<'_>, part: &Part, top: &[usize], x: &[f64]) -
 }
 
 /// `L y = b` over `nodes` (in order): a supernode's unknowns are final once the supernodes
-/// before it are applied.
+/// before it are applied. `below` is scratch for the pattern rows of a supernode's product, in
+/// contiguous storage so that the loops over a column run over contiguous arrays (the columns
+/// go by pairs, one pass over it for two).
 fn forward<'a>(nodes: impl Iterator<Item = Supernode<'a>>, x: &mut [f64], below: &mut Vec<f64>) {
-    // The pattern rows of a supernode's product, in contiguous storage so that the loops over a
-    // column run over contiguous arrays; the columns go by pairs, one pass over it for two.
     for node in nodes {
         let top = &mut x[node.start..node.start + node.columns];
         for j in 0..node.columns {
