@@ -127,9 +127,6 @@ impl Split {
         let count = tree.parent.len();
         let mut frontier: Vec<usize> = (0..count).filter(|&s| tree.parent[s].is_none()).collect();
         let total: usize = frontier.iter().map(|&s| tree.subtree[s]).sum();
-        if total < smallest {
-            return None;
-        }
         let mut best: Option<(usize, [Vec<usize>; 2])> = None;
         for _ in 0..EXPANSIONS {
             let (roots, work) = tree.deal(&frontier);
