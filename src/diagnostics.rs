@@ -8,7 +8,7 @@ use std::sync::OnceLock;
 use std::time::Instant;
 
 /// Whether diagnostics are on (`IGAPARAM_DEBUG` set).
-pub(crate) fn enabled() -> bool {
+fn enabled() -> bool {
     std::env::var_os("IGAPARAM_DEBUG").is_some()
 }
 

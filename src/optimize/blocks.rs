@@ -261,19 +261,30 @@ fn zero_blocks<const D: usize>(count: usize) -> Result<Vec<Matrix<D>>> {
 /// overcommit, or (Linux's default) the machine's memory and swap on its own; memory that other
 /// allocations or a container's limit take is not seen until pages are touched.
 pub(super) fn memory_probe(bytes: usize, what: &str) -> Result<()> {
-    let mut probe: Vec<u8> = Vec::new();
+    let probe = reserved::<u8>(bytes, what)?;
     // Seen from outside, so that the compiler cannot drop the reservation as unused.
-    let reserved = std::hint::black_box(&mut probe).try_reserve_exact(bytes);
     std::hint::black_box(probe.as_ptr());
-    reserved.map_err(|_| {
-        Error::new(
-            ErrorKind::LimitExceeded,
-            format!(
-                "not enough memory for {what} ({:.1} GB)",
-                bytes as f64 * 1e-9
-            ),
-        )
-    })
+    Ok(())
+}
+
+/// An empty vector with room for exactly `count` values, or a refusal
+/// ([`ErrorKind::LimitExceeded`]) naming `what` where that room cannot be had (an infallible
+/// allocation would abort the process).
+pub(super) fn reserved<T>(count: usize, what: &str) -> Result<Vec<T>> {
+    let mut room = Vec::new();
+    std::hint::black_box(&mut room)
+        .try_reserve_exact(count)
+        .map_err(|_| {
+            let bytes = count.saturating_mul(std::mem::size_of::<T>());
+            Error::new(
+                ErrorKind::LimitExceeded,
+                format!(
+                    "not enough memory for {what} ({:.1} GB)",
+                    bytes as f64 * 1e-9
+                ),
+            )
+        })?;
+    Ok(room)
 }
 
 /// A symmetric matrix over node coordinates, in the blocks of a [`BlockLayout`].

@@ -19,7 +19,7 @@ use faer::sparse::{SparseColMatRef, SymbolicSparseColMat};
 use faer::{Par, Side};
 use rayon::ThreadPool;
 
-use super::blocks::{BlockLayout, BlockMatrix};
+use super::blocks::{reserved, BlockLayout, BlockMatrix};
 use super::csr::Csr;
 use super::problem::Problem;
 use super::subtrees::{self, Split};
@@ -258,13 +258,7 @@ impl CholeskyPattern {
     /// The factor of the matrix with these (scaled, shifted) lower-triangle `values` in double
     /// precision; `None` where it is not positive definite.
     fn try_factorize(&self, values: &[f64]) -> Result<Option<Vec<f64>>> {
-        let mut l = Vec::new();
-        l.try_reserve_exact(self.symbolic.len_val()).map_err(|_| {
-            Error::new(
-                ErrorKind::LimitExceeded,
-                "not enough memory for a Cholesky factor",
-            )
-        })?;
+        let mut l = reserved(self.symbolic.len_val(), "a Cholesky factor")?;
         l.resize(self.symbolic.len_val(), 0.0);
         let matrix = SparseColMatRef::new(self.structure.rb(), values);
         let scratch = self
@@ -325,13 +319,7 @@ impl CholeskyPattern {
 /// `values` rounded to single precision, `values` released before returning; refused where the
 /// copy cannot be allocated.
 fn single(values: Vec<f64>) -> Result<Vec<f32>> {
-    let mut rounded = Vec::new();
-    rounded.try_reserve_exact(values.len()).map_err(|_| {
-        Error::new(
-            ErrorKind::LimitExceeded,
-            "not enough memory for a Cholesky factor",
-        )
-    })?;
+    let mut rounded = reserved(values.len(), "a Cholesky factor in single precision")?;
     rounded.extend(values.iter().map(|&v| v as f32));
     Ok(rounded)
 }
