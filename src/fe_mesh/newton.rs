@@ -168,7 +168,7 @@ impl Mesh {
                 if !from_last {
                     let positions = lift(&self.reference, &x, self.unit(), &self.fixed);
                     // A factor's Hessian is kept with it; a multigrid's is not (a solid's
-                    // Hessian is the relocation's largest array: the wing's 480 MB) and is
+                    // Hessian is the relocation's largest array: the wing's 0.27 GB) and is
                     // evaluated again at the next cold start.
                     let kept = match setup.is_direct() {
                         true => solver.clone() as Solver,

@@ -42,8 +42,8 @@ pub enum Stage {
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Method {
     /// `Newton` where the Hessian's Cholesky factor is small (2D meshes, 3D ones up to about
-    /// 20,000 nodes) or, beyond, where the Hessian has at most 10⁸ values (about 170,000 H27
-    /// nodes; multigrid-preconditioned steps, about 10 bytes per value at the peak), else
+    /// 20,000 nodes) or, beyond, where the Hessian has at most 10⁸ values (about 310,000 H27
+    /// nodes; multigrid-preconditioned steps, about 17 bytes per value at the peak), else
     /// `Sweeps`. Where memory is short, `Sweeps` needs about a quarter (the wing: 0.16 GB
     /// against 0.59 GB).
     Auto,

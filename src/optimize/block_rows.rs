@@ -4,8 +4,8 @@
 //! every value; here one index serves a whole block (on a 3D mesh 9 values: 2.4 bytes per
 //! value).
 //!
-//! The smoother's products are bound by memory traffic: on the wing (60 million values in its
-//! finest level, about 160 products per relocation) they were 40% of a relocation's time in
+//! The smoother's products are bound by memory traffic: on the wing (tens of millions of values
+//! in its finest level, about 160 products per relocation) they were 40% of a relocation's time in
 //! single precision, on the 812,040-node refined wing half of it. bfloat16 (single precision's
 //! exponent, 8 significant bits) halves that traffic: the wing's relocation took 5.5–5.6 s
 //! instead of 6.9–7.2 s (alternated runs), with the same CG iterations (2, 3, 7 and 11 in its

@@ -58,12 +58,10 @@ impl Stop<'_> {
     /// The scaled max-norm of `r`, a residual over the free coordinates (+∞ where not asked
     /// for).
     fn scaled_norm<const D: usize>(&self, r: &[Vector<D>]) -> f64 {
-        if self.scales.is_empty() {
-            return f64::INFINITY;
+        match self.scales.is_empty() {
+            true => f64::INFINITY,
+            false => scaled_max_norm(self.scales, None, r),
         }
-        let largest = |r: &Vector<D>| r.iter().fold(0.0f64, |m, x| m.max(x.abs()));
-        let scaled = r.iter().zip(self.scales).map(|(r, s)| largest(r) * s);
-        scaled.fold(0.0, f64::max)
     }
 
     /// Whether `stats` meet this.
@@ -98,6 +96,24 @@ fn dot<const D: usize>(a: &[Vector<D>], b: &[Vector<D>]) -> f64 {
 
 fn norm<const D: usize>(a: &[Vector<D>]) -> f64 {
     dot(a, a).sqrt()
+}
+
+/// `max |x_vk|·scales[v]` over the components `k` that `free[v]`'s bits select (all where
+/// `free` is `None`).
+pub(super) fn scaled_max_norm<const D: usize>(
+    scales: &[f64],
+    free: Option<&[u8]>,
+    x: &[Vector<D>],
+) -> f64 {
+    let mut norm = 0.0f64;
+    for (v, (xv, &scale)) in x.iter().zip(scales).enumerate() {
+        for (k, xk) in xv.iter().enumerate() {
+            if free.is_none_or(|free| free[v] & (1 << k) != 0) {
+                norm = norm.max(xk.abs() * scale);
+            }
+        }
+    }
+    norm
 }
 
 /// Preconditioned conjugate gradients from 0 until `stop`; stops at negative curvature

@@ -71,7 +71,7 @@ impl<T: Copy + Into<f64> + Send + Sync> Csr<T> {
 impl Csr {
     /// The matrix with its values rounded to single precision, for products only. Products
     /// are bound by memory traffic, 12 bytes per stored value in double precision and 8 in
-    /// single (the wing's finest multigrid level holds 60 million values, and its products
+    /// single (the wing's finest multigrid level holds tens of millions of values, and its products
     /// were 45% of the wing's relocation); the vectors and the rows' sums stay in double
     /// precision, so the product is a fixed linear map, within rounding of the values at
     /// 6·10⁻⁸.

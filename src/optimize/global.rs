@@ -100,7 +100,7 @@ impl<'p, const D: usize> GlobalObjective<'p, D> {
     /// [`GlobalObjective::evaluate`], the Hessian (where one is evaluated) written into the
     /// storage taken from `spare` (a Hessian of the same layout that is no longer needed) when
     /// there is one: a solid mesh's Hessian is hundreds of megabytes, and fresh storage is
-    /// faulted in page by page (on the wing, 480 MB: most of the page faults of a relocation
+    /// faulted in page by page (on the wing, 0.27 GB: most of the page faults of a relocation
     /// were the first writes of new Hessians). Without a Hessian, `spare` is left as it is.
     pub fn evaluate_into(
         &self,
@@ -121,7 +121,7 @@ impl<'p, const D: usize> GlobalObjective<'p, D> {
             // Zeroed by plain stores, in order and in parallel: a reused Hessian's values, a
             // fresh one's pages (the assembly's first accesses, scattered and read before
             // written, faulted each page in twice, through the zero page and a flush of every
-            // thread's TLB: the wing's 480 MB took 0.95 s to evaluate into, 0.27 s so).
+            // thread's TLB: the wing's took 0.95 s to evaluate into, 0.27 s so).
             let work = m.blocks.len() * D * D;
             threads::for_each_mut(pool, work, &mut m.blocks, |_, b| *b = [[0.0; D]; D]);
             Ok(m)

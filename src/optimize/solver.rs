@@ -27,9 +27,9 @@ const DIRECT_3D_COORDINATES: usize = 60_000;
 
 /// Largest Hessian (stored values) of a 3D mesh too large to factor for which the Newton method
 /// is the default: its multigrid-preconditioned steps keep one Hessian and the hierarchy (the
-/// start state keeps only its preconditioner), about 10 bytes per value at the peak (the wing's
-/// 60 million values: 0.59 GB, where its sweeps take 0.16 GB). 10⁸ values are about 170,000 H27
-/// nodes.
+/// start state keeps only its preconditioner), about 17 bytes per value at the peak (the wing's
+/// 33.6 million values: 0.59 GB, where its sweeps take 0.16 GB). 10⁸ values are about 310,000
+/// H27 nodes (320 values per node).
 const MULTIGRID_NEWTON_VALUES: usize = 100_000_000;
 
 /// The structure a solver needs for one mesh and one set of free coordinates, to be kept and
@@ -136,7 +136,7 @@ impl<const D: usize> Preconditioner<D> {
                 .map(Preconditioner::Direct),
             None => {
                 // The hierarchy's arrays, made while the Hessian is kept, add about a quarter
-                // of its size at their peak (the 812,040-node wing: 0.86 GB beside 3.7 GB);
+                // of its size at their peak (measured on the 812,040-node wing);
                 // a third is probed first, so that a setup past the machine's memory is refused
                 // rather than aborted midway.
                 let bytes = std::mem::size_of_val(&hessian.blocks[..]) / 3;
@@ -271,7 +271,7 @@ impl<const D: usize> HessianSolver<D> {
 
     /// Replaces the preconditioner with one made from this solver's own Hessian (at positions
     /// `x` of `problem`, a factor's shifts tried from level `first`), in place: no copy of the
-    /// Hessian (3.7 GB at 812,040 H27 nodes). `false`, the solver unchanged, where none can be
+    /// Hessian (2.1 GB at 812,040 H27 nodes). `false`, the solver unchanged, where none can be
     /// made.
     pub fn refresh(
         &mut self,

@@ -14,7 +14,7 @@ fn the_twisted_wing_is_untangled() {
         .unwrap();
     assert_eq!(report.invalid_before, 982);
     assert_eq!(report.invalid_after, 0, "{report:?}");
-    // The default method on this mesh (60 million Hessian values) is Newton's, with
+    // The default method on this mesh (33.6 million Hessian values) is Newton's, with
     // multigrid-preconditioned steps: the result is a stationary point of the summed distortion,
     // of min quality 0.974 (the sweeps stop at 0.954).
     assert_eq!(report.sweeps, 0, "{report:?}");

@@ -1113,7 +1113,7 @@ PLACEMENT_INCREMENTAL = 2
 
 # `IGAPARAM_METHOD_NEWTON` where the Hessian's Cholesky factor is small (2D meshes, 3D meshes
 # up to about 20,000 nodes) or, beyond, where the Hessian has at most 10⁸ values (about
-# 170,000 H27 nodes; multigrid-preconditioned steps, about 10 bytes per value at the peak),
+# 310,000 H27 nodes; multigrid-preconditioned steps, about 17 bytes per value at the peak),
 # else `IGAPARAM_METHOD_SWEEPS` (default). Where memory is short, `IGAPARAM_METHOD_SWEEPS`
 # needs about a quarter (the bundled wing: 0.16 GB against 0.59 GB).
 METHOD_AUTO = 0
