@@ -121,7 +121,7 @@ impl<'p, const D: usize> GlobalObjective<'p, D> {
             // Zeroed by plain stores, in order and in parallel: a reused Hessian's values, a
             // fresh one's pages (the assembly's first accesses, scattered and read before
             // written, faulted each page in twice, through the zero page and a flush of every
-            // thread's TLB: the wing's took 0.95 s to evaluate into, 0.27 s so).
+            // thread's TLB: the wing's Hessian took 0.95 s to evaluate into, 0.27 s so).
             let work = m.blocks.len() * D * D;
             threads::for_each_mut(pool, work, &mut m.blocks, |_, b| *b = [[0.0; D]; D]);
             Ok(m)
