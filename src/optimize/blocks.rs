@@ -29,8 +29,10 @@ pub struct BlockLayout {
     /// of its real nodes, row-major, or [`NONE`].
     first: Vec<usize>,
     cell_blocks: Vec<u32>,
-    /// Per chunk of [`cell_chunk`] cells (`chunk_touches[k]..chunk_touches[k + 1]` indexes
-    /// `touches`), the order in which the assembly adds its cells' rows.
+    /// Cells per chunk ([`cell_chunk`]).
+    chunk: usize,
+    /// Per chunk of cells (`chunk_touches[k]..chunk_touches[k + 1]` indexes `touches`), the
+    /// order in which the assembly adds its cells' rows.
     chunk_touches: Vec<usize>,
     touches: Vec<Touch>,
 }
@@ -39,7 +41,7 @@ pub struct BlockLayout {
 /// in cell order (the sums do not depend on it): 512 in 2D; 128 in 3D, where an H27 cell's
 /// contributions are 52 kB and 512 cells' (27 MB) left the cache between being computed and
 /// added (the wing 4.86–5.01 → 4.75–4.87 s and 587 → 569 MB, alternated runs).
-pub(super) const fn cell_chunk(dimension: usize) -> usize {
+const fn cell_chunk(dimension: usize) -> usize {
     match dimension {
         2 => 512,
         _ => 128,
@@ -79,6 +81,7 @@ impl BlockLayout {
             columns,
             first,
             cell_blocks: Vec::new(),
+            chunk: cell_chunk(D),
             chunk_touches: vec![0],
             touches: Vec::new(),
         };
@@ -120,7 +123,7 @@ impl BlockLayout {
     /// Hessian, on the thread that waits for the others). Chunks in parallel.
     fn order_touches<const D: usize>(&mut self, pool: &ThreadPool, problem: &Problem<D>) {
         let cells: Vec<usize> = (0..problem.cell_count()).collect();
-        for chunk in cells.chunks(cell_chunk(D)) {
+        for chunk in cells.chunks(self.chunk) {
             let count: usize = chunk.iter().map(|&c| problem.cell_nodes(c).len()).sum();
             self.chunk_touches
                 .push(self.chunk_touches[self.chunk_touches.len() - 1] + count);
@@ -131,7 +134,7 @@ impl BlockLayout {
         pool.install(|| {
             parts
                 .into_par_iter()
-                .zip(cells.par_chunks(cell_chunk(D)))
+                .zip(cells.par_chunks(self.chunk))
                 .for_each(|(touches, chunk)| {
                     let nodes = chunk.iter().enumerate().flat_map(|(i, &c)| {
                         let nodes = problem.cell_nodes(c).iter().enumerate();
@@ -145,7 +148,13 @@ impl BlockLayout {
         });
     }
 
-    /// The touches of the `k`-th chunk of cells (512 to a chunk), by node then cell.
+    /// Cells per chunk: the assembly computes and adds the cells' contributions chunk by chunk.
+    pub fn chunk(&self) -> usize {
+        self.chunk
+    }
+
+    /// The touches of the `k`-th chunk of cells ([`BlockLayout::chunk`] to a chunk), by node
+    /// then cell.
     pub fn chunk_touches(&self, k: usize) -> &[Touch] {
         &self.touches[self.chunk_touches[k]..self.chunk_touches[k + 1]]
     }

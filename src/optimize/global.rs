@@ -13,7 +13,7 @@
 use rayon::prelude::*;
 use rayon::ThreadPool;
 
-use super::blocks::{cell_chunk, BlockLayout, BlockMatrix, Touch, NONE};
+use super::blocks::{BlockLayout, BlockMatrix, Touch, NONE};
 use super::distortion::{derivatives, value as distortion};
 use super::problem::Problem;
 use super::small_matrix::{Matrix, Vector};
@@ -132,7 +132,7 @@ impl<'p, const D: usize> GlobalObjective<'p, D> {
             hessian: hessian.then(storage).transpose()?,
         };
         let cells: Vec<usize> = (0..self.problem.cell_count()).collect();
-        for (k, chunk) in cells.chunks(cell_chunk(D)).enumerate() {
+        for (k, chunk) in cells.chunks(self.layout.chunk()).enumerate() {
             let locals: Vec<Local<D>> = pool.install(|| {
                 chunk
                     .par_iter()
