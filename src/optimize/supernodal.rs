@@ -35,7 +35,21 @@ struct Supernode<'a> {
     inverse: &'a [f64],
 }
 
-impl Supernode<'_> {
+impl<'a> Supernode<'a> {
+    /// Supernode `s` of the factor with structure `symbolic` and values `values`, in the
+    /// factor's own numbering, without the reciprocals of its diagonal values (empty).
+    fn of(symbolic: &'a SymbolicSupernodalCholesky<usize>, values: &'a [f32], s: usize) -> Self {
+        let (begin, end) = (symbolic.supernode_begin(), symbolic.supernode_end());
+        let pointers = symbolic.col_ptr_for_val();
+        Supernode {
+            start: begin[s],
+            columns: end[s] - begin[s],
+            pattern: symbolic.supernode(s).pattern(),
+            values: &values[pointers[s]..pointers[s + 1]],
+            inverse: &[],
+        }
+    }
+
     /// Column `j` of the supernode: its diagonal-block part from the diagonal down, and its
     /// pattern part.
     fn column(&self, j: usize) -> (&[f32], &[f32]) {
@@ -60,17 +74,10 @@ pub struct FactorRef<'a> {
 impl<'a> FactorRef<'a> {
     /// Supernode `s`, in the factor's own numbering.
     fn supernode(&self, s: usize) -> Supernode<'a> {
-        let (begin, end) = (
-            self.symbolic.supernode_begin(),
-            self.symbolic.supernode_end(),
-        );
-        let pointers = self.symbolic.col_ptr_for_val();
+        let node = Supernode::of(self.symbolic, self.values, s);
         Supernode {
-            start: begin[s],
-            columns: end[s] - begin[s],
-            pattern: self.symbolic.supernode(s).pattern(),
-            values: &self.values[pointers[s]..pointers[s + 1]],
-            inverse: &self.inverse[begin[s]..end[s]],
+            inverse: &self.inverse[node.start..node.start + node.columns],
+            ..node
         }
     }
 
@@ -89,14 +96,9 @@ pub fn reciprocal_diagonal(
     symbolic: &SymbolicSupernodalCholesky<usize>,
     values: &[f32],
 ) -> Vec<f64> {
-    let pointers = symbolic.col_ptr_for_val();
-    let (begin, end) = (symbolic.supernode_begin(), symbolic.supernode_end());
     (0..symbolic.n_supernodes())
-        .flat_map(|s| {
-            let rows = end[s] - begin[s] + symbolic.supernode(s).pattern().len();
-            let values = &values[pointers[s]..pointers[s + 1]];
-            (0..end[s] - begin[s]).map(move |j| 1.0 / f64::from(values[j * rows + j]))
-        })
+        .map(|s| Supernode::of(symbolic, values, s))
+        .flat_map(|node| (0..node.columns).map(move |j| 1.0 / f64::from(node.column(j).0[0])))
         .collect()
 }
 
