@@ -4,17 +4,26 @@
 //! every value; here one index serves a whole block (on a 3D mesh 9 values: 2.4 bytes per
 //! value).
 //!
-//! The smoother's products are bound by memory traffic: on the wing (tens of millions of values
-//! in its finest level, about 160 products per relocation) they were 40% of a relocation's time in
-//! single precision, on the 812,040-node refined wing half of it. bfloat16 (single precision's
-//! exponent, 8 significant bits) halves that traffic: the wing's relocation took 5.5–5.6 s
-//! instead of 6.9–7.2 s (alternated runs), with the same CG iterations (2, 3, 7 and 11 in its
-//! four Newton steps) and the same optimum to 10⁻¹¹. The smoother needs no more: it damps the
-//! oscillating part of the error and the coarse levels, made from the double-precision Hessian,
-//! correct the rest; its eigenvalue estimate is made with these same values.
+//! The smoother's products move the most data of a relocation: on the wing (tens of millions
+//! of values in its finest level, about 160 products per relocation) they were 40% of a
+//! relocation's time in single precision, on the 812,040-node refined wing half of it.
+//! bfloat16 (single precision's exponent, 8 significant bits) halves that traffic: the wing's
+//! relocation took 5.5–5.6 s instead of 6.9–7.2 s (alternated runs), with the same CG
+//! iterations (2, 3, 7 and 11 in its four Newton steps) and the same optimum to 10⁻¹¹. The
+//! smoother needs no more: it damps the oscillating part of the error and the coarse levels,
+//! made from the double-precision Hessian, correct the rest; its eigenvalue estimate is made
+//! with these same values.
 //!
-//! Each row sums its values in the order of their columns, in double precision, so the result
-//! does not depend on the thread count.
+//! The arithmetic is single precision: the vector is rounded to it, bfloat16 values widen to it
+//! by a shift, and a whole 3×3 block's first eight products go as two vectors of four (where
+//! widening each value to double precision cost more than its load). Values and vector are first
+//! scaled by powers of two to at most 1 and negligible ones made 0, so that no product is
+//! subnormal (`NEGLIGIBLE`). The wing 4.47–4.92 → 4.07–4.35 s, the 812,040-node wing
+//! 54.6–58.0 → 49.4 s (alternated runs), with the same CG iterations and optimum (its objective
+//! the same to 10⁻¹²).
+//!
+//! Each row sums its values in the order of their columns, so the result does not depend on the
+//! thread count.
 
 use rayon::prelude::*;
 use rayon::ThreadPool;
@@ -28,6 +37,14 @@ use super::sparse::Coordinates;
 /// into the library's build for these two conversions.
 #[derive(Clone, Copy, Debug)]
 pub struct Bf16(u16);
+
+/// `v` in single precision, 0 where below [`NEGLIGIBLE`].
+fn single(v: f64) -> f32 {
+    match v.abs() < NEGLIGIBLE {
+        true => 0.0,
+        false => v as f32,
+    }
+}
 
 impl From<f64> for Bf16 {
     /// `v` rounded to single precision, then to the nearest bfloat16 (ties to even; a value
@@ -43,15 +60,41 @@ impl From<f64> for Bf16 {
 }
 
 impl Bf16 {
-    /// The value, exactly, in double precision.
+    /// `v` times the power of two `scale`, rounded, or 0 where that is below [`NEGLIGIBLE`].
+    fn scaled(v: f64, scale: f64) -> Self {
+        let v = v * scale;
+        match v.abs() < NEGLIGIBLE {
+            true => Bf16(0),
+            false => Bf16::from(v),
+        }
+    }
+
+    /// The value, exactly, in single precision.
     #[inline]
-    pub fn value(self) -> f64 {
-        f64::from(f32::from_bits(u32::from(self.0) << 16))
+    pub fn single(self) -> f32 {
+        f32::from_bits(u32::from(self.0) << 16)
     }
 }
 
 /// Nodes per parallel task of a product.
 const RUN: usize = 256;
+
+/// Scaled values below this (2⁻⁶⁰) are stored, or multiplied, as 0: with the values scaled to at
+/// most about 1, and the vector multiplied too, every product of two nonzero factors is a
+/// normal single-precision number (at least 2⁻¹²⁰ against single precision's smallest normal,
+/// 2⁻¹²⁶). Subnormal operands take a slow path through the processor: the 812,040-node wing's
+/// last Newton step, whose residuals fall to 10⁻³⁰ and below in places, took 30 s instead of
+/// 18 s with unscaled factors.
+const NEGLIGIBLE: f64 = 1.0 / (1u64 << 60) as f64;
+
+/// The power of two that brings `top`, a largest magnitude, to between ½ and 1 (1 where it is 0
+/// or not finite).
+fn normalising(top: f64) -> f64 {
+    match top > 0.0 && top.is_finite() {
+        true => 2f64.powi(-(top.log2().floor() as i32) - 1),
+        false => 1.0,
+    }
+}
 
 /// A symmetric operator over the free coordinates of the nodes, by node blocks.
 #[derive(Clone, Debug, Default)]
@@ -70,6 +113,8 @@ pub struct BlockRows {
     value: Vec<Bf16>,
     /// Number of free coordinates.
     rows: usize,
+    /// The power of two the values were multiplied by (the diagonal's largest to at most 1).
+    scale: f64,
 }
 
 impl BlockRows {
@@ -95,6 +140,10 @@ impl BlockRows {
             out.width.push(free[v].count_ones() as u8);
         }
         out.rows = coordinates.count();
+        // The largest value of a positive semi-definite matrix is on its diagonal.
+        let diagonal = nodes.iter().filter_map(|&v| layout.find(v, v));
+        let diagonal = diagonal.flat_map(|b| (0..D).map(move |k| hessian.blocks[b][k][k]));
+        out.scale = normalising(diagonal.fold(0.0, |m, v| m.max(v.abs())));
         // Blocks and values per node first, then every node's blocks written in place.
         let couplings = |v: usize| {
             let (blocks, neighbours) = layout.row(v);
@@ -130,6 +179,7 @@ impl BlockRows {
         let neighbours = split_rows(&mut out.neighbour, counts.iter().map(|c| c.0));
         let values = split_rows(&mut out.value, counts.iter().map(|c| c.1));
         let components = |mask: u8| (0..D).filter(move |k| mask & (1 << k) != 0);
+        let scale = out.scale;
         pool.install(|| {
             nodes
                 .par_iter()
@@ -141,7 +191,7 @@ impl BlockRows {
                         *slot = index[w];
                         for k in components(free[v]) {
                             for l in components(free[w]) {
-                                x[at] = Bf16::from(hessian.blocks[b][k][l]);
+                                x[at] = Bf16::scaled(hessian.blocks[b][k][l], scale);
                                 at += 1;
                             }
                         }
@@ -156,9 +206,10 @@ impl BlockRows {
         self.rows
     }
 
-    /// `y = A x` in double precision, each row summed by the entries of its blocks in the order
-    /// of its columns (see `node_product`), the same order for any thread count. Nodes run
-    /// in parallel by runs of `RUN` (256), each node's rows together (one pass over its blocks).
+    /// `y = A x`, multiplied in single precision (see the module's documentation) and scaled
+    /// back in double; each row summed by the entries of its blocks in the order of its columns
+    /// (see `node_product`), the same order for any thread count. Nodes run in parallel by runs
+    /// of `RUN` (256), each node's rows together (one pass over its blocks).
     pub fn apply(&self, pool: &ThreadPool, x: &[f64], y: &mut [f64]) {
         let nodes = self.first.len();
         let starts: Vec<usize> = (0..nodes).step_by(RUN).collect();
@@ -167,12 +218,19 @@ impl BlockRows {
             .iter()
             .map(|&start| self.row_end(end(start)) - self.first[start] as usize);
         let runs = split_rows(y, lengths);
+        // On one thread: in parallel, the wing's relocation took 4.51–4.63 s instead of 4.27–4.38.
+        let scale = normalising(x.iter().fold(0.0, |m, v| m.max(v.abs())));
+        let x: Vec<f32> = x.iter().map(|&v| single(v * scale)).collect();
+        let (x, unscale) = (&x[..], 1.0 / (scale * self.scale));
         pool.install(|| {
             starts.into_par_iter().zip(runs).for_each(|(start, out)| {
                 let mut at = 0;
                 for v in start..end(start) {
                     let height = self.width[v] as usize;
-                    out[at..at + height].copy_from_slice(&self.node_product(v, x)[..height]);
+                    let row = self.node_product(v, x);
+                    for (o, r) in out[at..at + height].iter_mut().zip(row) {
+                        *o = f64::from(r) * unscale;
+                    }
                     at += height;
                 }
             })
@@ -184,24 +242,27 @@ impl BlockRows {
     /// at the end: nine independent chains of one addition per block, where one sum per row
     /// made three chains of three additions per block, bound by the additions' latency.
     #[inline]
-    fn node_product(&self, v: usize, x: &[f64]) -> [f64; 3] {
+    fn node_product(&self, v: usize, x: &[f32]) -> [f32; 3] {
         let height = self.width[v] as usize;
-        let mut slots = [-0.0; 9];
+        let mut slots = [-0.0f32; 9];
         let mut at = self.value_start[v];
         for &w in &self.neighbour[self.block_start[v]..self.block_start[v + 1]] {
             let (first, width) = (self.first[w as usize] as usize, self.width[w as usize]);
             let width = width as usize;
             let xs = &x[first..first + width];
             let block = &self.value[at..at + height * width];
-            if let (Ok(b), Ok(xs)) = (<&[Bf16; 9]>::try_from(block), <&[f64; 3]>::try_from(xs)) {
-                // Whole 3×3 blocks (most of a solid mesh): unrolled.
-                for (j, slot) in slots.iter_mut().enumerate() {
-                    *slot += b[j].value() * xs[j % 3];
+            if let (Ok(b), Ok(xs)) = (<&[Bf16; 9]>::try_from(block), <&[f32; 3]>::try_from(xs)) {
+                // Whole 3×3 blocks (most of a solid mesh): unrolled, the first eight slots
+                // as two vectors of four.
+                let xv = [xs[0], xs[1], xs[2], xs[0], xs[1], xs[2], xs[0], xs[1]];
+                for j in 0..8 {
+                    slots[j] += b[j].single() * xv[j];
                 }
+                slots[8] += b[8].single() * xs[2];
             } else {
                 for (k, row) in block.chunks_exact(width).enumerate() {
                     for (l, (a, b)) in row.iter().zip(xs).enumerate() {
-                        slots[3 * k + l] += a.value() * b;
+                        slots[3 * k + l] += a.single() * b;
                     }
                 }
             }
@@ -228,8 +289,10 @@ mod tests {
 
     /// One cell of `cell_type` on its lattice (spacing ½, slightly bent so that the Hessian has
     /// no zero pattern of its own), with fixed, sliding and free nodes: the node blocks'
-    /// product equals, to the last bit, the free-by-free Hessian rounded to bfloat16 and summed
-    /// in column order by a sum per position of a column in its node, the row's sums added last.
+    /// product equals, to the last bit, the free-by-free Hessian scaled and rounded to bfloat16
+    /// times the scaled vector in single precision, summed in column order by a sum per position
+    /// of a column in its node, the row's sums added last, scaled back. A vector scaled by
+    /// 2⁻⁶⁰⁰ (far below single precision's range) has its product scaled by 2⁻⁶⁰⁰, exactly.
     fn reproduces<const D: usize>(cell_type: CellType) {
         let reference: Vec<[f64; 3]> = cell_type
             .lattice()
@@ -274,24 +337,36 @@ mod tests {
             .filter(|&(v, k)| free[v] & (1 << k) != 0)
             .collect();
         assert_eq!(rows.rows(), coordinates.len());
-        let input: Vec<f64> = (0..rows.rows()).map(|i| (0.7 * i as f64).sin()).collect();
+        let input: Vec<f64> = (0..rows.rows())
+            .map(|i| (0.7 * i as f64 + 0.3).sin())
+            .collect();
+        let input_scale = normalising(input.iter().fold(0.0, |m, v| m.max(v.abs())));
+        assert!(input.iter().all(|v| (v * input_scale).abs() >= NEGLIGIBLE));
         let mut y = vec![0.0; rows.rows()];
         rows.apply(&pool, &input, &mut y);
         for (i, &(v, k)) in coordinates.iter().enumerate() {
             // A running sum per position of a column within its node's free components.
-            let mut slots = [-0.0; 3];
+            let mut slots = [-0.0f32; 3];
             for (j, &(w, l)) in coordinates.iter().enumerate() {
                 if let Some(b) = layout.find(v, w) {
                     let position = (0..l).filter(|&m| free[w] & (1 << m) != 0).count();
-                    slots[position] += Bf16::from(hessian.blocks[b][k][l]).value() * input[j];
+                    let value = Bf16::scaled(hessian.blocks[b][k][l], rows.scale).single();
+                    slots[position] += value * single(input[j] * input_scale);
                 }
             }
-            let sum = (slots[0] + slots[1]) + slots[2];
+            let sum = f64::from((slots[0] + slots[1]) + slots[2]) / (input_scale * rows.scale);
             assert_eq!(
                 y[i].to_bits(),
                 sum.to_bits(),
                 "row {i} (node {v}, component {k})"
             );
+        }
+        let tiny = 2f64.powi(-600);
+        let scaled: Vec<f64> = input.iter().map(|v| v * tiny).collect();
+        let mut z = vec![0.0; rows.rows()];
+        rows.apply(&pool, &scaled, &mut z);
+        for (y, z) in y.iter().zip(&z) {
+            assert_eq!((y * tiny).to_bits(), z.to_bits());
         }
     }
 
@@ -300,25 +375,25 @@ mod tests {
     #[test]
     fn bfloat16_rounds_to_nearest() {
         for v in [0.0, -0.0, 1.0, -2.5, 0.0078125, 255.0, 1.5e-30] {
-            let exact = Bf16::from(v).value();
+            let exact = f64::from(Bf16::from(v).single());
             assert!(
                 exact == v || (exact - v).abs() <= v.abs() * 2f64.powi(-8),
                 "{v}"
             );
         }
-        assert_eq!(Bf16::from(257.0).value(), 256.0); // a tie: to the even 256
-        assert_eq!(Bf16::from(259.0).value(), 260.0); // a tie: to the even 260
-        assert_eq!(Bf16::from(258.9).value(), 258.0);
+        assert_eq!(Bf16::from(257.0).single(), 256.0); // a tie: to the even 256
+        assert_eq!(Bf16::from(259.0).single(), 260.0); // a tie: to the even 260
+        assert_eq!(Bf16::from(258.9).single(), 258.0);
         let mut v = 0.3f64;
         for _ in 0..1000 {
             v = (v * 3.7 + 0.1).fract() * 1e3 - 500.0;
             assert!(
-                (Bf16::from(v).value() - v).abs() <= v.abs() * 2f64.powi(-8),
+                (f64::from(Bf16::from(v).single()) - v).abs() <= v.abs() * 2f64.powi(-8),
                 "{v}"
             );
         }
-        assert_eq!(Bf16::from(1e39).value(), f64::INFINITY);
-        assert!(Bf16::from(f64::NAN).value().is_nan());
+        assert_eq!(Bf16::from(1e39).single(), f32::INFINITY);
+        assert!(Bf16::from(f64::NAN).single().is_nan());
     }
 
     #[test]
