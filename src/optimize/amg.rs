@@ -47,8 +47,8 @@ const CHEBYSHEV_RATIO: f64 = 30.0;
 
 /// A level's operator in single precision, for the smoother's products.
 enum Operator {
-    /// In compressed rows.
-    Rows(Csr<f32>),
+    /// In compressed rows, scaled by a power of two ([`Csr::single`]).
+    Rows(Csr<f32>, f64),
     /// By node blocks (the finest level of quadratic cells: half the memory traffic).
     Blocks(BlockRows),
 }
@@ -56,13 +56,14 @@ enum Operator {
 impl Operator {
     /// The operator in compressed rows, its values rounded to single precision.
     fn rows(a: Csr) -> Self {
-        Operator::Rows(a.single())
+        let (a, scale) = a.single();
+        Operator::Rows(a, scale)
     }
 
     /// `y = A x`.
     fn apply(&self, pool: &ThreadPool, x: &[f64], y: &mut [f64]) {
         match self {
-            Operator::Rows(a) => a.apply(pool, x, y),
+            Operator::Rows(a, scale) => a.apply_single(pool, *scale, x, y),
             Operator::Blocks(a) => a.apply(pool, x, y),
         }
     }
@@ -70,7 +71,7 @@ impl Operator {
     /// Number of rows.
     fn size(&self) -> usize {
         match self {
-            Operator::Rows(a) => a.rows(),
+            Operator::Rows(a, _) => a.rows(),
             Operator::Blocks(a) => a.rows(),
         }
     }

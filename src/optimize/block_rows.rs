@@ -18,7 +18,7 @@
 //! by a shift, and a whole 3×3 block's first eight products go as two vectors of four (where
 //! widening each value to double precision cost more than its load). Values and vector are first
 //! scaled by powers of two to at most 1 and negligible ones made 0, so that no product is
-//! subnormal (`NEGLIGIBLE`). The wing 4.47–4.92 → 4.07–4.35 s, the 812,040-node wing
+//! subnormal (`single.rs`). The wing 4.47–4.92 → 4.07–4.35 s, the 812,040-node wing
 //! 54.6–58.0 → 49.4 s (alternated runs), with the same CG iterations and optimum (its objective
 //! the same to 10⁻¹²).
 //!
@@ -30,6 +30,7 @@ use rayon::ThreadPool;
 
 use super::blocks::{BlockLayout, BlockMatrix};
 use super::csr::split_rows;
+use super::single::{largest, normalising, rounded, NEGLIGIBLE};
 use super::sparse::Coordinates;
 
 /// A bfloat16 value: the upper half of a single-precision one. Written here rather than taken
@@ -37,14 +38,6 @@ use super::sparse::Coordinates;
 /// into the library's build for these two conversions.
 #[derive(Clone, Copy, Debug)]
 pub struct Bf16(u16);
-
-/// `v` in single precision, 0 where below [`NEGLIGIBLE`].
-fn single(v: f64) -> f32 {
-    match v.abs() < NEGLIGIBLE {
-        true => 0.0,
-        false => v as f32,
-    }
-}
 
 impl From<f64> for Bf16 {
     /// `v` rounded to single precision, then to the nearest bfloat16 (ties to even; a value
@@ -78,23 +71,6 @@ impl Bf16 {
 
 /// Nodes per parallel task of a product.
 const RUN: usize = 256;
-
-/// Scaled values below this (2⁻⁶⁰) are stored, or multiplied, as 0: with the values scaled to at
-/// most about 1, and the vector multiplied too, every product of two nonzero factors is a
-/// normal single-precision number (at least 2⁻¹²⁰ against single precision's smallest normal,
-/// 2⁻¹²⁶). Subnormal operands take a slow path through the processor: the 812,040-node wing's
-/// last Newton step, whose residuals fall to 10⁻³⁰ and below in places, took 30 s instead of
-/// 18 s with unscaled factors.
-const NEGLIGIBLE: f64 = 1.0 / (1u64 << 60) as f64;
-
-/// The power of two that brings `top`, a largest magnitude, to between ½ and 1 (1 where it is 0
-/// or not finite).
-fn normalising(top: f64) -> f64 {
-    match top > 0.0 && top.is_finite() {
-        true => 2f64.powi(-(top.log2().floor() as i32) - 1),
-        false => 1.0,
-    }
-}
 
 /// A symmetric operator over the free coordinates of the nodes, by node blocks.
 #[derive(Clone, Debug, Default)]
@@ -143,7 +119,7 @@ impl BlockRows {
         // The largest value of a positive semi-definite matrix is on its diagonal.
         let diagonal = nodes.iter().filter_map(|&v| layout.find(v, v));
         let diagonal = diagonal.flat_map(|b| (0..D).map(move |k| hessian.blocks[b][k][k]));
-        out.scale = normalising(diagonal.fold(0.0, |m, v| m.max(v.abs())));
+        out.scale = normalising(largest(diagonal));
         // Blocks and values per node first, then every node's blocks written in place.
         let couplings = |v: usize| {
             let (blocks, neighbours) = layout.row(v);
@@ -218,9 +194,7 @@ impl BlockRows {
             .iter()
             .map(|&start| self.row_end(end(start)) - self.first[start] as usize);
         let runs = split_rows(y, lengths);
-        // On one thread: in parallel, the wing's relocation took 4.51–4.63 s instead of 4.27–4.38.
-        let scale = normalising(x.iter().fold(0.0, |m, v| m.max(v.abs())));
-        let x: Vec<f32> = x.iter().map(|&v| single(v * scale)).collect();
+        let (x, scale) = rounded(x);
         let (x, unscale) = (&x[..], 1.0 / (scale * self.scale));
         pool.install(|| {
             starts.into_par_iter().zip(runs).for_each(|(start, out)| {
@@ -286,6 +260,7 @@ mod tests {
     use crate::fe_mesh::{problem_of, CellType};
     use crate::optimize::global::GlobalObjective;
     use crate::optimize::problem::TargetKind;
+    use crate::optimize::single::single;
 
     /// One cell of `cell_type` on its lattice (spacing ½, slightly bent so that the Hessian has
     /// no zero pattern of its own), with fixed, sliding and free nodes: the node blocks'
@@ -340,7 +315,7 @@ mod tests {
         let input: Vec<f64> = (0..rows.rows())
             .map(|i| (0.7 * i as f64 + 0.3).sin())
             .collect();
-        let input_scale = normalising(input.iter().fold(0.0, |m, v| m.max(v.abs())));
+        let input_scale = normalising(largest(input.iter().copied()));
         assert!(input.iter().all(|v| (v * input_scale).abs() >= NEGLIGIBLE));
         let mut y = vec![0.0; rows.rows()];
         rows.apply(&pool, &input, &mut y);

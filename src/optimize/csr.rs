@@ -7,6 +7,8 @@
 use rayon::prelude::*;
 use rayon::ThreadPool;
 
+use super::single::{largest, normalising, rounded, single};
+
 /// `values` cut into consecutive rows of the given `lengths` (which add up to at most its
 /// length), for rows to be written in parallel, each into its own slice.
 pub fn split_rows<T>(values: &mut [T], lengths: impl IntoIterator<Item = usize>) -> Vec<&mut [T]> {
@@ -68,20 +70,49 @@ impl<T: Copy + Into<f64> + Send + Sync> Csr<T> {
     }
 }
 
+impl Csr<f32> {
+    /// `y = A x / scale` for the matrix of [`Csr::single`] and its `scale`: multiplied in
+    /// single precision, `x` rounded to it (`single.rs`), each row summed by four running sums
+    /// in the order of its columns (the same for any thread count; one sum is a chain of
+    /// dependent additions), and scaled back in double precision.
+    pub fn apply_single(&self, pool: &ThreadPool, scale: f64, x: &[f64], y: &mut [f64]) {
+        let (x, x_scale) = rounded(x);
+        let unscale = 1.0 / (scale * x_scale);
+        pool.install(|| {
+            y.par_iter_mut().enumerate().for_each(|(i, yi)| {
+                let (cols, vals) = self.row(i);
+                let mut sums = [-0.0f32; 4];
+                let (c4, v4) = (cols.chunks_exact(4), vals.chunks_exact(4));
+                let (ct, vt) = (c4.remainder(), v4.remainder());
+                for (c, v) in c4.zip(v4) {
+                    for k in 0..4 {
+                        sums[k] += v[k] * x[c[k] as usize];
+                    }
+                }
+                for (k, (&c, &v)) in ct.iter().zip(vt).enumerate() {
+                    sums[k] += v * x[c as usize];
+                }
+                *yi = f64::from((sums[0] + sums[1]) + (sums[2] + sums[3])) * unscale;
+            })
+        });
+    }
+}
+
 impl Csr {
-    /// The matrix with its values rounded to single precision, for products only. Products
+    /// The matrix with its values scaled by a power of two to at most 1 and rounded to single
+    /// precision (`single.rs`), for [`Csr::apply_single`]; with that power of two. Products
     /// are bound by memory traffic, 12 bytes per stored value in double precision and 8 in
-    /// single (the wing's finest multigrid level holds tens of millions of values, and its products
-    /// were 45% of the wing's relocation); the vectors and the rows' sums stay in double
-    /// precision, so the product is a fixed linear map, within rounding of the values at
-    /// 6·10⁻⁸.
-    pub fn single(self) -> Csr<f32> {
-        Csr {
+    /// single (the wing's finest multigrid level holds tens of millions of values, and its
+    /// products were 45% of the wing's relocation).
+    pub fn single(self) -> (Csr<f32>, f64) {
+        let scale = normalising(largest(self.value.iter().copied()));
+        let matrix = Csr {
             columns: self.columns,
-            value: self.value.iter().map(|&v| v as f32).collect(),
+            value: self.value.iter().map(|&v| single(v * scale)).collect(),
             start: self.start,
             column: self.column,
-        }
+        };
+        (matrix, scale)
     }
 
     /// Builds a matrix from rows given as `(column, value)` lists (sorted, no repeats).
@@ -428,5 +459,43 @@ mod tests {
         a.apply(&pool(), &[1.0, 2.0, 3.0], &mut y);
         assert_eq!(y, vec![7.0, -2.0, 11.0]);
         assert_eq!(a.diagonal(), vec![1.0, -1.0, 0.0]);
+    }
+
+    /// The single-precision product: exact on small integers at any power-of-two scale of
+    /// the values or of the vector (2⁻⁶⁰⁰ and 2⁶⁰⁰ are far outside single precision's range),
+    /// within single precision's rounding elsewhere, its rows summed in a fixed order.
+    #[test]
+    fn single_precision_products_keep_their_scale() {
+        let rows: Vec<Vec<(u32, f64)>> = (0..7u32)
+            .map(|i| {
+                (0..7u32)
+                    .map(|j| (j, f64::from((i * 3 + j * 5) % 11) - 5.0))
+                    .collect()
+            })
+            .collect();
+        let x: Vec<f64> = (0..7).map(|j| f64::from(j * 2 % 7) - 3.0).collect();
+        let a = Csr::from_rows(7, rows.clone());
+        let mut exact = vec![0.0; 7];
+        a.apply(&pool(), &x, &mut exact);
+        for (value_scale, x_scale) in [(1.0, 1.0), (2f64.powi(-600), 1.0), (1.0, 2f64.powi(600))] {
+            let scaled =
+                |r: &Vec<(u32, f64)>| r.iter().map(|&(j, v)| (j, v * value_scale)).collect();
+            let b = Csr::from_rows(7, rows.iter().map(scaled).collect());
+            let (single, scale) = b.single();
+            let bx: Vec<f64> = x.iter().map(|v| v * x_scale).collect();
+            let mut y = vec![0.0; 7];
+            single.apply_single(&pool(), scale, &bx, &mut y);
+            for (y, e) in y.iter().zip(&exact) {
+                assert_eq!(*y, e * value_scale * x_scale);
+            }
+        }
+        let rough: Vec<f64> = (0..7).map(|j| (0.3 + f64::from(j)).sin()).collect();
+        let (single, scale) = a.clone().single();
+        let (mut y, mut z) = (vec![0.0; 7], vec![0.0; 7]);
+        single.apply_single(&pool(), scale, &rough, &mut y);
+        a.apply(&pool(), &rough, &mut z);
+        for (y, z) in y.iter().zip(&z) {
+            assert!((y - z).abs() <= 1e-6 * 40.0, "{y} {z}");
+        }
     }
 }

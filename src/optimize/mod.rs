@@ -24,6 +24,7 @@ pub mod node;
 pub mod path;
 pub mod pattern;
 pub mod problem;
+pub mod single;
 pub mod small_matrix;
 pub mod solver;
 pub mod sparse;
