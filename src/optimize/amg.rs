@@ -12,10 +12,11 @@
 //! Jacobi step where the level is sparse enough for that to keep the coarse operator sparse;
 //! coarse operators are Galerkin products; each level is smoothed by a Chebyshev polynomial in
 //! the Jacobi-scaled operator (symmetric, so the V-cycle preconditions CG; the smoothers keep
-//! their operators in single precision, the finest one of quadratic cells in bfloat16, their
-//! products being bound by memory traffic), and the coarsest level (at most 40,000 unknowns) is
-//! solved by a sparse Cholesky factorisation. Every step is sequential or row-parallel with a
-//! fixed summation order, so the result does not depend on the thread count.
+//! their operators in single precision, the finest one of quadratic cells in bfloat16, and
+//! multiply in single precision, operands scaled to stay normal numbers: `single.rs`), and the
+//! coarsest level (below 5,000 unknowns unless coarsening stalls first) is solved by a sparse
+//! Cholesky factorisation. Every step is sequential or row-parallel with a fixed summation
+//! order, so the result does not depend on the thread count.
 //!
 //! Hand-written: no maintained Rust crate provides aggregation with a rigid-motion near-null
 //! space; faer's sparse Cholesky factorises the coarsest level.
@@ -54,7 +55,7 @@ enum Operator {
 }
 
 impl Operator {
-    /// The operator in compressed rows, its values rounded to single precision.
+    /// The operator in compressed rows, its values scaled and rounded to single precision.
     fn rows(a: Csr) -> Self {
         let (a, scale) = a.single();
         Operator::Rows(a, scale)

@@ -1,6 +1,6 @@
 //! Products in single precision whose operands stay normal numbers: the vector and the matrix
 //! values are scaled by powers of two to at most 1 (exactly: only exponents change), and
-//! magnitudes below [`NEGLIGIBLE`] are made 0. Subnormal operands take a slow path through the
+//! magnitudes below `NEGLIGIBLE` are made 0. Subnormal operands take a slow path through the
 //! processor: unscaled, the 812,040-node wing's last Newton step, whose conjugate-gradient
 //! residuals fall to 10⁻³⁰ and below in places, took 30 s instead of 18 in the multigrid
 //! smoother's products.
@@ -18,7 +18,7 @@ pub fn normalising(top: f64) -> f64 {
     }
 }
 
-/// `v` (scaled) in single precision, 0 where below [`NEGLIGIBLE`].
+/// `v` (scaled) in single precision, 0 where below `NEGLIGIBLE`.
 pub fn single(v: f64) -> f32 {
     match v.abs() < NEGLIGIBLE {
         true => 0.0,
