@@ -10,6 +10,11 @@ mod refine;
 mod relocate;
 mod sensitivity;
 
+/// The scale rule of relocation: the mesh is optimized in coordinates multiplied by
+/// `unit_of(extent)`, `extent` the largest side of the bounding box of the reference shape, so
+/// that the optimizer always sees a mesh of size 1–2 and every tolerance inside it (the δ
+/// rule's ε, validity, stopping rules) is relative to the mesh's own size.
+pub(crate) use crate::optimize::single::unit_of;
 pub use cell_type::CellType;
 pub use node_order::NodeOrder;
 pub use refine::{refined_grid, refined_grid_by};
@@ -477,24 +482,4 @@ pub(crate) fn extent(lo: [f64; 3], hi: [f64; 3]) -> f64 {
         .filter(|&k| hi[k] >= lo[k])
         .map(|k| hi[k] - lo[k])
         .fold(0.0, f64::max)
-}
-
-/// The scale rule of relocation: the mesh is optimized in coordinates multiplied by `2^-k`,
-/// `2^k ≤ extent < 2^(k+1)` with `extent` the largest side of the bounding box of the
-/// reference shape, so that the optimizer always sees a mesh of size 1–2 and every tolerance
-/// inside it (the δ rule's ε, validity, stopping rules) is relative to the mesh's own size;
-/// a power of two makes the scaling exact both ways. 1 for an extent of 0 or not finite, and
-/// `k` is kept within ±1000 (extents near the ends of the floating-point range).
-pub(crate) fn unit_of(extent: f64) -> f64 {
-    if !(extent.is_finite() && extent > 0.0) {
-        return 1.0;
-    }
-    // floor(log2(extent)) from the exponent bits (exact, unlike log2 near powers of two);
-    // subnormal extents are brought into the normal range first.
-    let (x, shift) = match extent < f64::MIN_POSITIVE {
-        true => (extent * 2f64.powi(64), 64),
-        false => (extent, 0),
-    };
-    let k = ((x.to_bits() >> 52) & 0x7ff) as i32 - 1023 - shift;
-    2f64.powi(-k.clamp(-1000, 1000))
 }

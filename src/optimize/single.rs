@@ -9,13 +9,28 @@
 /// factors is then at least 2⁻¹²⁰, a normal single-precision number (the smallest is 2⁻¹²⁶).
 pub(crate) const NEGLIGIBLE: f64 = 1.0 / (1u64 << 60) as f64;
 
-/// The power of two that brings `top`, a largest magnitude, to between ½ and 1 (1 where it is 0
-/// or not finite).
-pub fn normalising(top: f64) -> f64 {
-    match top > 0.0 && top.is_finite() {
-        true => 2f64.powi(-(top.log2().floor() as i32) - 1),
-        false => 1.0,
+/// The power of two `2^-k` with `2^k ≤ extent < 2^(k+1)`: `extent` times it is in [1, 2), and
+/// a power of two makes the scaling exact both ways (the scale rule of relocation, `fe_mesh`).
+/// 1 for an extent of 0 or not finite, and `k` is kept within ±1000 (extents near the ends of
+/// the floating-point range).
+pub(crate) fn unit_of(extent: f64) -> f64 {
+    if !(extent.is_finite() && extent > 0.0) {
+        return 1.0;
     }
+    // floor(log2(extent)) from the exponent bits (exact, unlike log2 near powers of two);
+    // subnormal extents are brought into the normal range first.
+    let (x, shift) = match extent < f64::MIN_POSITIVE {
+        true => (extent * 2f64.powi(64), 64),
+        false => (extent, 0),
+    };
+    let k = ((x.to_bits() >> 52) & 0x7ff) as i32 - 1023 - shift;
+    2f64.powi(-k.clamp(-1000, 1000))
+}
+
+/// The power of two that brings `top`, a largest magnitude, to between ½ and 1 (1 where it is 0
+/// or not finite; see `unit_of` for the ends of the range).
+pub fn normalising(top: f64) -> f64 {
+    0.5 * unit_of(top)
 }
 
 /// `v` (scaled) in single precision, 0 where below `NEGLIGIBLE`.
