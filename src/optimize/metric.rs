@@ -6,6 +6,7 @@
 //! distortion replaces `σ = det S` by `h(σ) = ½(σ + √(σ² + 4δ²))`, which stays positive, so the
 //! objective is finite on tangled meshes and untangling and smoothing are one minimisation.
 
+use super::single::largest;
 use super::small_matrix::{cofactor, det, dot, frobenius2, mul_vec, Matrix, Vector};
 
 /// `ε` of the δ rule: 10⁶ machine epsilons, for Jacobians normalised by their targets.
@@ -15,7 +16,7 @@ pub const DELTA_EPSILON: f64 = 1e6 * f64::EPSILON;
 /// by the power of two that brings its largest entry into [1, 2) (exactly: the ratio is
 /// invariant), so that `det S` neither under- nor overflows for Jacobians of any size.
 pub fn mean_ratio<const D: usize>(s: &Matrix<D>) -> f64 {
-    let largest = s.iter().flatten().fold(0.0f64, |m, v| m.max(v.abs()));
+    let largest = largest(s.iter().flatten().copied());
     let exponent = ((largest.to_bits() >> 52) & 0x7ff) as i64 - 1023;
     let unit = f64::from_bits(((1023 - exponent.clamp(-1022, 1022)) as u64) << 52);
     let s: Matrix<D> = s.map(|row| row.map(|v| v * unit));

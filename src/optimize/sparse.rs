@@ -494,7 +494,7 @@ mod tests {
             Par::Seq,
             MemStack::new(&mut MemBuffer::new(stack)),
         );
-        let size = x.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+        let size = crate::optimize::single::largest(x.iter().copied());
         for (i, (x, y)) in x.iter().zip(&y).enumerate() {
             assert!(
                 (x - y * factor.scale[i]).abs() <= 1e-14 * size,

@@ -7,6 +7,7 @@ use super::space::{BasisValues, SplineSpace};
 use super::thb::ThbSpace;
 use crate::error::{check_finite, Error, Result};
 use crate::optimize::metric::mean_ratio;
+use crate::optimize::single::largest;
 use crate::optimize::small_matrix::{bounding_box, det, inverse, Matrix};
 
 /// A spline space with one control point per basis function.
@@ -32,10 +33,7 @@ impl<const D: usize, S: SplineSpace<D>> SplineMap<D, S> {
 
     /// Largest absolute coordinate of the control points (a scale for tolerances).
     pub fn extent(&self) -> f64 {
-        self.control
-            .iter()
-            .flatten()
-            .fold(0.0, |m: f64, v| m.max(v.abs()))
+        largest(self.control.iter().flatten().copied())
     }
 
     /// The space.
