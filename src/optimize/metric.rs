@@ -6,19 +6,17 @@
 //! distortion replaces `σ = det S` by `h(σ) = ½(σ + √(σ² + 4δ²))`, which stays positive, so the
 //! objective is finite on tangled meshes and untangling and smoothing are one minimisation.
 
-use super::single::largest;
+use super::single::{largest, unit_of};
 use super::small_matrix::{cofactor, det, dot, frobenius2, mul_vec, Matrix, Vector};
 
 /// `ε` of the δ rule: 10⁶ machine epsilons, for Jacobians normalised by their targets.
 pub const DELTA_EPSILON: f64 = 1e6 * f64::EPSILON;
 
 /// Mean ratio `d·det(S)^{2/d}/‖S‖²` of a Jacobian; 0 when `det S ≤ 0`. Computed on `S` scaled
-/// by the power of two that brings its largest entry into [1, 2) (exactly: the ratio is
-/// invariant), so that `det S` neither under- nor overflows for Jacobians of any size.
+/// by the power of two that brings its largest entry into [1, 2) (`unit_of`; exactly: the
+/// ratio is invariant), so that `det S` neither under- nor overflows for Jacobians of any size.
 pub fn mean_ratio<const D: usize>(s: &Matrix<D>) -> f64 {
-    let largest = largest(s.iter().flatten().copied());
-    let exponent = ((largest.to_bits() >> 52) & 0x7ff) as i64 - 1023;
-    let unit = f64::from_bits(((1023 - exponent.clamp(-1022, 1022)) as u64) << 52);
+    let unit = unit_of(largest(s.iter().flatten().copied()));
     let s: Matrix<D> = s.map(|row| row.map(|v| v * unit));
     let sigma = det(&s);
     let n = frobenius2(&s);
@@ -324,6 +322,14 @@ mod tests {
         assert!((mean_ratio(&r) - 1.0).abs() < 1e-14);
         assert!(mean_ratio(&[[1.0, 0.0], [0.0, 2.0]]) < 1.0);
         assert_eq!(mean_ratio(&[[1.0, 0.0], [0.0, -2.0]]), 0.0);
+        // Invariant under scaling to the ends of the range, subnormal entries included.
+        let scaled = |m: [[f64; 2]; 2], e: i32| m.map(|row| row.map(|v| v * 2f64.powi(e)));
+        for e in [-1000, 1000] {
+            assert_eq!(mean_ratio(&scaled(r, e)), mean_ratio(&r), "2^{e}");
+        }
+        let diagonal = [[1.0, 0.0], [0.0, 2.0]];
+        assert_eq!(mean_ratio(&scaled(diagonal, -1070)), mean_ratio(&diagonal));
+        assert_eq!(mean_ratio(&[[0.0; 2]; 2]), 0.0);
     }
 
     #[test]

@@ -10,9 +10,9 @@
 pub(crate) const NEGLIGIBLE: f64 = 1.0 / (1u64 << 60) as f64;
 
 /// The power of two `2^-k` with `2^k ≤ extent < 2^(k+1)`: `extent` times it is in [1, 2), and
-/// a power of two makes the scaling exact both ways (the scale rule of relocation, `fe_mesh`).
-/// 1 for an extent of 0 or not finite, and `k` is kept within ±1000 (extents near the ends of
-/// the floating-point range).
+/// a power of two makes the scaling exact both ways (the scale rule of relocation, `fe_mesh`,
+/// and of the mean ratio's Jacobians, `metric.rs`). 1 for an extent of 0 or not finite, and `k`
+/// is kept within ±1000 (extents near the ends of the floating-point range).
 pub(crate) fn unit_of(extent: f64) -> f64 {
     if !(extent.is_finite() && extent > 0.0) {
         return 1.0;
@@ -20,11 +20,17 @@ pub(crate) fn unit_of(extent: f64) -> f64 {
     // floor(log2(extent)) from the exponent bits (exact, unlike log2 near powers of two);
     // subnormal extents are brought into the normal range first.
     let (x, shift) = match extent < f64::MIN_POSITIVE {
-        true => (extent * 2f64.powi(64), 64),
+        true => (extent * power_of_two(64), 64),
         false => (extent, 0),
     };
     let k = ((x.to_bits() >> 52) & 0x7ff) as i32 - 1023 - shift;
-    2f64.powi(-k.clamp(-1000, 1000))
+    power_of_two(-k.clamp(-1000, 1000))
+}
+
+/// `2^e` for `|e| ≤ 1022`, from its exponent bits (the mean ratio calls this at every
+/// quadrature point, where `powi` is a library call).
+fn power_of_two(e: i32) -> f64 {
+    f64::from_bits(((1023 + e) as u64) << 52)
 }
 
 /// The power of two that brings `top`, a largest magnitude, to between ½ and 1 (1 where it is 0
@@ -52,4 +58,32 @@ pub fn largest(values: impl Iterator<Item = f64>) -> f64 {
 pub fn rounded(x: &[f64]) -> (Vec<f32>, f64) {
     let scale = normalising(largest(x.iter().copied()));
     (x.iter().map(|&v| single(v * scale)).collect(), scale)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Over the whole range (subnormal extents included), at and between powers of two: the
+    /// unit is the power of two `2^-k` of `floor(log2(extent)) = k`, `k` kept within ±1000, and
+    /// scales the extent into [1, 2) wherever `k` is within that range.
+    #[test]
+    fn the_unit_is_the_power_of_two_of_the_extent() {
+        for e in -1074..=1023 {
+            let power = 2f64.powi(e);
+            for extent in [power, 1.5 * power, power * (2.0 - f64::EPSILON)] {
+                if !extent.is_finite() || extent == 0.0 {
+                    continue;
+                }
+                let unit = unit_of(extent);
+                assert_eq!(unit, 2f64.powi(-e.clamp(-1000, 1000)), "extent 2^{e}");
+                if (-1000..=1000).contains(&e) {
+                    assert!((1.0..2.0).contains(&(extent * unit)), "extent 2^{e}");
+                }
+            }
+        }
+        for extent in [0.0, -1.0, f64::INFINITY, f64::NAN] {
+            assert_eq!(unit_of(extent), 1.0);
+        }
+    }
 }
