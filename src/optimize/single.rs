@@ -13,6 +13,7 @@ pub(crate) const NEGLIGIBLE: f64 = 1.0 / (1u64 << 60) as f64;
 /// a power of two makes the scaling exact both ways (the scale rule of relocation, `fe_mesh`,
 /// and of the mean ratio's Jacobians, `metric.rs`). 1 for an extent of 0 or not finite, and `k`
 /// is kept within ±1000 (extents near the ends of the floating-point range).
+#[inline]
 pub(crate) fn unit_of(extent: f64) -> f64 {
     if !(extent.is_finite() && extent > 0.0) {
         return 1.0;
@@ -29,6 +30,7 @@ pub(crate) fn unit_of(extent: f64) -> f64 {
 
 /// `2^e` for `|e| ≤ 1022`, from its exponent bits (the mean ratio calls this at every
 /// quadrature point, where `powi` is a library call).
+#[inline]
 fn power_of_two(e: i32) -> f64 {
     f64::from_bits(((1023 + e) as u64) << 52)
 }
