@@ -1,9 +1,10 @@
-//! Products in single precision whose operands stay normal numbers: the vector and the matrix
-//! values are scaled by powers of two to at most 1 (exactly: only exponents change), and
-//! magnitudes below `NEGLIGIBLE` are made 0. Subnormal operands take a slow path through the
-//! processor: unscaled, the 812,040-node wing's last Newton step, whose conjugate-gradient
-//! residuals fall to 10⁻³⁰ and below in places, took 30 s instead of 18 in the multigrid
-//! smoother's products.
+//! Scaling by powers of two, and products in single precision whose operands stay normal
+//! numbers. `unit_of` is the one scale rule (relocation's coordinates, the mean ratio's
+//! Jacobians, the products below): only exponents change, so scaling is exact both ways. For
+//! the products, the vector and the matrix values are scaled to at most 1 and magnitudes below
+//! `NEGLIGIBLE` are made 0. Subnormal operands take a slow path through the processor:
+//! unscaled, the 812,040-node wing's last Newton step, whose conjugate-gradient residuals fall
+//! to 10⁻³⁰ and below in places, took 30 s instead of 18 in the multigrid smoother's products.
 
 /// Scaled magnitudes below this (2⁻⁶⁰) are taken as 0: every product of two scaled nonzero
 /// factors is then at least 2⁻¹²⁰, a normal single-precision number (the smallest is 2⁻¹²⁶).
@@ -28,8 +29,8 @@ pub(crate) fn unit_of(extent: f64) -> f64 {
     power_of_two(-k.clamp(-1000, 1000))
 }
 
-/// `2^e` for `|e| ≤ 1022`, from its exponent bits (the mean ratio calls this at every
-/// quadrature point, where `powi` is a library call).
+/// `2^e` for `|e| ≤ 1022`, from its exponent bits (the mean ratio scales every Jacobian it
+/// rates by one, where `powi` is a library call).
 #[inline]
 fn power_of_two(e: i32) -> f64 {
     f64::from_bits(((1023 + e) as u64) << 52)
